@@ -1,0 +1,306 @@
+//! The headless GPU context: adapter choice, device, timestamp queries, dispatch and readback.
+//!
+//! No window and no surface. Adapters are ranked discrete GPU → integrated → virtual → CPU
+//! (lavapipe); `VSGL_ADAPTER` or an explicit filter picks one by name substring.
+
+use crate::error::{Error, Result};
+use std::sync::Arc;
+
+/// What `vsgl.adapters()` lists.
+#[derive(Clone, Debug)]
+pub struct AdapterSummary {
+    pub name: String,
+    pub backend: String,
+    pub device_type: String,
+    pub driver: String,
+    pub timestamps: bool,
+}
+
+const INSTALL_HINT: &str = "no usable GPU or CPU adapter was found by wgpu (Vulkan). \
+On Debian/Ubuntu install a Vulkan driver and loader: \
+`apt-get install mesa-vulkan-drivers libvulkan1` (lavapipe, a CPU Vulkan driver, is enough).";
+
+fn instance() -> wgpu::Instance {
+    let mut desc = wgpu::InstanceDescriptor::new_without_display_handle();
+    // Vulkan on Linux/Windows, Metal on macOS, DX12 on Windows. GL is left out: headless EGL
+    // is unreliable and lacks the compute features the passes use.
+    desc.backends = wgpu::Backends::VULKAN | wgpu::Backends::METAL | wgpu::Backends::DX12;
+    desc.flags = wgpu::InstanceFlags::empty();
+    wgpu::Instance::new(desc)
+}
+
+fn rank(t: wgpu::DeviceType) -> u32 {
+    match t {
+        wgpu::DeviceType::DiscreteGpu => 0,
+        wgpu::DeviceType::IntegratedGpu => 1,
+        wgpu::DeviceType::VirtualGpu => 2,
+        wgpu::DeviceType::Cpu => 3,
+        wgpu::DeviceType::Other => 4,
+    }
+}
+
+fn summary(a: &wgpu::Adapter) -> AdapterSummary {
+    let info = a.get_info();
+    AdapterSummary {
+        name: info.name.clone(),
+        backend: format!("{:?}", info.backend).to_lowercase(),
+        device_type: format!("{:?}", info.device_type),
+        driver: format!("{} {}", info.driver, info.driver_info).trim().to_string(),
+        timestamps: a.features().contains(wgpu::Features::TIMESTAMP_QUERY),
+    }
+}
+
+fn ranked_adapters(inst: &wgpu::Instance) -> Vec<wgpu::Adapter> {
+    let mut v = pollster::block_on(inst.enumerate_adapters(wgpu::Backends::all()));
+    v.sort_by_key(|a| rank(a.get_info().device_type));
+    v
+}
+
+/// Every adapter wgpu sees, best first.
+pub fn adapters() -> Vec<AdapterSummary> {
+    ranked_adapters(&instance()).iter().map(summary).collect()
+}
+
+/// Device, queue and what the adapter can do. Cheap to share (`Arc`).
+pub struct Gpu {
+    pub device: wgpu::Device,
+    pub queue: wgpu::Queue,
+    pub adapter: AdapterSummary,
+    /// Whether passes can carry timestamp writes.
+    pub timestamps: bool,
+    pub limits: wgpu::Limits,
+}
+
+impl Gpu {
+    /// Opens the best adapter, or the first whose name contains `filter` (case-insensitive);
+    /// `filter = None` falls back to the `VSGL_ADAPTER` environment variable.
+    pub fn new(filter: Option<&str>) -> Result<Arc<Self>> {
+        let inst = instance();
+        let all = ranked_adapters(&inst);
+        let env = std::env::var("VSGL_ADAPTER").ok().filter(|s| !s.is_empty());
+        let (filter, from_env) = match filter {
+            Some(f) => (Some(f.to_string()), false),
+            None => (env, true),
+        };
+        let adapter = match &filter {
+            Some(f) => {
+                let needle = f.to_lowercase();
+                all.into_iter().find(|a| a.get_info().name.to_lowercase().contains(&needle)).ok_or_else(|| {
+                    let names: Vec<String> = adapters().into_iter().map(|a| a.name).collect();
+                    let source = if from_env { "VSGL_ADAPTER" } else { "adapter" };
+                    Error::NoAdapter(format!(
+                        "{source}={f:?} matches no adapter; available: {}",
+                        if names.is_empty() { format!("none ({INSTALL_HINT})") } else { names.join(", ") }
+                    ))
+                })?
+            }
+            None => all.into_iter().next().ok_or_else(|| Error::NoAdapter(INSTALL_HINT.into()))?,
+        };
+        let summary = summary(&adapter);
+        let mut features = wgpu::Features::empty();
+        if summary.timestamps {
+            features |= wgpu::Features::TIMESTAMP_QUERY;
+        }
+        let limits = adapter.limits();
+        let (device, queue) = pollster::block_on(adapter.request_device(&wgpu::DeviceDescriptor {
+            label: Some("vsgl_device"),
+            required_features: features,
+            required_limits: limits.clone(),
+            experimental_features: wgpu::ExperimentalFeatures::disabled(),
+            memory_hints: wgpu::MemoryHints::Performance,
+            trace: wgpu::Trace::Off,
+        }))
+        .map_err(|e| Error::NoAdapter(format!("adapter {:?} refused a device: {e}", summary.name)))?;
+        // Errors are caught by scopes around each frame; anything that escapes is logged, never
+        // a panic across the Python boundary.
+        device.on_uncaptured_error(Arc::new(|e: wgpu::Error| log::error!("uncaptured wgpu error: {e}")));
+        Ok(Arc::new(Self { device, queue, timestamps: summary.timestamps, adapter: summary, limits }))
+    }
+
+    /// Compiles a composed WGSL shader, turning compilation errors into `Error::ShaderCompile`.
+    pub fn shader(&self, path: &str) -> Result<wgpu::ShaderModule> {
+        let src = crate::shader_lib::compose(path)?;
+        // Validate with naga first so a broken shader is an error naming the file, not a
+        // device-lost later.
+        let module = naga::front::wgsl::parse_str(&src).map_err(|e| Error::ShaderCompile {
+            file: path.into(),
+            line: e.location(&src).map(|l| l.line_number).unwrap_or(0),
+            message: e.emit_to_string(&src),
+        })?;
+        naga::valid::Validator::new(naga::valid::ValidationFlags::all(), naga::valid::Capabilities::all())
+            .validate(&module)
+            .map_err(|e| Error::ShaderCompile { file: path.into(), line: 0, message: e.emit_to_string(&src) })?;
+        Ok(self.device.create_shader_module(wgpu::ShaderModuleDescriptor {
+            label: Some(path),
+            source: wgpu::ShaderSource::Wgsl(src.into()),
+        }))
+    }
+
+    /// A compute pipeline with an automatic layout from `path`'s entry point `main`.
+    pub fn compute_pipeline(&self, label: &str, module: &wgpu::ShaderModule, entry: &str) -> wgpu::ComputePipeline {
+        self.device.create_compute_pipeline(&wgpu::ComputePipelineDescriptor {
+            label: Some(label),
+            layout: None,
+            module,
+            entry_point: Some(entry),
+            compilation_options: Default::default(),
+            cache: None,
+        })
+    }
+
+    /// Reads back whole buffers (each must have COPY_SRC) as f32/u32 words, waiting for the GPU.
+    pub fn read_buffers(&self, buffers: &[&wgpu::Buffer]) -> Result<Vec<Vec<u8>>> {
+        let mut enc = self.device.create_command_encoder(&wgpu::CommandEncoderDescriptor { label: Some("readback_encoder") });
+        let staging: Vec<wgpu::Buffer> = buffers
+            .iter()
+            .map(|b| {
+                let s = self.device.create_buffer(&wgpu::BufferDescriptor {
+                    label: Some("readback_staging_buffer"),
+                    size: b.size(),
+                    usage: wgpu::BufferUsages::MAP_READ | wgpu::BufferUsages::COPY_DST,
+                    mapped_at_creation: false,
+                });
+                enc.copy_buffer_to_buffer(b, 0, &s, 0, b.size());
+                s
+            })
+            .collect();
+        self.queue.submit([enc.finish()]);
+        for s in &staging {
+            s.slice(..).map_async(wgpu::MapMode::Read, |_| {});
+        }
+        self.wait("readback")?;
+        let mut out = Vec::with_capacity(staging.len());
+        for s in &staging {
+            let view = s
+                .slice(..)
+                .get_mapped_range()
+                .map_err(|e| Error::Validation { context: "readback".into(), message: e.to_string() })?;
+            out.push(view.to_vec());
+            drop(view);
+            s.unmap();
+        }
+        Ok(out)
+    }
+
+    /// Blocks until the queue is idle.
+    pub fn wait(&self, context: &str) -> Result<()> {
+        self.device
+            .poll(wgpu::PollType::wait_indefinitely())
+            .map(|_| ())
+            .map_err(|e| Error::Validation { context: context.into(), message: format!("device poll failed: {e}") })
+    }
+
+    /// Runs `f` inside validation and out-of-memory error scopes and reports the first error.
+    pub fn scoped<T>(&self, context: &str, f: impl FnOnce() -> Result<T>) -> Result<T> {
+        let oom = self.device.push_error_scope(wgpu::ErrorFilter::OutOfMemory);
+        let val = self.device.push_error_scope(wgpu::ErrorFilter::Validation);
+        let r = f();
+        let v = pollster::block_on(val.pop());
+        let o = pollster::block_on(oom.pop());
+        if let Some(e) = o {
+            return Err(Error::OutOfMemory { context: format!("{context}: {e}") });
+        }
+        if let Some(e) = v {
+            return Err(Error::Validation { context: context.into(), message: e.to_string() });
+        }
+        r
+    }
+}
+
+/// Workgroups needed to cover `threads` with groups of `group` (callers count threads, not
+/// groups, as kajiya does).
+pub fn groups(threads: u32, group: u32) -> u32 {
+    threads.div_ceil(group)
+}
+
+/// Per-pass GPU timestamps: two queries per pass, resolved once per frame.
+pub struct PassTimer {
+    pub query_set: Option<wgpu::QuerySet>,
+    resolve: Option<wgpu::Buffer>,
+    names: Vec<String>,
+    capacity: u32,
+    period_ns: f32,
+}
+
+impl PassTimer {
+    pub fn new(gpu: &Gpu, capacity: u32) -> Self {
+        let (query_set, resolve) = if gpu.timestamps {
+            let qs = gpu.device.create_query_set(&wgpu::QuerySetDescriptor {
+                label: Some("frame_timestamp_query_set"),
+                ty: wgpu::QueryType::Timestamp,
+                count: capacity * 2,
+            });
+            let rb = gpu.device.create_buffer(&wgpu::BufferDescriptor {
+                label: Some("frame_timestamp_resolve_buffer"),
+                size: capacity as u64 * 2 * 8,
+                usage: wgpu::BufferUsages::QUERY_RESOLVE | wgpu::BufferUsages::COPY_SRC,
+                mapped_at_creation: false,
+            });
+            (Some(qs), Some(rb))
+        } else {
+            (None, None)
+        };
+        Self { query_set, resolve, names: Vec::new(), capacity, period_ns: gpu.queue.get_timestamp_period() }
+    }
+
+    /// A timer that records nothing (for work that is not a pass of its own).
+    pub fn new_disabled() -> Self {
+        Self { query_set: None, resolve: None, names: Vec::new(), capacity: 0, period_ns: 1.0 }
+    }
+
+    /// Registers a pass; returns the (begin, end) query indices when timestamps are on.
+    pub fn begin(&mut self, name: &str) -> Option<(u32, u32)> {
+        self.query_set.as_ref()?;
+        let i = self.names.len() as u32;
+        if i >= self.capacity {
+            return None;
+        }
+        self.names.push(name.to_string());
+        Some((2 * i, 2 * i + 1))
+    }
+
+    pub fn compute_writes(&self, q: Option<(u32, u32)>) -> Option<wgpu::ComputePassTimestampWrites<'_>> {
+        let (b, e) = q?;
+        Some(wgpu::ComputePassTimestampWrites {
+            query_set: self.query_set.as_ref()?,
+            beginning_of_pass_write_index: Some(b),
+            end_of_pass_write_index: Some(e),
+        })
+    }
+
+    pub fn render_writes(&self, q: Option<(u32, u32)>) -> Option<wgpu::RenderPassTimestampWrites<'_>> {
+        let (b, e) = q?;
+        Some(wgpu::RenderPassTimestampWrites {
+            query_set: self.query_set.as_ref()?,
+            beginning_of_pass_write_index: Some(b),
+            end_of_pass_write_index: Some(e),
+        })
+    }
+
+    pub fn resolve(&self, enc: &mut wgpu::CommandEncoder) {
+        if let (Some(qs), Some(rb)) = (&self.query_set, &self.resolve) {
+            if !self.names.is_empty() {
+                enc.resolve_query_set(qs, 0..self.names.len() as u32 * 2, rb, 0);
+            }
+        }
+    }
+
+    /// Milliseconds per pass (same name twice adds up), after the frame's submission.
+    pub fn read(&self, gpu: &Gpu) -> Result<Vec<(String, f64)>> {
+        let Some(rb) = &self.resolve else { return Ok(Vec::new()) };
+        if self.names.is_empty() {
+            return Ok(Vec::new());
+        }
+        let bytes = gpu.read_buffers(&[rb])?.remove(0);
+        let ticks: &[u64] = bytemuck::cast_slice(&bytes);
+        let mut out: Vec<(String, f64)> = Vec::new();
+        for (i, name) in self.names.iter().enumerate() {
+            let dt = ticks[2 * i + 1].saturating_sub(ticks[2 * i]) as f64 * self.period_ns as f64 * 1e-6;
+            match out.iter_mut().find(|(n, _)| n == name) {
+                Some((_, t)) => *t += dt,
+                None => out.push((name.clone(), dt)),
+            }
+        }
+        Ok(out)
+    }
+}

@@ -1,0 +1,15 @@
+//! vsgl-core: a real-time renderer of one-bounce glossy indirect illumination with virtual
+//! spherical Gaussian lights (Tokuyoshi 2015, 2016) on wgpu. No Python here: `vsgl-py` binds it.
+
+pub mod error;
+pub mod frame_data;
+pub mod gpu;
+pub mod image_io;
+pub mod passes;
+pub mod renderer;
+pub mod scene;
+pub mod shader_lib;
+pub mod upload;
+
+pub use error::{Error, Result};
+pub use renderer::{Frame, RenderOptions, Renderer};

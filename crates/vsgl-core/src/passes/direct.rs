@@ -1,0 +1,74 @@
+//! Direct lighting (compute): spot lights, Lambert + GGX/Smith, shadow-mapped.
+
+use super::entries;
+use crate::error::Result;
+use crate::gpu::{groups, Gpu, PassTimer};
+use crate::passes::material::GBuffer;
+
+const WORKGROUP: u32 = 8;
+
+pub struct DirectPass {
+    pipeline: wgpu::ComputePipeline,
+    sampler: wgpu::Sampler,
+}
+
+impl DirectPass {
+    pub fn new(gpu: &Gpu) -> Result<Self> {
+        let module = gpu.shader("passes/direct.wgsl")?;
+        let pipeline = gpu.compute_pipeline("direct_pipeline", &module, "main");
+        let sampler = gpu.device.create_sampler(&wgpu::SamplerDescriptor {
+            label: Some("direct_shadow_sampler"),
+            address_mode_u: wgpu::AddressMode::ClampToEdge,
+            address_mode_v: wgpu::AddressMode::ClampToEdge,
+            mag_filter: wgpu::FilterMode::Linear,
+            min_filter: wgpu::FilterMode::Linear,
+            // Reverse-Z: the receiver is lit when it is at least as near as the occluder.
+            compare: Some(wgpu::CompareFunction::GreaterEqual),
+            ..Default::default()
+        });
+        Ok(Self { pipeline, sampler })
+    }
+
+    #[allow(clippy::too_many_arguments)]
+    pub fn record(
+        &self,
+        gpu: &Gpu,
+        enc: &mut wgpu::CommandEncoder,
+        timer: &mut PassTimer,
+        frame_uniforms: &wgpu::Buffer,
+        lights: &wgpu::Buffer,
+        shadow_maps: &wgpu::TextureView,
+        gbuffer: &GBuffer,
+        out: &wgpu::Buffer,
+        size: (u32, u32),
+    ) {
+        let frame_bind = gpu.device.create_bind_group(&wgpu::BindGroupDescriptor {
+            label: Some("direct_frame_bind_group"),
+            layout: &self.pipeline.get_bind_group_layout(0),
+            entries: &[wgpu::BindGroupEntry { binding: 0, resource: frame_uniforms.as_entire_binding() }],
+        });
+        let pass_bind = gpu.device.create_bind_group(&wgpu::BindGroupDescriptor {
+            label: Some("direct_pass_bind_group"),
+            layout: &self.pipeline.get_bind_group_layout(1),
+            entries: &entries(&[
+                lights.as_entire_binding(),
+                wgpu::BindingResource::TextureView(shadow_maps),
+                wgpu::BindingResource::Sampler(&self.sampler),
+                gbuffer.position.as_entire_binding(),
+                gbuffer.normal.as_entire_binding(),
+                gbuffer.geo_normal.as_entire_binding(),
+                gbuffer.base_color.as_entire_binding(),
+                out.as_entire_binding(),
+            ]),
+        });
+        let q = timer.begin("direct");
+        let mut pass = enc.begin_compute_pass(&wgpu::ComputePassDescriptor {
+            label: Some("direct_pass"),
+            timestamp_writes: timer.compute_writes(q),
+        });
+        pass.set_pipeline(&self.pipeline);
+        pass.set_bind_group(0, &frame_bind, &[]);
+        pass.set_bind_group(1, &pass_bind, &[]);
+        pass.dispatch_workgroups(groups(size.0, WORKGROUP), groups(size.1, WORKGROUP), 1);
+    }
+}

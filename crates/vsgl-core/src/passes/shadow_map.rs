@@ -1,0 +1,113 @@
+//! Spot-light shadow maps: depth only, one array layer per light, reverse-Z.
+
+use crate::error::Result;
+use crate::gpu::{Gpu, PassTimer};
+use wgpu::util::DeviceExt;
+
+pub const FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Depth32Float;
+
+pub struct ShadowMapPass {
+    pipeline: wgpu::RenderPipeline,
+}
+
+impl ShadowMapPass {
+    pub fn new(gpu: &Gpu) -> Result<Self> {
+        let module = gpu.shader("passes/shadow_map.wgsl")?;
+        let pipeline = gpu.device.create_render_pipeline(&wgpu::RenderPipelineDescriptor {
+            label: Some("shadow_map_pipeline"),
+            layout: None,
+            vertex: wgpu::VertexState {
+                module: &module,
+                entry_point: Some("vs_main"),
+                compilation_options: Default::default(),
+                buffers: &[Some(wgpu::VertexBufferLayout {
+                    array_stride: 16,
+                    step_mode: wgpu::VertexStepMode::Vertex,
+                    attributes: &wgpu::vertex_attr_array![0 => Float32x3],
+                })],
+            },
+            primitive: wgpu::PrimitiveState { cull_mode: None, ..Default::default() },
+            depth_stencil: Some(wgpu::DepthStencilState {
+                format: FORMAT,
+                depth_write_enabled: Some(true),
+                depth_compare: Some(wgpu::CompareFunction::Greater),
+                stencil: Default::default(),
+                bias: Default::default(),
+            }),
+            multisample: Default::default(),
+            fragment: None,
+            multiview_mask: None,
+            cache: None,
+        });
+        Ok(Self { pipeline })
+    }
+
+    /// A depth array with one layer per light (at least one, so the binding always exists).
+    pub fn target(gpu: &Gpu, size: u32, layers: u32) -> wgpu::Texture {
+        gpu.device.create_texture(&wgpu::TextureDescriptor {
+            label: Some("shadow_map_depth_texture"),
+            size: wgpu::Extent3d { width: size, height: size, depth_or_array_layers: layers.max(1) },
+            mip_level_count: 1,
+            sample_count: 1,
+            dimension: wgpu::TextureDimension::D2,
+            format: FORMAT,
+            usage: wgpu::TextureUsages::RENDER_ATTACHMENT | wgpu::TextureUsages::TEXTURE_BINDING,
+            view_formats: &[],
+        })
+    }
+
+    /// Renders layer `i` from each light's view-projection (`view_projs[i]`); with an empty
+    /// list it only clears layer 0.
+    pub fn record(
+        &self,
+        gpu: &Gpu,
+        enc: &mut wgpu::CommandEncoder,
+        timer: &mut PassTimer,
+        target: &wgpu::Texture,
+        view_projs: &[[[f32; 4]; 4]],
+        vertices: &wgpu::Buffer,
+        vertex_count: u32,
+    ) {
+        let layers = view_projs.len().max(1);
+        for layer in 0..layers {
+            let view = target.create_view(&wgpu::TextureViewDescriptor {
+                label: Some("shadow_map_layer_view"),
+                dimension: Some(wgpu::TextureViewDimension::D2),
+                base_array_layer: layer as u32,
+                array_layer_count: Some(1),
+                ..Default::default()
+            });
+            let q = timer.begin("shadow_map");
+            let mut pass = enc.begin_render_pass(&wgpu::RenderPassDescriptor {
+                label: Some("shadow_map_pass"),
+                color_attachments: &[],
+                depth_stencil_attachment: Some(wgpu::RenderPassDepthStencilAttachment {
+                    view: &view,
+                    depth_ops: Some(wgpu::Operations { load: wgpu::LoadOp::Clear(0.0), store: wgpu::StoreOp::Store }),
+                    stencil_ops: None,
+                }),
+                timestamp_writes: timer.render_writes(q),
+                occlusion_query_set: None,
+                multiview_mask: None,
+            });
+            let Some(vp) = view_projs.get(layer) else { continue };
+            if vertex_count == 0 {
+                continue;
+            }
+            let uniform = gpu.device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
+                label: Some("shadow_map_view_uniform_buffer"),
+                contents: bytemuck::cast_slice(vp),
+                usage: wgpu::BufferUsages::UNIFORM,
+            });
+            let bind = gpu.device.create_bind_group(&wgpu::BindGroupDescriptor {
+                label: Some("shadow_map_bind_group"),
+                layout: &self.pipeline.get_bind_group_layout(0),
+                entries: &[wgpu::BindGroupEntry { binding: 0, resource: uniform.as_entire_binding() }],
+            });
+            pass.set_pipeline(&self.pipeline);
+            pass.set_bind_group(0, &bind, &[]);
+            pass.set_vertex_buffer(0, vertices.slice(..));
+            pass.draw(0..vertex_count, 0..1);
+        }
+    }
+}

@@ -1,0 +1,276 @@
+//! Built-in procedural scenes (no files needed): `vsgl.scenes.names()`.
+//!
+//! Units are metres, +Y up. Every scene has a default camera and one spot light, so
+//! `r.render(vsgl.scenes.cornell_box())` just works.
+
+use super::{Camera, Material, Mesh, Primitive, Scene, SpotLight};
+use glam::{DMat4, DVec3, Vec3};
+use std::f64::consts::PI;
+
+/// The names accepted by [`by_name`], in the order `vsgl.scenes.names()` lists them.
+pub const NAMES: &[&str] = &["cornell_box", "glossy_cornell", "caustics_ring", "cave_flashlight"];
+
+/// A built-in scene by name, or `None` for an unknown name.
+pub fn by_name(name: &str) -> Option<Scene> {
+    Some(match name {
+        "cornell_box" => cornell_box(),
+        "glossy_cornell" => glossy_cornell(),
+        "caustics_ring" => caustics_ring(),
+        "cave_flashlight" => cave_flashlight(),
+        _ => return None,
+    })
+}
+
+/// Accumulates triangles with flat or smooth normals into one primitive.
+#[derive(Default)]
+struct MeshBuilder {
+    prim: Primitive,
+}
+
+impl MeshBuilder {
+    fn vertex(&mut self, p: DVec3, n: DVec3, uv: [f32; 2]) -> u32 {
+        self.prim.positions.push(p.as_vec3().to_array());
+        self.prim.normals.push(n.normalize().as_vec3().to_array());
+        self.prim.uvs.push(uv);
+        (self.prim.positions.len() - 1) as u32
+    }
+
+    /// A parallelogram `origin + s·e1 + t·e2`, s,t ∈ [0,1], facing `e1 × e2`.
+    fn quad(&mut self, origin: DVec3, e1: DVec3, e2: DVec3) {
+        let n = e1.cross(e2).normalize();
+        let a = self.vertex(origin, n, [0.0, 0.0]);
+        let b = self.vertex(origin + e1, n, [1.0, 0.0]);
+        let c = self.vertex(origin + e1 + e2, n, [1.0, 1.0]);
+        let d = self.vertex(origin + e2, n, [0.0, 1.0]);
+        self.prim.indices.extend_from_slice(&[a, b, c, a, c, d]);
+    }
+
+    /// An axis-aligned box with outward normals (`inward` flips them, for rooms).
+    fn cuboid(&mut self, min: DVec3, max: DVec3, inward: bool, skip_face: Option<usize>) {
+        let s = max - min;
+        let (x, y, z) = (DVec3::X * s.x, DVec3::Y * s.y, DVec3::Z * s.z);
+        // Faces as (origin, e1, e2) with e1 × e2 pointing outward: −x, +x, −y, +y, −z, +z.
+        let faces = [
+            (min, z, y),
+            (min + x, y, z),
+            (min, x, z),
+            (min + y, z, x),
+            (min, y, x),
+            (min + z, x, y),
+        ];
+        for (i, (o, e1, e2)) in faces.into_iter().enumerate() {
+            if skip_face == Some(i) {
+                continue;
+            }
+            if inward { self.quad(o, e2, e1) } else { self.quad(o, e1, e2) }
+        }
+    }
+
+    /// A UV sphere with smooth normals.
+    fn sphere(&mut self, center: DVec3, radius: f64, rings: u32, segments: u32) {
+        let base = self.prim.positions.len() as u32;
+        for i in 0..=rings {
+            let theta = PI * i as f64 / rings as f64;
+            for j in 0..=segments {
+                let phi = 2.0 * PI * j as f64 / segments as f64;
+                let n = DVec3::new(theta.sin() * phi.cos(), theta.cos(), theta.sin() * phi.sin());
+                self.vertex(center + radius * n, n, [j as f32 / segments as f32, i as f32 / rings as f32]);
+            }
+        }
+        let row = segments + 1;
+        for i in 0..rings {
+            for j in 0..segments {
+                let (a, b) = (base + i * row + j, base + (i + 1) * row + j);
+                self.prim.indices.extend_from_slice(&[a, a + 1, b, b, a + 1, b + 1]);
+            }
+        }
+    }
+
+    /// A thin ring (open cylinder shell with inner and outer wall and a top rim), axis +Y.
+    fn ring(&mut self, center: DVec3, radius: f64, thickness: f64, height: f64, segments: u32) {
+        let r_in = radius - 0.5 * thickness;
+        let r_out = radius + 0.5 * thickness;
+        let at = |r: f64, phi: f64, y: f64| center + DVec3::new(r * phi.cos(), y, r * phi.sin());
+        let radial = |phi: f64| DVec3::new(phi.cos(), 0.0, phi.sin());
+        for (r, sign) in [(r_out, 1.0), (r_in, -1.0)] {
+            let base = self.prim.positions.len() as u32;
+            for j in 0..=segments {
+                let phi = 2.0 * PI * j as f64 / segments as f64;
+                let u = j as f32 / segments as f32;
+                self.vertex(at(r, phi, 0.0), sign * radial(phi), [u, 0.0]);
+                self.vertex(at(r, phi, height), sign * radial(phi), [u, 1.0]);
+            }
+            for j in 0..segments {
+                let (a, b, c, d) = (base + 2 * j, base + 2 * j + 1, base + 2 * j + 2, base + 2 * j + 3);
+                // Winding so that the geometric normal agrees with the shading normal.
+                if sign > 0.0 {
+                    self.prim.indices.extend_from_slice(&[a, b, c, c, b, d]);
+                } else {
+                    self.prim.indices.extend_from_slice(&[a, c, b, c, d, b]);
+                }
+            }
+        }
+        // Top rim.
+        let base = self.prim.positions.len() as u32;
+        for j in 0..=segments {
+            let phi = 2.0 * PI * j as f64 / segments as f64;
+            self.vertex(at(r_in, phi, height), DVec3::Y, [0.0, 0.0]);
+            self.vertex(at(r_out, phi, height), DVec3::Y, [1.0, 0.0]);
+        }
+        for j in 0..segments {
+            let (a, b, c, d) = (base + 2 * j, base + 2 * j + 1, base + 2 * j + 2, base + 2 * j + 3);
+            self.prim.indices.extend_from_slice(&[a, c, b, b, c, d]);
+        }
+    }
+
+    fn finish(self, name: &str, material: usize) -> Mesh {
+        let mut prim = self.prim;
+        prim.material = material;
+        Mesh { name: name.into(), primitives: vec![prim] }
+    }
+}
+
+fn add(scene: &mut Scene, name: &str, material: Material, build: impl FnOnce(&mut MeshBuilder)) {
+    scene.materials.push(material);
+    let mut b = MeshBuilder::default();
+    build(&mut b);
+    let mesh = b.finish(name, scene.materials.len() - 1);
+    scene.add_mesh_node(name, mesh, DMat4::IDENTITY);
+}
+
+fn spot(position: DVec3, target: DVec3, intensity: f32, inner_deg: f32, outer_deg: f32) -> SpotLight {
+    SpotLight {
+        position,
+        direction: (target - position).normalize(),
+        intensity,
+        color: Vec3::ONE,
+        inner_cone: inner_deg.to_radians(),
+        outer_cone: outer_deg.to_radians(),
+    }
+}
+
+fn camera(eye: DVec3, target: DVec3, fov_y_deg: f32) -> Camera {
+    Camera::look_at(eye, target, DVec3::Y, fov_y_deg.to_radians()).expect("built-in camera is valid")
+}
+
+const WHITE: [f32; 3] = [0.73, 0.73, 0.73];
+const RED: [f32; 3] = [0.63, 0.065, 0.05];
+const GREEN: [f32; 3] = [0.14, 0.45, 0.091];
+
+/// Walls of a 2 m Cornell box (x, z ∈ [−1, 1], y ∈ [0, 2]), open towards +z.
+fn cornell_walls(scene: &mut Scene, floor: Material) {
+    let (lo, hi) = (DVec3::new(-1.0, 0.0, -1.0), DVec3::new(1.0, 2.0, 1.0));
+    add(scene, "floor", floor, |b| b.quad(DVec3::new(-1.0, 0.0, 1.0), DVec3::X * 2.0, DVec3::NEG_Z * 2.0));
+    add(scene, "ceiling", Material::dielectric("white", WHITE, 1.0), |b| {
+        b.quad(DVec3::new(-1.0, 2.0, -1.0), DVec3::X * 2.0, DVec3::Z * 2.0)
+    });
+    add(scene, "back_wall", Material::dielectric("white", WHITE, 1.0), |b| {
+        b.quad(lo, DVec3::X * 2.0, DVec3::Y * 2.0)
+    });
+    add(scene, "left_wall", Material::dielectric("red", RED, 1.0), |b| {
+        b.quad(DVec3::new(-1.0, 0.0, 1.0), DVec3::NEG_Z * 2.0, DVec3::Y * 2.0)
+    });
+    add(scene, "right_wall", Material::dielectric("green", GREEN, 1.0), |b| {
+        b.quad(DVec3::new(1.0, 0.0, -1.0), DVec3::Z * 2.0, DVec3::Y * 2.0)
+    });
+    let _ = hi;
+    scene.lights.push(spot(DVec3::new(0.0, 1.95, 0.0), DVec3::new(0.0, 0.0, 0.0), 6.0, 40.0, 55.0));
+    scene.cameras.push(camera(DVec3::new(0.0, 1.0, 3.9), DVec3::new(0.0, 1.0, 0.0), 40.0));
+}
+
+/// The classic diffuse Cornell box with two white blocks.
+pub fn cornell_box() -> Scene {
+    let mut s = Scene { source: "builtin:cornell_box".into(), ..Default::default() };
+    cornell_walls(&mut s, Material::dielectric("white", WHITE, 1.0));
+    add(&mut s, "tall_block", Material::dielectric("white", WHITE, 1.0), |b| {
+        b.cuboid(DVec3::new(-0.65, 0.0, -0.6), DVec3::new(-0.05, 1.2, 0.0), false, Some(2))
+    });
+    add(&mut s, "short_block", Material::dielectric("white", WHITE, 1.0), |b| {
+        b.cuboid(DVec3::new(0.1, 0.0, 0.0), DVec3::new(0.7, 0.6, 0.6), false, Some(2))
+    });
+    s
+}
+
+/// The Cornell box with GGX objects of roughness 0.05–0.3 (a gold sphere, a glossy block and
+/// a glossy floor): glossy indirect light, the papers' subject.
+pub fn glossy_cornell() -> Scene {
+    let mut s = Scene { source: "builtin:glossy_cornell".into(), ..Default::default() };
+    cornell_walls(&mut s, Material::dielectric("glossy_floor", WHITE, 0.3));
+    add(&mut s, "gold_sphere", Material::metal("gold", [1.0, 0.78, 0.34], 0.05), |b| {
+        b.sphere(DVec3::new(0.4, 0.4, 0.2), 0.4, 32, 64)
+    });
+    add(&mut s, "glossy_block", Material::metal("steel", [0.8, 0.8, 0.85], 0.15), |b| {
+        b.cuboid(DVec3::new(-0.7, 0.0, -0.6), DVec3::new(-0.1, 1.2, -0.1), false, Some(2))
+    });
+    s
+}
+
+/// A polished metal ring (roughness 0.02) on a diffuse floor under a spot light: the papers'
+/// caustics case, where glossy VSGLs matter most.
+pub fn caustics_ring() -> Scene {
+    let mut s = Scene { source: "builtin:caustics_ring".into(), ..Default::default() };
+    add(&mut s, "floor", Material::dielectric("floor", [0.8, 0.8, 0.8], 1.0), |b| {
+        b.quad(DVec3::new(-2.0, 0.0, 2.0), DVec3::X * 4.0, DVec3::NEG_Z * 4.0)
+    });
+    add(&mut s, "ring", Material::metal("polished_gold", [1.0, 0.86, 0.57], 0.02), |b| {
+        b.ring(DVec3::ZERO, 0.6, 0.03, 0.35, 128)
+    });
+    s.lights.push(spot(DVec3::new(0.0, 2.2, 2.0), DVec3::new(0.0, 0.0, -0.3), 30.0, 20.0, 30.0));
+    s.cameras.push(camera(DVec3::new(0.0, 2.4, -2.2), DVec3::new(0.0, 0.0, 0.0), 45.0));
+    s
+}
+
+/// An enclosed room lit only by a narrow spot light (a flashlight) with a glossy floor: all
+/// indirect light comes from a small lit spot, the two-VSGL poster's case.
+pub fn cave_flashlight() -> Scene {
+    let mut s = Scene { source: "builtin:cave_flashlight".into(), ..Default::default() };
+    add(&mut s, "floor", Material::dielectric("wet_stone", [0.35, 0.33, 0.3], 0.15), |b| {
+        b.quad(DVec3::new(-3.0, 0.0, 3.0), DVec3::X * 6.0, DVec3::NEG_Z * 6.0)
+    });
+    add(&mut s, "walls", Material::dielectric("rock", [0.55, 0.5, 0.45], 0.8), |b| {
+        b.cuboid(DVec3::new(-3.0, 0.0, -3.0), DVec3::new(3.0, 2.5, 3.0), true, Some(2))
+    });
+    add(&mut s, "boulder", Material::dielectric("boulder", [0.6, 0.45, 0.3], 0.5), |b| {
+        b.sphere(DVec3::new(0.8, 0.5, -1.2), 0.5, 24, 48)
+    });
+    s.lights.push(spot(DVec3::new(-0.3, 1.5, 2.2), DVec3::new(0.3, 0.0, -1.5), 40.0, 8.0, 12.0));
+    s.cameras.push(camera(DVec3::new(0.0, 1.6, 2.6), DVec3::new(0.0, 0.6, -1.0), 60.0));
+    s
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn every_builtin_has_camera_light_and_triangles() {
+        for name in NAMES {
+            let s = by_name(name).unwrap();
+            assert!(!s.cameras.is_empty() && !s.lights.is_empty(), "{name}");
+            assert!(s.stats().triangles > 0, "{name}");
+        }
+        assert!(by_name("nope").is_none());
+    }
+
+    #[test]
+    fn geometric_and_shading_normals_agree() {
+        // Flat faces and spheres must be wound so the triangle normal points like the vertex
+        // normals; the G-buffer pass relies on it to orient shading normals.
+        for name in NAMES {
+            let s = by_name(name).unwrap();
+            for m in &s.meshes {
+                for p in &m.primitives {
+                    for t in p.indices.chunks(3) {
+                        let v = |i: u32| glam::Vec3::from(p.positions[i as usize]);
+                        let ng = (v(t[1]) - v(t[0])).cross(v(t[2]) - v(t[0]));
+                        if ng.length() < 1e-9 {
+                            continue;
+                        }
+                        let ns = glam::Vec3::from(p.normals[t[0] as usize]);
+                        assert!(ng.dot(ns) > 0.0, "{name}/{}: triangle {t:?} wound against its normal", m.name);
+                    }
+                }
+            }
+        }
+    }
+}

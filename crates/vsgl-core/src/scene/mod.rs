@@ -1,0 +1,304 @@
+//! CPU-side scene: meshes, materials, textures, node hierarchy, spot lights and cameras.
+//!
+//! The scene is plain data. Everything the GPU needs is derived from it per frame (see
+//! `crate::upload`), so moving a node with [`Scene::set_transform`] invalidates nothing that
+//! was precomputed: the papers' scenes are fully dynamic.
+
+pub mod builtin;
+pub mod gltf_loader;
+
+use glam::{DMat4, DVec3, Vec3};
+
+/// One triangle list with one material. Attributes are in the mesh's local space.
+#[derive(Clone, Debug, Default)]
+pub struct Primitive {
+    pub positions: Vec<[f32; 3]>,
+    /// Per-vertex normals; generated (area-weighted) when the file has none.
+    pub normals: Vec<[f32; 3]>,
+    /// UV0; empty when the primitive has no texture coordinates.
+    pub uvs: Vec<[f32; 2]>,
+    /// xyz tangent + w bitangent sign; empty unless a normal map needs them.
+    pub tangents: Vec<[f32; 4]>,
+    /// Triangle list indices (always present: non-indexed primitives get 0..n).
+    pub indices: Vec<u32>,
+    /// Index into [`Scene::materials`].
+    pub material: usize,
+}
+
+#[derive(Clone, Debug, Default)]
+pub struct Mesh {
+    pub name: String,
+    pub primitives: Vec<Primitive>,
+}
+
+/// Which data a texture holds decides its colour space on the GPU.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum TextureUsage {
+    /// sRGB-encoded colour (baseColor).
+    Color,
+    /// Linear data (metallicRoughness, normal maps).
+    Data,
+}
+
+/// A decoded RGBA8 image.
+#[derive(Clone, Debug)]
+pub struct Texture {
+    pub name: String,
+    pub width: u32,
+    pub height: u32,
+    pub rgba8: Vec<u8>,
+    pub usage: TextureUsage,
+}
+
+/// glTF metallic-roughness material (DESIGN.md "Conventions").
+#[derive(Clone, Debug)]
+pub struct Material {
+    pub name: String,
+    pub base_color_factor: [f32; 4],
+    pub metallic_factor: f32,
+    pub roughness_factor: f32,
+    /// Indices into [`Scene::textures`].
+    pub base_color_texture: Option<usize>,
+    /// glTF packs roughness in G and metallic in B.
+    pub metallic_roughness_texture: Option<usize>,
+    pub normal_texture: Option<usize>,
+    pub normal_scale: f32,
+}
+
+impl Default for Material {
+    fn default() -> Self {
+        // glTF 2.0 default material (spec §3.9.2: base colour 1, metallic 1, roughness 1).
+        Self {
+            name: "default".into(),
+            base_color_factor: [1.0; 4],
+            metallic_factor: 1.0,
+            roughness_factor: 1.0,
+            base_color_texture: None,
+            metallic_roughness_texture: None,
+            normal_texture: None,
+            normal_scale: 1.0,
+        }
+    }
+}
+
+impl Material {
+    /// A dielectric (metallic 0) material with the given diffuse colour and roughness.
+    pub fn dielectric(name: &str, color: [f32; 3], roughness: f32) -> Self {
+        Self {
+            name: name.into(),
+            base_color_factor: [color[0], color[1], color[2], 1.0],
+            metallic_factor: 0.0,
+            roughness_factor: roughness,
+            ..Default::default()
+        }
+    }
+    /// A metal (metallic 1) material: Rs = base colour, Rd = 0.
+    pub fn metal(name: &str, color: [f32; 3], roughness: f32) -> Self {
+        Self {
+            name: name.into(),
+            base_color_factor: [color[0], color[1], color[2], 1.0],
+            metallic_factor: 1.0,
+            roughness_factor: roughness,
+            ..Default::default()
+        }
+    }
+    /// Whether any texture is bound to this material.
+    pub fn has_texture(&self) -> bool {
+        self.base_color_texture.is_some()
+            || self.metallic_roughness_texture.is_some()
+            || self.normal_texture.is_some()
+    }
+}
+
+/// A node of the hierarchy. World transforms are composed on demand.
+#[derive(Clone, Debug)]
+pub struct Node {
+    pub name: String,
+    pub local: DMat4,
+    pub parent: Option<usize>,
+    pub mesh: Option<usize>,
+}
+
+/// A spot light (KHR_lights_punctual conventions: intensity in candela, smooth cone falloff).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct SpotLight {
+    /// World position (f64 so scenes far from the origin keep their precision).
+    pub position: DVec3,
+    /// Unit direction the light points at.
+    pub direction: DVec3,
+    pub intensity: f32,
+    pub color: Vec3,
+    /// Half-angles in radians, 0 ≤ inner < outer ≤ π/2.
+    pub inner_cone: f32,
+    pub outer_cone: f32,
+}
+
+/// A perspective pinhole camera.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Camera {
+    pub eye: DVec3,
+    /// Unit viewing direction.
+    pub forward: DVec3,
+    /// Unit up vector, orthogonal to `forward`.
+    pub up: DVec3,
+    /// Vertical field of view in radians.
+    pub fov_y: f32,
+}
+
+impl Camera {
+    /// A camera at `eye` looking at `target`; `up` need not be orthogonal to the view.
+    pub fn look_at(eye: DVec3, target: DVec3, up: DVec3, fov_y: f32) -> Result<Self, String> {
+        let forward = target - eye;
+        if !(forward.length() > 0.0) {
+            return Err("eye and target must differ".into());
+        }
+        let forward = forward.normalize();
+        let right = forward.cross(up);
+        if !(right.length() > 1e-9 * up.length()) || !right.is_finite() {
+            return Err("up must not be parallel to the viewing direction".into());
+        }
+        let up = right.normalize().cross(forward);
+        Ok(Self { eye, forward, up, fov_y })
+    }
+}
+
+/// Axis-aligned bounds in world space.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Bounds {
+    pub min: DVec3,
+    pub max: DVec3,
+}
+
+impl Bounds {
+    pub fn empty() -> Self {
+        Self { min: DVec3::splat(f64::INFINITY), max: DVec3::splat(f64::NEG_INFINITY) }
+    }
+    pub fn is_empty(&self) -> bool {
+        !(self.min.x <= self.max.x)
+    }
+    pub fn grow(&mut self, p: DVec3) {
+        self.min = self.min.min(p);
+        self.max = self.max.max(p);
+    }
+    pub fn center(&self) -> DVec3 {
+        0.5 * (self.min + self.max)
+    }
+    pub fn diagonal(&self) -> f64 {
+        if self.is_empty() { 0.0 } else { (self.max - self.min).length() }
+    }
+}
+
+/// A whole scene: what `vsgl.Scene` wraps.
+#[derive(Clone, Debug, Default)]
+pub struct Scene {
+    /// Where the scene came from (file path or built-in name), for messages.
+    pub source: String,
+    pub meshes: Vec<Mesh>,
+    pub materials: Vec<Material>,
+    pub textures: Vec<Texture>,
+    pub nodes: Vec<Node>,
+    pub lights: Vec<SpotLight>,
+    pub cameras: Vec<Camera>,
+    /// Human-readable notes from loading (skipped primitives, unsupported features).
+    pub warnings: Vec<String>,
+    /// Bumped by every change, so GPU caches know when to re-upload.
+    pub version: u64,
+}
+
+impl Scene {
+    /// World transform of node `i` (parents composed, root first).
+    pub fn world_transform(&self, mut i: usize) -> DMat4 {
+        let mut m = self.nodes[i].local;
+        let mut guard = 0;
+        while let Some(p) = self.nodes[i].parent {
+            m = self.nodes[p].local * m;
+            i = p;
+            guard += 1;
+            if guard > self.nodes.len() {
+                break; // cycles are rejected by the loader; never loop forever anyway
+            }
+        }
+        m
+    }
+
+    /// Replaces the local transform of every node called `name`; returns how many matched.
+    pub fn set_transform(&mut self, name: &str, local: DMat4) -> usize {
+        let mut n = 0;
+        for node in self.nodes.iter_mut().filter(|n| n.name == name) {
+            node.local = local;
+            n += 1;
+        }
+        if n > 0 {
+            self.version += 1;
+        }
+        n
+    }
+
+    pub fn add_light(&mut self, light: SpotLight) {
+        self.lights.push(light);
+        self.version += 1;
+    }
+
+    /// Adds a mesh instanced by a new root node; returns the node index.
+    pub fn add_mesh_node(&mut self, name: &str, mesh: Mesh, local: DMat4) -> usize {
+        self.meshes.push(mesh);
+        self.nodes.push(Node { name: name.into(), local, parent: None, mesh: Some(self.meshes.len() - 1) });
+        self.version += 1;
+        self.nodes.len() - 1
+    }
+
+    /// World-space bounds of every instanced triangle vertex.
+    pub fn bounds(&self) -> Bounds {
+        let mut b = Bounds::empty();
+        for (i, node) in self.nodes.iter().enumerate() {
+            let Some(m) = node.mesh else { continue };
+            let w = self.world_transform(i);
+            for p in &self.meshes[m].primitives {
+                for v in &p.positions {
+                    b.grow(w.transform_point3(DVec3::new(v[0] as f64, v[1] as f64, v[2] as f64)));
+                }
+            }
+        }
+        b
+    }
+
+    pub fn stats(&self) -> SceneStats {
+        let mut triangles = 0usize;
+        for node in &self.nodes {
+            if let Some(m) = node.mesh {
+                triangles += self.meshes[m].primitives.iter().map(|p| p.indices.len() / 3).sum::<usize>();
+            }
+        }
+        let used: Vec<&Material> = self
+            .nodes
+            .iter()
+            .filter_map(|n| n.mesh)
+            .flat_map(|m| self.meshes[m].primitives.iter().map(|p| &self.materials[p.material]))
+            .collect();
+        SceneStats {
+            triangles,
+            meshes: self.meshes.len(),
+            materials: self.materials.len(),
+            textures: self.textures.len(),
+            lights: self.lights.len(),
+            has_textures: used.iter().any(|m| m.has_texture()),
+            has_normal_maps: used.iter().any(|m| m.normal_texture.is_some()),
+            has_metallic: used.iter().any(|m| m.metallic_factor > 0.0),
+            has_diffuse: used.iter().any(|m| m.metallic_factor < 1.0 || m.metallic_roughness_texture.is_some()),
+        }
+    }
+}
+
+/// What `scene.stats` reports.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct SceneStats {
+    pub triangles: usize,
+    pub meshes: usize,
+    pub materials: usize,
+    pub textures: usize,
+    pub lights: usize,
+    pub has_textures: bool,
+    pub has_normal_maps: bool,
+    pub has_metallic: bool,
+    pub has_diffuse: bool,
+}

@@ -1,0 +1,263 @@
+//! Scene → GPU buffers, per frame.
+//!
+//! Positions are uploaded relative to a frame origin (the camera position), computed in f64,
+//! so a scene 1e5 m from the world origin renders as precisely as one at the origin. Nothing is
+//! cached across frames that a moved node would invalidate.
+
+use crate::error::{Error, Result};
+use crate::gpu::Gpu;
+use crate::scene::{Scene, TextureUsage};
+use glam::{DMat3, DVec3};
+use wgpu::util::DeviceExt;
+
+/// Per-vertex attributes for the material pass (storage buffer, 64 bytes).
+#[repr(C)]
+#[derive(Clone, Copy, bytemuck::Pod, bytemuck::Zeroable)]
+pub struct VertexRaw {
+    pub position: [f32; 3],
+    pub _pad0: f32,
+    pub normal: [f32; 3],
+    pub _pad1: f32,
+    pub tangent: [f32; 4],
+    pub uv: [f32; 2],
+    pub _pad2: [f32; 2],
+}
+const _: () = assert!(std::mem::size_of::<VertexRaw>() == 64);
+
+/// Rasterised vertex: position relative to the frame origin and the triangle id (16 bytes).
+#[repr(C)]
+#[derive(Clone, Copy, bytemuck::Pod, bytemuck::Zeroable)]
+pub struct RasterVertex {
+    pub position: [f32; 3],
+    pub triangle: u32,
+}
+const _: () = assert!(std::mem::size_of::<RasterVertex>() == 16);
+
+/// GPU twin of [`crate::scene::Material`] (48 bytes). Texture layers are −1 when absent.
+#[repr(C)]
+#[derive(Clone, Copy, bytemuck::Pod, bytemuck::Zeroable)]
+pub struct MaterialRaw {
+    pub base_color: [f32; 4],
+    pub metallic: f32,
+    pub roughness: f32,
+    pub normal_scale: f32,
+    pub _pad0: f32,
+    pub base_color_layer: i32,
+    pub metallic_roughness_layer: i32,
+    pub normal_layer: i32,
+    pub _pad1: i32,
+}
+const _: () = assert!(std::mem::size_of::<MaterialRaw>() == 48);
+
+/// Largest texture layer side. Textures are resampled into one array per colour space so the
+/// material pass needs no bindless feature; 1024² keeps FlightHelmet/BoomBox detail at the
+/// resolutions we render while bounding memory (4 MiB a layer before mips).
+pub const TEXTURE_LAYER_MAX: u32 = 1024;
+
+pub struct GpuScene {
+    pub raster_vertices: wgpu::Buffer,
+    pub raster_vertex_count: u32,
+    pub vertices: wgpu::Buffer,
+    pub indices: wgpu::Buffer,
+    /// Per triangle: material index.
+    pub triangle_materials: wgpu::Buffer,
+    pub materials: wgpu::Buffer,
+    pub color_textures: wgpu::TextureView,
+    pub data_textures: wgpu::TextureView,
+    pub texture_layer_size: u32,
+    pub triangle_count: u32,
+    /// World-space bounds diagonal, for scale-aware epsilons.
+    pub extent: f64,
+}
+
+fn storage(gpu: &Gpu, label: &str, bytes: &[u8], extra: wgpu::BufferUsages) -> wgpu::Buffer {
+    // wgpu rejects zero-sized bindings: pad empty arrays to one element.
+    let padded;
+    let contents = if bytes.is_empty() {
+        padded = vec![0u8; 64];
+        &padded[..]
+    } else {
+        bytes
+    };
+    gpu.device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
+        label: Some(label),
+        contents,
+        usage: wgpu::BufferUsages::STORAGE | extra,
+    })
+}
+
+impl GpuScene {
+    pub fn upload(gpu: &Gpu, scene: &Scene, origin: DVec3) -> Result<Self> {
+        let mut raster = Vec::new();
+        let mut verts = Vec::new();
+        let mut indices: Vec<u32> = Vec::new();
+        let mut tri_mat: Vec<u32> = Vec::new();
+        for (ni, node) in scene.nodes.iter().enumerate() {
+            let Some(mi) = node.mesh else { continue };
+            let Some(mesh) = scene.meshes.get(mi) else { continue };
+            let world = scene.world_transform(ni);
+            // Normals transform by the inverse transpose; a mirroring transform flips winding,
+            // which does not matter because all surfaces are shaded double-sided.
+            let normal_m = DMat3::from_mat4(world).inverse().transpose();
+            let lin = DMat3::from_mat4(world);
+            for prim in &mesh.primitives {
+                let base = verts.len() as u32;
+                for (k, p) in prim.positions.iter().enumerate() {
+                    let wp = world.transform_point3(DVec3::new(p[0] as f64, p[1] as f64, p[2] as f64)) - origin;
+                    let n = prim.normals.get(k).copied().unwrap_or([0.0, 1.0, 0.0]);
+                    let wn = (normal_m * DVec3::new(n[0] as f64, n[1] as f64, n[2] as f64)).normalize_or_zero();
+                    let t = prim.tangents.get(k).copied().unwrap_or([1.0, 0.0, 0.0, 1.0]);
+                    let wt = (lin * DVec3::new(t[0] as f64, t[1] as f64, t[2] as f64)).normalize_or_zero();
+                    verts.push(VertexRaw {
+                        position: wp.as_vec3().to_array(),
+                        _pad0: 0.0,
+                        normal: wn.as_vec3().to_array(),
+                        _pad1: 0.0,
+                        tangent: [wt.x as f32, wt.y as f32, wt.z as f32, t[3]],
+                        uv: prim.uvs.get(k).copied().unwrap_or([0.0, 0.0]),
+                        _pad2: [0.0; 2],
+                    });
+                }
+                for tri in prim.indices.chunks_exact(3) {
+                    let t = tri_mat.len() as u32;
+                    for &i in tri {
+                        let v = verts.get((base + i) as usize).ok_or_else(|| {
+                            Error::invalid("scene", format!("mesh {:?}: index {i} out of range", mesh.name))
+                        })?;
+                        raster.push(RasterVertex { position: v.position, triangle: t });
+                        indices.push(base + i);
+                    }
+                    tri_mat.push(prim.material as u32);
+                }
+            }
+        }
+        let mut materials: Vec<MaterialRaw> = Vec::new();
+        // Texture layers: one array per colour space, in first-use order.
+        let mut color_layers: Vec<usize> = Vec::new();
+        let mut data_layers: Vec<usize> = Vec::new();
+        let mut layer = |tex: Option<usize>, want: TextureUsage| -> i32 {
+            let Some(t) = tex else { return -1 };
+            let Some(texture) = scene.textures.get(t) else { return -1 };
+            // The array a texture goes to follows its role in the material, so an image used
+            // both as colour and as data gets one layer in each.
+            let _ = texture;
+            let list = if want == TextureUsage::Color { &mut color_layers } else { &mut data_layers };
+            match list.iter().position(|&x| x == t) {
+                Some(i) => i as i32,
+                None => {
+                    list.push(t);
+                    (list.len() - 1) as i32
+                }
+            }
+        };
+        for m in &scene.materials {
+            materials.push(MaterialRaw {
+                base_color: m.base_color_factor,
+                metallic: m.metallic_factor.clamp(0.0, 1.0),
+                roughness: m.roughness_factor.clamp(0.0, 1.0),
+                normal_scale: m.normal_scale,
+                _pad0: 0.0,
+                base_color_layer: layer(m.base_color_texture, TextureUsage::Color),
+                metallic_roughness_layer: layer(m.metallic_roughness_texture, TextureUsage::Data),
+                normal_layer: layer(m.normal_texture, TextureUsage::Data),
+                _pad1: 0,
+            });
+        }
+        let max_side = color_layers
+            .iter()
+            .chain(&data_layers)
+            .filter_map(|&t| scene.textures.get(t))
+            .map(|t| t.width.max(t.height))
+            .max()
+            .unwrap_or(1);
+        let layer_size = max_side.next_power_of_two().min(TEXTURE_LAYER_MAX).min(gpu.limits.max_texture_dimension_2d);
+        let color_textures = texture_array(gpu, scene, &color_layers, layer_size, true, "scene_color_texture_array")?;
+        let data_textures = texture_array(gpu, scene, &data_layers, layer_size, false, "scene_data_texture_array")?;
+
+        let bytes = |n: usize, each: usize| (n * each) as u64;
+        let max = gpu.limits.max_storage_buffer_binding_size as u64;
+        if bytes(verts.len(), 64) > max || bytes(raster.len(), 16) > gpu.limits.max_buffer_size {
+            return Err(Error::invalid("scene", format!(
+                "{} vertices exceed this adapter's buffer limits ({max} bytes per storage binding)", verts.len()
+            )));
+        }
+        let extent = scene.bounds().diagonal();
+        Ok(Self {
+            raster_vertex_count: raster.len() as u32,
+            raster_vertices: gpu.device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
+                label: Some("scene_raster_vertex_buffer"),
+                contents: if raster.is_empty() { &[0u8; 16] } else { bytemuck::cast_slice(&raster) },
+                usage: wgpu::BufferUsages::VERTEX,
+            }),
+            vertices: storage(gpu, "scene_vertex_buffer", bytemuck::cast_slice(&verts), wgpu::BufferUsages::empty()),
+            indices: storage(gpu, "scene_index_buffer", bytemuck::cast_slice(&indices), wgpu::BufferUsages::empty()),
+            triangle_materials: storage(gpu, "scene_triangle_material_buffer", bytemuck::cast_slice(&tri_mat), wgpu::BufferUsages::empty()),
+            materials: storage(gpu, "scene_material_buffer", bytemuck::cast_slice(&materials), wgpu::BufferUsages::empty()),
+            color_textures,
+            data_textures,
+            texture_layer_size: layer_size,
+            triangle_count: tri_mat.len() as u32,
+            extent: if extent.is_finite() && extent > 0.0 { extent } else { 1.0 },
+        })
+    }
+}
+
+/// Resamples the listed textures into one mipmapped 2D array (mips by CPU box filtering).
+fn texture_array(gpu: &Gpu, scene: &Scene, list: &[usize], size: u32, srgb: bool, label: &str) -> Result<wgpu::TextureView> {
+    let layers = list.len().max(1) as u32;
+    if layers > gpu.limits.max_texture_array_layers {
+        return Err(Error::invalid("scene", format!(
+            "{layers} textures exceed this adapter's limit of {} array layers", gpu.limits.max_texture_array_layers
+        )));
+    }
+    let size = if list.is_empty() { 1 } else { size };
+    let mips = 32 - size.leading_zeros();
+    let format = if srgb { wgpu::TextureFormat::Rgba8UnormSrgb } else { wgpu::TextureFormat::Rgba8Unorm };
+    let tex = gpu.device.create_texture(&wgpu::TextureDescriptor {
+        label: Some(label),
+        size: wgpu::Extent3d { width: size, height: size, depth_or_array_layers: layers },
+        mip_level_count: mips,
+        sample_count: 1,
+        dimension: wgpu::TextureDimension::D2,
+        format,
+        usage: wgpu::TextureUsages::TEXTURE_BINDING | wgpu::TextureUsages::COPY_DST,
+        view_formats: &[],
+    });
+    for (layer, &t) in list.iter().enumerate() {
+        let Some(src) = scene.textures.get(t) else { continue };
+        let Some(img) = image::RgbaImage::from_raw(src.width, src.height, src.rgba8.clone()) else {
+            return Err(Error::invalid("scene", format!("texture {:?}: pixel data does not match its size", src.name)));
+        };
+        let mut level = image::imageops::resize(&img, size, size, image::imageops::FilterType::Triangle);
+        for mip in 0..mips {
+            let s = (size >> mip).max(1);
+            if mip > 0 {
+                level = image::imageops::resize(&level, s, s, image::imageops::FilterType::Triangle);
+            }
+            gpu.queue.write_texture(
+                wgpu::TexelCopyTextureInfo {
+                    texture: &tex,
+                    mip_level: mip,
+                    origin: wgpu::Origin3d { x: 0, y: 0, z: layer as u32 },
+                    aspect: wgpu::TextureAspect::All,
+                },
+                level.as_raw(),
+                wgpu::TexelCopyBufferLayout { offset: 0, bytes_per_row: Some(4 * s), rows_per_image: Some(s) },
+                wgpu::Extent3d { width: s, height: s, depth_or_array_layers: 1 },
+            );
+        }
+    }
+    if list.is_empty() {
+        gpu.queue.write_texture(
+            wgpu::TexelCopyTextureInfo { texture: &tex, mip_level: 0, origin: wgpu::Origin3d::ZERO, aspect: wgpu::TextureAspect::All },
+            &[255, 255, 255, 255],
+            wgpu::TexelCopyBufferLayout { offset: 0, bytes_per_row: Some(4), rows_per_image: Some(1) },
+            wgpu::Extent3d { width: 1, height: 1, depth_or_array_layers: 1 },
+        );
+    }
+    Ok(tex.create_view(&wgpu::TextureViewDescriptor {
+        label: Some(label),
+        dimension: Some(wgpu::TextureViewDimension::D2Array),
+        ..Default::default()
+    }))
+}

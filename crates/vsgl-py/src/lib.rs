@@ -1,0 +1,454 @@
+//! PyO3 bindings of vsgl-core: argument checking, error mapping and NumPy conversion only.
+//! The Python package `vsgl` (python/vsgl) re-exports these as its public API.
+
+mod errors;
+
+use errors::to_py;
+use glam::{DMat4, DVec3, Vec3};
+use numpy::{PyArray1, PyArrayMethods};
+use pyo3::exceptions::PyValueError;
+use pyo3::prelude::*;
+use pyo3::types::{PyBytes, PyDict};
+use std::sync::Arc;
+use vsgl_core::scene::{builtin, Camera, Scene, SpotLight};
+use vsgl_core::{image_io, Frame, RenderOptions, Renderer};
+
+fn vec3(name: &str, v: Vec<f64>) -> PyResult<DVec3> {
+    if v.len() != 3 {
+        return Err(PyValueError::new_err(format!("{name}: expected 3 numbers, got {}", v.len())));
+    }
+    let d = DVec3::new(v[0], v[1], v[2]);
+    if !d.is_finite() {
+        return Err(PyValueError::new_err(format!("{name}: every component must be finite, got {v:?}")));
+    }
+    Ok(d)
+}
+
+fn finite(name: &str, x: f64) -> PyResult<f64> {
+    if x.is_finite() { Ok(x) } else { Err(PyValueError::new_err(format!("{name}: must be finite, got {x}"))) }
+}
+
+/// A spot light (KHR_lights_punctual conventions): intensity in candela, smooth cone falloff
+/// between `inner_cone_deg` and `outer_cone_deg` (half-angles).
+#[pyclass(name = "SpotLight", module = "vsgl", from_py_object)]
+#[derive(Clone)]
+struct PySpotLight {
+    inner: SpotLight,
+}
+
+#[pymethods]
+impl PySpotLight {
+    #[new]
+    #[pyo3(signature = (position, direction, intensity, color=vec![1.0, 1.0, 1.0], inner_cone_deg=30.0, outer_cone_deg=40.0))]
+    fn new(position: Vec<f64>, direction: Vec<f64>, intensity: f64, color: Vec<f64>, inner_cone_deg: f64, outer_cone_deg: f64) -> PyResult<Self> {
+        let position = vec3("position", position)?;
+        let direction = vec3("direction", direction)?;
+        if !(direction.length() > 0.0) {
+            return Err(PyValueError::new_err("direction: must be a non-zero vector"));
+        }
+        let intensity = finite("intensity", intensity)?;
+        if !(intensity > 0.0) || intensity > f32::MAX as f64 {
+            return Err(PyValueError::new_err(format!("intensity: must be positive (candela), got {intensity}")));
+        }
+        let color = vec3("color", color)?;
+        if color.min_element() < 0.0 {
+            return Err(PyValueError::new_err(format!("color: components must be >= 0, got {color:?}")));
+        }
+        let outer = finite("outer_cone_deg", outer_cone_deg)?;
+        let inner = finite("inner_cone_deg", inner_cone_deg)?;
+        if !(outer > 0.0 && outer <= 90.0) {
+            return Err(PyValueError::new_err(format!("outer_cone_deg: must be in (0, 90], got {outer}")));
+        }
+        if !(inner >= 0.0 && inner < outer) {
+            return Err(PyValueError::new_err(format!("inner_cone_deg: must be in [0, outer_cone_deg={outer}), got {inner}")));
+        }
+        Ok(Self {
+            inner: SpotLight {
+                position,
+                direction: direction.normalize(),
+                intensity: intensity as f32,
+                color: color.as_vec3(),
+                inner_cone: (inner as f32).to_radians(),
+                outer_cone: (outer as f32).to_radians(),
+            },
+        })
+    }
+    #[getter]
+    fn position(&self) -> (f64, f64, f64) {
+        self.inner.position.into()
+    }
+    #[getter]
+    fn direction(&self) -> (f64, f64, f64) {
+        self.inner.direction.into()
+    }
+    #[getter]
+    fn intensity(&self) -> f32 {
+        self.inner.intensity
+    }
+    #[getter]
+    fn color(&self) -> (f32, f32, f32) {
+        self.inner.color.into()
+    }
+    #[getter]
+    fn inner_cone_deg(&self) -> f32 {
+        self.inner.inner_cone.to_degrees()
+    }
+    #[getter]
+    fn outer_cone_deg(&self) -> f32 {
+        self.inner.outer_cone.to_degrees()
+    }
+    fn __repr__(&self) -> String {
+        let l = &self.inner;
+        format!(
+            "SpotLight(position={:?}, direction={:?}, intensity={}, color={:?}, inner_cone_deg={:.3}, outer_cone_deg={:.3})",
+            l.position.to_array(), l.direction.to_array(), l.intensity, l.color.to_array(),
+            l.inner_cone.to_degrees(), l.outer_cone.to_degrees()
+        )
+    }
+}
+
+/// A perspective pinhole camera.
+#[pyclass(name = "Camera", module = "vsgl", from_py_object)]
+#[derive(Clone)]
+struct PyCamera {
+    inner: Camera,
+}
+
+#[pymethods]
+impl PyCamera {
+    /// A camera at `eye` looking at `target`, with vertical field of view `fov_y_deg`.
+    #[staticmethod]
+    #[pyo3(signature = (eye, target, up=vec![0.0, 1.0, 0.0], fov_y_deg=45.0))]
+    fn look_at(eye: Vec<f64>, target: Vec<f64>, up: Vec<f64>, fov_y_deg: f64) -> PyResult<Self> {
+        let fov = finite("fov_y_deg", fov_y_deg)?;
+        if !(fov > 0.0 && fov < 180.0) {
+            return Err(PyValueError::new_err(format!("fov_y_deg: must be in (0, 180), got {fov}")));
+        }
+        let cam = Camera::look_at(vec3("eye", eye)?, vec3("target", target)?, vec3("up", up)?, (fov as f32).to_radians())
+            .map_err(|e| PyValueError::new_err(format!("Camera.look_at: {e}")))?;
+        Ok(Self { inner: cam })
+    }
+    #[getter]
+    fn eye(&self) -> (f64, f64, f64) {
+        self.inner.eye.into()
+    }
+    #[getter]
+    fn forward(&self) -> (f64, f64, f64) {
+        self.inner.forward.into()
+    }
+    #[getter]
+    fn up(&self) -> (f64, f64, f64) {
+        self.inner.up.into()
+    }
+    #[getter]
+    fn fov_y_deg(&self) -> f32 {
+        self.inner.fov_y.to_degrees()
+    }
+    fn __repr__(&self) -> String {
+        let c = &self.inner;
+        format!("Camera(eye={:?}, forward={:?}, up={:?}, fov_y_deg={:.3})", c.eye.to_array(), c.forward.to_array(), c.up.to_array(), c.fov_y.to_degrees())
+    }
+}
+
+/// A scene: meshes, materials, textures, nodes, spot lights and cameras.
+#[pyclass(name = "Scene", module = "vsgl")]
+struct PyScene {
+    inner: Scene,
+}
+
+#[pymethods]
+impl PyScene {
+    /// Loads a glTF 2.0 file (`.gltf` or `.glb`). Raises `SceneError` naming the file and element.
+    #[staticmethod]
+    fn load(py: Python<'_>, path: std::path::PathBuf) -> PyResult<Self> {
+        let scene = py.detach(|| vsgl_core::scene::gltf_loader::load(&path)).map_err(to_py)?;
+        Ok(Self { inner: scene })
+    }
+    /// Triangle, mesh, material, texture and light counts and the features the scene uses.
+    #[getter]
+    fn stats<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyDict>> {
+        let s = self.inner.stats();
+        let d = PyDict::new(py);
+        d.set_item("triangles", s.triangles)?;
+        d.set_item("meshes", s.meshes)?;
+        d.set_item("materials", s.materials)?;
+        d.set_item("textures", s.textures)?;
+        d.set_item("lights", s.lights)?;
+        d.set_item("cameras", self.inner.cameras.len())?;
+        let mut features = Vec::new();
+        if s.has_textures { features.push("textures"); }
+        if s.has_normal_maps { features.push("normal_maps"); }
+        if s.has_metallic { features.push("metallic"); }
+        if s.has_diffuse { features.push("diffuse"); }
+        d.set_item("features", features)?;
+        Ok(d)
+    }
+    /// Adds a spot light.
+    fn add_light(&mut self, light: PySpotLight) {
+        self.inner.add_light(light.inner);
+    }
+    /// Sets the local transform of every node called `node_name` to `matrix` (4×4, row-major as
+    /// NumPy prints it: p' = M @ p). Raises ValueError when no node has that name.
+    fn set_transform(&mut self, node_name: &str, matrix: Vec<Vec<f64>>) -> PyResult<()> {
+        if matrix.len() != 4 || matrix.iter().any(|r| r.len() != 4) {
+            return Err(PyValueError::new_err("matrix: expected a 4x4 matrix"));
+        }
+        if matrix.iter().flatten().any(|x| !x.is_finite()) {
+            return Err(PyValueError::new_err("matrix: every entry must be finite"));
+        }
+        let rows: Vec<f64> = matrix.into_iter().flatten().collect();
+        let m = DMat4::from_cols_slice(&rows).transpose();
+        if m.determinant() == 0.0 {
+            return Err(PyValueError::new_err("matrix: must be invertible"));
+        }
+        if self.inner.set_transform(node_name, m) == 0 {
+            let names: Vec<&str> = self.inner.nodes.iter().map(|n| n.name.as_str()).collect();
+            return Err(PyValueError::new_err(format!("node_name: no node named {node_name:?}; nodes: {names:?}")));
+        }
+        Ok(())
+    }
+    #[getter]
+    fn node_names(&self) -> Vec<String> {
+        self.inner.nodes.iter().map(|n| n.name.clone()).collect()
+    }
+    #[getter]
+    fn lights(&self) -> Vec<PySpotLight> {
+        self.inner.lights.iter().map(|l| PySpotLight { inner: *l }).collect()
+    }
+    #[getter]
+    fn cameras(&self) -> Vec<PyCamera> {
+        self.inner.cameras.iter().map(|c| PyCamera { inner: *c }).collect()
+    }
+    #[getter]
+    fn warnings(&self) -> Vec<String> {
+        self.inner.warnings.clone()
+    }
+    #[getter]
+    fn source(&self) -> String {
+        self.inner.source.clone()
+    }
+    /// World-space bounds as ((min x, y, z), (max x, y, z)).
+    #[getter]
+    fn bounds(&self) -> ((f64, f64, f64), (f64, f64, f64)) {
+        let b = self.inner.bounds();
+        (b.min.into(), b.max.into())
+    }
+    fn __repr__(&self) -> String {
+        let s = self.inner.stats();
+        format!("Scene({:?}, triangles={}, materials={}, lights={})", self.inner.source, s.triangles, s.materials, s.lights)
+    }
+}
+
+/// A rendered frame: linear float32 AOVs of shape (H, W, C), row 0 at the top.
+#[pyclass(name = "Frame", module = "vsgl", frozen)]
+struct PyFrame {
+    inner: Frame,
+}
+
+impl PyFrame {
+    fn array<'py>(&self, py: Python<'py>, name: &str) -> PyResult<Bound<'py, PyAny>> {
+        let (c, data) = self.inner.aov(name).ok_or_else(|| {
+            PyValueError::new_err(format!("name: unknown AOV {name:?}; available: {}", self.inner.aov_names().join(", ")))
+        })?;
+        let arr = PyArray1::from_slice(py, data);
+        Ok(arr.reshape([self.inner.height as usize, self.inner.width as usize, c])?.into_any())
+    }
+}
+
+#[pymethods]
+impl PyFrame {
+    /// Direct + indirect radiance, (H, W, 3) float32.
+    #[getter]
+    fn image<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyAny>> {
+        self.array(py, "image")
+    }
+    /// One AOV by name (see `aovs`), (H, W, C) float32.
+    fn aov<'py>(&self, py: Python<'py>, name: &str) -> PyResult<Bound<'py, PyAny>> {
+        self.array(py, name)
+    }
+    #[getter]
+    fn aovs(&self) -> Vec<String> {
+        self.inner.aov_names()
+    }
+    #[getter]
+    fn width(&self) -> u32 {
+        self.inner.width
+    }
+    #[getter]
+    fn height(&self) -> u32 {
+        self.inner.height
+    }
+    /// Milliseconds per pass and "total"; `timings_clock` says which clock measured them.
+    #[getter]
+    fn timings_ms<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyDict>> {
+        let d = PyDict::new(py);
+        for (k, v) in &self.inner.timings_ms {
+            d.set_item(k, v)?;
+        }
+        Ok(d)
+    }
+    /// "gpu-timestamp" (per-pass GPU timestamp queries) or "cpu-wall" (whole frame, CPU clock).
+    #[getter]
+    fn timings_clock(&self) -> String {
+        self.inner.timings_clock.clone()
+    }
+    #[getter]
+    fn passes(&self) -> Vec<String> {
+        self.inner.passes.clone()
+    }
+    /// Left-out passes or variants mapped to the reason, in words.
+    #[getter]
+    fn skipped<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyDict>> {
+        let d = PyDict::new(py);
+        for (k, v) in &self.inner.skipped {
+            d.set_item(k, v)?;
+        }
+        Ok(d)
+    }
+    #[getter]
+    fn settings<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyDict>> {
+        let d = PyDict::new(py);
+        for (k, v) in &self.inner.settings {
+            d.set_item(k, v)?;
+        }
+        Ok(d)
+    }
+    /// Writes the image: `.png` (tone-mapped sRGB, `exposure` multiplies first) or `.npy`
+    /// (linear float32, shape (H, W, 3)).
+    #[pyo3(signature = (path, exposure=1.0))]
+    fn save(&self, py: Python<'_>, path: std::path::PathBuf, exposure: f32) -> PyResult<()> {
+        if !exposure.is_finite() || exposure <= 0.0 {
+            return Err(PyValueError::new_err(format!("exposure: must be positive and finite, got {exposure}")));
+        }
+        let ext = path.extension().and_then(|e| e.to_str()).unwrap_or("").to_ascii_lowercase();
+        let (_, rgb) = self.inner.aov("image").ok_or_else(|| PyValueError::new_err("frame has no image"))?;
+        let (w, h) = (self.inner.width, self.inner.height);
+        let bytes = py.detach(|| match ext.as_str() {
+            "png" => image_io::encode_png(rgb, w, h, exposure),
+            "npy" => Ok(image_io::encode_npy(rgb, &[h as usize, w as usize, 3])),
+            _ => Err(vsgl_core::Error::invalid("path", format!("unsupported extension {ext:?}; use .png or .npy"))),
+        });
+        let bytes = bytes.map_err(to_py)?;
+        image_io::write_file(&path, &bytes).map_err(to_py)
+    }
+    /// PNG bytes for Jupyter.
+    fn _repr_png_<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyBytes>> {
+        let (_, rgb) = self.inner.aov("image").ok_or_else(|| PyValueError::new_err("frame has no image"))?;
+        let png = image_io::encode_png(rgb, self.inner.width, self.inner.height, 1.0).map_err(to_py)?;
+        Ok(PyBytes::new(py, &png))
+    }
+    fn __repr__(&self) -> String {
+        let total = self.inner.timings_ms.iter().find(|(k, _)| k == "total").map(|(_, v)| *v).unwrap_or(0.0);
+        format!("Frame({}x{}, passes={:?}, total_ms={total:.3})", self.inner.width, self.inner.height, self.inner.passes)
+    }
+}
+
+/// The renderer: a headless GPU device and the compiled passes for one output size.
+#[pyclass(name = "Renderer", module = "vsgl", frozen)]
+struct PyRenderer {
+    inner: Arc<Renderer>,
+}
+
+#[pymethods]
+impl PyRenderer {
+    /// `adapter=None` picks the best adapter (or the `VSGL_ADAPTER` substring); a string picks
+    /// the first adapter whose name contains it.
+    #[new]
+    #[pyo3(signature = (width=640, height=360, adapter=None))]
+    fn new(py: Python<'_>, width: i64, height: i64, adapter: Option<String>) -> PyResult<Self> {
+        for (n, v) in [("width", width), ("height", height)] {
+            if v < 1 || v > 16384 {
+                return Err(PyValueError::new_err(format!("{n}: must be in 1..=16384, got {v}")));
+            }
+        }
+        let r = py
+            .detach(|| {
+                let gpu = vsgl_core::gpu::Gpu::new(adapter.as_deref())?;
+                Renderer::new(gpu, width as u32, height as u32)
+            })
+            .map_err(to_py)?;
+        Ok(Self { inner: Arc::new(r) })
+    }
+    #[getter]
+    fn width(&self) -> u32 {
+        self.inner.width
+    }
+    #[getter]
+    fn height(&self) -> u32 {
+        self.inner.height
+    }
+    /// The adapter in use: name, backend, device type, driver, timestamp support.
+    #[getter]
+    fn adapter<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyDict>> {
+        adapter_dict(py, &self.inner.gpu.adapter)
+    }
+    /// Renders `scene` seen by `camera` (default: the scene's first camera, else one framing
+    /// the scene). Releases the GIL while the GPU works.
+    #[pyo3(signature = (scene, camera=None, method="direct", *, shadow_size=1024, plan="auto"))]
+    fn render(&self, py: Python<'_>, scene: PyRef<'_, PyScene>, camera: Option<PyCamera>, method: &str, shadow_size: i64, plan: &str) -> PyResult<PyFrame> {
+        if !(16..=8192).contains(&shadow_size) {
+            return Err(PyValueError::new_err(format!("shadow_size: must be in 16..=8192, got {shadow_size}")));
+        }
+        let opts = RenderOptions { method: method.into(), shadow_size: shadow_size as u32, plan: plan.into() };
+        let s: &Scene = &scene.inner;
+        let cam = camera.map(|c| c.inner);
+        let r = &self.inner;
+        let frame = py.detach(|| r.render(s, cam.as_ref(), &opts)).map_err(to_py)?;
+        Ok(PyFrame { inner: frame })
+    }
+    fn __repr__(&self) -> String {
+        format!("Renderer(width={}, height={}, adapter={:?})", self.inner.width, self.inner.height, self.inner.gpu.adapter.name)
+    }
+}
+
+fn adapter_dict<'py>(py: Python<'py>, a: &vsgl_core::gpu::AdapterSummary) -> PyResult<Bound<'py, PyDict>> {
+    let d = PyDict::new(py);
+    d.set_item("name", &a.name)?;
+    d.set_item("backend", &a.backend)?;
+    d.set_item("device_type", &a.device_type)?;
+    d.set_item("driver", &a.driver)?;
+    d.set_item("timestamps", a.timestamps)?;
+    Ok(d)
+}
+
+/// Every adapter wgpu sees, best first.
+#[pyfunction]
+fn adapters(py: Python<'_>) -> PyResult<Vec<Bound<'_, PyDict>>> {
+    let list = py.detach(vsgl_core::gpu::adapters);
+    list.iter().map(|a| adapter_dict(py, a)).collect()
+}
+
+/// Names of the built-in procedural scenes.
+#[pyfunction]
+fn builtin_scene_names() -> Vec<&'static str> {
+    builtin::NAMES.to_vec()
+}
+
+/// A built-in procedural scene by name.
+#[pyfunction]
+fn builtin_scene(name: &str) -> PyResult<PyScene> {
+    builtin::by_name(name)
+        .map(|s| PyScene { inner: s })
+        .ok_or_else(|| PyValueError::new_err(format!("name: unknown built-in scene {name:?}; valid: {}", builtin::NAMES.join(", "))))
+}
+
+#[pymodule(gil_used = false)]
+fn _vsgl(m: &Bound<'_, PyModule>) -> PyResult<()> {
+    let py = m.py();
+    m.add("__version__", env!("CARGO_PKG_VERSION"))?;
+    m.add("VsglError", py.get_type::<errors::VsglError>())?;
+    m.add("SceneError", py.get_type::<errors::SceneError>())?;
+    m.add("NoAdapterError", py.get_type::<errors::NoAdapterError>())?;
+    m.add("ShaderError", py.get_type::<errors::ShaderError>())?;
+    m.add("GpuError", py.get_type::<errors::GpuError>())?;
+    m.add_class::<PyRenderer>()?;
+    m.add_class::<PyScene>()?;
+    m.add_class::<PyCamera>()?;
+    m.add_class::<PySpotLight>()?;
+    m.add_class::<PyFrame>()?;
+    m.add_function(wrap_pyfunction!(adapters, m)?)?;
+    m.add_function(wrap_pyfunction!(builtin_scene_names, m)?)?;
+    m.add_function(wrap_pyfunction!(builtin_scene, m)?)?;
+    let _ = Vec3::ZERO;
+    Ok(())
+}

@@ -1,0 +1,148 @@
+// Material pass: turns the visibility buffer (triangle ids) into the G-buffer in compute.
+// Barycentrics come from intersecting the pixel's camera ray with the visible triangle
+// (Möller & Trumbore 1997), which is exact and perspective-correct; texture LOD comes from the
+// ray differentials of the neighbouring pixels (Igehy 1999), computed the same way.
+#include "common/constants.wgsl"
+#include "common/frame.wgsl"
+#include "common/gbuffer.wgsl"
+
+// Leave-out: the untextured variant compiles every texture fetch out.
+override HAS_TEXTURES: bool = true;
+const WORKGROUP: u32 = 8u;
+
+@group(0) @binding(0) var<uniform> frame: FrameUniforms;
+@group(1) @binding(0) var visibility: texture_2d<u32>;
+@group(1) @binding(1) var<storage, read> vertices: array<VertexRaw>;
+@group(1) @binding(2) var<storage, read> indices: array<u32>;
+@group(1) @binding(3) var<storage, read> triangle_materials: array<u32>;
+@group(1) @binding(4) var<storage, read> materials: array<MaterialRaw>;
+@group(1) @binding(5) var color_textures: texture_2d_array<f32>;
+@group(1) @binding(6) var data_textures: texture_2d_array<f32>;
+@group(1) @binding(7) var texture_sampler: sampler;
+@group(1) @binding(8) var<storage, read_write> gbuf_position: array<vec4f>;
+@group(1) @binding(9) var<storage, read_write> gbuf_normal: array<vec4f>;
+@group(1) @binding(10) var<storage, read_write> gbuf_geo_normal: array<vec4f>;
+@group(1) @binding(11) var<storage, read_write> gbuf_base_color: array<vec4f>;
+
+struct Hit {
+    t: f32,
+    // Barycentric weights of v1 and v2.
+    b: vec2f,
+}
+
+// Ray (origin 0, unit direction d) against triangle v0 v1 v2, without culling or clamping.
+fn ray_triangle(d: vec3f, v0: vec3f, v1: vec3f, v2: vec3f) -> Hit {
+    let e1 = v1 - v0;
+    let e2 = v2 - v0;
+    let p = cross(d, e2);
+    let det = dot(e1, p);
+    // Edge-on triangles (|det| tiny relative to the edge lengths) cover no pixel centre in
+    // exact arithmetic; fall back to the centroid rather than divide by ~0.
+    if (abs(det) <= 1.0e-12 * length(e1) * length(e2)) {
+        return Hit(length(v0), vec2f(1.0 / 3.0));
+    }
+    let inv = 1.0 / det;
+    let s = -v0;
+    let u = dot(s, p) * inv;
+    let q = cross(s, e1);
+    let v = dot(d, q) * inv;
+    return Hit(dot(e2, q) * inv, vec2f(u, v));
+}
+
+fn interpolate2(a: vec2f, b: vec2f, c: vec2f, w: vec2f) -> vec2f {
+    return a + w.x * (b - a) + w.y * (c - a);
+}
+
+@compute @workgroup_size(WORKGROUP, WORKGROUP, 1)
+fn main(@builtin(global_invocation_id) gid: vec3u) {
+    if (gid.x >= frame.size.x || gid.y >= frame.size.y) {
+        return;
+    }
+    let pixel = gid.xy;
+    let index = pixel.y * frame.size.x + pixel.x;
+    let id = textureLoad(visibility, vec2i(pixel), 0).r;
+    if (id == 0u) {
+        gbuf_position[index] = vec4f(0.0, 0.0, 0.0, GBUFFER_BACKGROUND);
+        gbuf_normal[index] = vec4f(0.0);
+        gbuf_geo_normal[index] = vec4f(0.0);
+        gbuf_base_color[index] = vec4f(0.0);
+        return;
+    }
+    let tri = id - 1u;
+    let i0 = indices[3u * tri];
+    let i1 = indices[3u * tri + 1u];
+    let i2 = indices[3u * tri + 2u];
+    let a = vertices[i0];
+    let b = vertices[i1];
+    let c = vertices[i2];
+    let d = camera_ray(frame, vec2f(pixel) + 0.5);
+    let hit = ray_triangle(d, a.position, b.position, c.position);
+    // The raster says the pixel centre is inside; rounding may put it a hair outside.
+    var w = clamp(hit.b, vec2f(0.0), vec2f(1.0));
+    if (w.x + w.y > 1.0) {
+        w = w / (w.x + w.y);
+    }
+    let position = a.position + w.x * (b.position - a.position) + w.y * (c.position - a.position);
+
+    // Geometric normal facing the camera; all surfaces are double-sided.
+    var ng = cross(b.position - a.position, c.position - a.position);
+    ng = ng / max(length(ng), FLT_MIN);
+    if (dot(ng, d) > 0.0) {
+        ng = -ng;
+    }
+    var ns = a.normal + w.x * (b.normal - a.normal) + w.y * (c.normal - a.normal);
+    let ns_len = length(ns);
+    ns = select(ng, ns / ns_len, ns_len > 1.0e-6);
+    if (dot(ns, ng) < 0.0) {
+        ns = -ns;
+    }
+
+    let material = materials[triangle_materials[tri]];
+    var base = material.base_color.rgb;
+    var metallic = material.metallic;
+    var roughness = material.roughness;
+    if (HAS_TEXTURES) {
+        let uv = interpolate2(a.uv, b.uv, c.uv, w);
+        // Ray differentials: UV of the neighbouring pixels' rays on the same triangle plane.
+        let hx = ray_triangle(camera_ray(frame, vec2f(pixel) + vec2f(1.5, 0.5)), a.position, b.position, c.position);
+        let hy = ray_triangle(camera_ray(frame, vec2f(pixel) + vec2f(0.5, 1.5)), a.position, b.position, c.position);
+        let duv_dx = interpolate2(a.uv, b.uv, c.uv, hx.b) - uv;
+        let duv_dy = interpolate2(a.uv, b.uv, c.uv, hy.b) - uv;
+        let footprint = max(length(duv_dx), length(duv_dy)) * f32(frame.texture_layer_size);
+        let lod = log2(max(footprint, 1.0e-6));
+        if (material.base_color_layer >= 0) {
+            base *= textureSampleLevel(color_textures, texture_sampler, uv, material.base_color_layer, lod).rgb;
+        }
+        if (material.metallic_roughness_layer >= 0) {
+            let mr = textureSampleLevel(data_textures, texture_sampler, uv, material.metallic_roughness_layer, lod);
+            roughness *= mr.g;
+            metallic *= mr.b;
+        }
+        if (material.normal_layer >= 0) {
+            let tn = textureSampleLevel(data_textures, texture_sampler, uv, material.normal_layer, lod).xyz * 2.0 - 1.0;
+            let t_interp = a.tangent.xyz + w.x * (b.tangent.xyz - a.tangent.xyz) + w.y * (c.tangent.xyz - a.tangent.xyz);
+            let t_orth = t_interp - ns * dot(ns, t_interp);
+            let t_len = length(t_orth);
+            if (t_len > 1.0e-6) {
+                let t = t_orth / t_len;
+                let bt = cross(ns, t) * select(-1.0, 1.0, a.tangent.w >= 0.0);
+                let scaled = vec3f(tn.xy * material.normal_scale, tn.z);
+                let mapped = t * scaled.x + bt * scaled.y + ns * scaled.z;
+                let m_len = length(mapped);
+                if (m_len > 1.0e-6) {
+                    ns = mapped / m_len;
+                }
+            }
+        }
+    }
+    // A shading normal facing away from the viewer (interpolation or normal maps at
+    // silhouettes) would shade a surface the camera cannot see; fall back to the geometry.
+    if (dot(ns, -d) <= 0.0) {
+        ns = ng;
+    }
+    let view_depth = dot(position, frame.cam_forward.xyz);
+    gbuf_position[index] = vec4f(position, max(view_depth, FLT_MIN));
+    gbuf_normal[index] = vec4f(ns, clamp(roughness, 0.0, 1.0));
+    gbuf_geo_normal[index] = vec4f(ng, clamp(metallic, 0.0, 1.0));
+    gbuf_base_color[index] = vec4f(max(base, vec3f(0.0)), 1.0);
+}
