@@ -1,0 +1,107 @@
+"""Command line: ``python -m vsgl render|adapters`` (``bench`` and ``stability`` are planned)."""
+
+from __future__ import annotations
+
+import argparse
+import os
+import sys
+import time
+
+
+def _render(args: argparse.Namespace) -> int:
+    import numpy as np
+
+    import vsgl
+
+    if args.scene in vsgl.scenes.names():
+        scene = vsgl.scenes.load(args.scene)
+    elif os.path.exists(args.scene):
+        scene = vsgl.Scene.load(args.scene)
+    else:
+        print(
+            f"error: scene {args.scene!r} is neither a file nor a built-in scene "
+            f"({', '.join(vsgl.scenes.names())})",
+            file=sys.stderr,
+        )
+        return 2
+    width, height = args.size
+    t0 = time.perf_counter()
+    renderer = vsgl.Renderer(width=width, height=height, adapter=args.adapter)
+    t1 = time.perf_counter()
+    frame = renderer.render(scene, method=args.method, shadow_size=args.shadow_size, plan=args.plan)
+    t2 = time.perf_counter()
+    frame.save(args.output, exposure=args.exposure)
+    image = frame.image
+    print(f"scene     {scene!r}")
+    print(f"adapter   {renderer.adapter['name']} ({renderer.adapter['device_type']})")
+    print(f"method    {args.method}, {width}x{height}")
+    if args.explain:
+        print("passes    " + ", ".join(frame.passes))
+        for name, why in frame.skipped.items():
+            print(f"skipped   {name}: {why}")
+    clock = frame.timings_clock
+    print(f"timings   ({clock}{'; CPU adapter: compare only ratios' if renderer.adapter['device_type'] == 'Cpu' else ''})")
+    for name, ms in frame.timings_ms.items():
+        print(f"  {name:<12} {ms:9.3f} ms")
+    print(f"wall      device+pipelines {1e3 * (t1 - t0):.1f} ms, render+readback {1e3 * (t2 - t1):.1f} ms")
+    finite = bool(np.isfinite(image).all())
+    print(f"image     mean radiance {float(image.mean()):.6g}, max {float(image.max()):.6g}, finite: {finite}")
+    # Error against a reference needs method="reference", which a later milestone adds.
+    print("error     n/a: no reference method in this build yet (see docs/status.md)")
+    print(f"wrote     {args.output}")
+    return 0 if finite else 1
+
+
+def _adapters(_: argparse.Namespace) -> int:
+    import vsgl
+
+    found = vsgl.adapters()
+    if not found:
+        print("no adapters; on Debian/Ubuntu: apt-get install mesa-vulkan-drivers libvulkan1")
+        return 1
+    for a in found:
+        print(f"{a['name']}  [{a['device_type']}, {a['backend']}, timestamps={a['timestamps']}]  {a['driver']}")
+    return 0
+
+
+def _size(text: str) -> tuple[int, int]:
+    try:
+        w, h = (int(x) for x in text.lower().split("x"))
+    except ValueError:
+        raise argparse.ArgumentTypeError(f"expected WIDTHxHEIGHT, got {text!r}") from None
+    return w, h
+
+
+def main(argv: list[str] | None = None) -> int:
+    parser = argparse.ArgumentParser(prog="python -m vsgl", description=__doc__)
+    sub = parser.add_subparsers(dest="command", required=True)
+
+    render = sub.add_parser("render", help="render a scene to an image and print timings")
+    render.add_argument("scene", nargs="?", default="cornell_box", help="built-in scene name or .gltf/.glb path (default: cornell_box)")
+    render.add_argument("-o", "--output", default="out.png", help="output image, .png or .npy (default: out.png)")
+    render.add_argument("--size", type=_size, default=(640, 360), help="WIDTHxHEIGHT (default: 640x360)")
+    render.add_argument("--method", default="direct", help="rendering method (default: direct)")
+    render.add_argument("--shadow-size", type=int, default=1024, help="shadow map side (default: 1024)")
+    render.add_argument("--plan", default="auto", choices=["auto", "full"], help="leave out unneeded passes (auto) or run all (full)")
+    render.add_argument("--exposure", type=float, default=1.0, help="PNG exposure multiplier (default: 1)")
+    render.add_argument("--adapter", default=None, help="adapter name substring (default: best, or $VSGL_ADAPTER)")
+    render.add_argument("--explain", action="store_true", help="print the pass plan and what was left out, with reasons")
+    render.set_defaults(run=_render)
+
+    adapters = sub.add_parser("adapters", help="list the adapters wgpu sees")
+    adapters.set_defaults(run=_adapters)
+
+    for name, what in [("bench", "error against run time"), ("stability", "the numerical stability suite")]:
+        p = sub.add_parser(name, help=f"{what} (not in this build yet)")
+        p.set_defaults(run=lambda _a, n=name: (print(f"`python -m vsgl {n}` is not in this build yet; see docs/status.md", file=sys.stderr), 2)[1])
+
+    args = parser.parse_args(argv)
+    try:
+        return args.run(args)
+    except ValueError as e:
+        print(f"error: {e}", file=sys.stderr)
+        return 2
+
+
+if __name__ == "__main__":
+    sys.exit(main())

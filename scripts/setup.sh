@@ -1,0 +1,21 @@
+#!/usr/bin/env bash
+# Sets up a fresh Debian/Ubuntu machine with a Rust toolchain and Python ≥ 3.9: a Vulkan driver
+# when none is installed (lavapipe is enough), a virtual environment in .venv, and vsgl built
+# into it in release mode. Idempotent: rerunning only rebuilds what changed.
+set -euo pipefail
+cd "$(dirname "$0")/.."
+
+if ! ls /usr/share/vulkan/icd.d/*.json /etc/vulkan/icd.d/*.json >/dev/null 2>&1 || ! ldconfig -p | grep -q libvulkan.so.1; then
+  echo "setup: no Vulkan driver or loader found; installing mesa-vulkan-drivers libvulkan1" >&2
+  SUDO=""; [ "$(id -u)" -ne 0 ] && SUDO="sudo"
+  $SUDO apt-get update -qq
+  DEBIAN_FRONTEND=noninteractive $SUDO apt-get install -y -qq mesa-vulkan-drivers libvulkan1 >/dev/null
+fi
+
+PYTHON=${PYTHON:-python3}
+[ -x .venv/bin/python ] || "$PYTHON" -m venv .venv
+.venv/bin/python -m pip install -q --upgrade pip >/dev/null
+.venv/bin/python -m pip install -q "maturin>=1.7,<2" "numpy>=1.21" "pillow>=9" "pytest>=7" "mypy>=1.8"
+# `maturin develop` installs the extension into .venv (release: lavapipe runs the shaders, but
+# the CPU side — scene upload, readback, glTF parsing — is Rust and benefits from it).
+VIRTUAL_ENV="$PWD/.venv" PATH="$PWD/.venv/bin:$PATH" maturin develop --release -q
