@@ -233,7 +233,8 @@ impl Renderer {
     }
 }
 
-/// A camera that frames the scene bounds from +Z when the scene has none.
+/// A camera that frames the scene bounds when the scene has none: from the front (+Z) and
+/// above, so flat scenes such as a ground plane are not seen edge-on.
 pub fn default_camera(scene: &Scene) -> Result<Camera> {
     let b = scene.bounds();
     if b.is_empty() {
@@ -243,5 +244,6 @@ pub fn default_camera(scene: &Scene) -> Result<Camera> {
     let r = 0.5 * b.diagonal().max(1e-12);
     let fov = 45f32.to_radians();
     let dist = r / (fov as f64 * 0.5).sin();
-    Camera::look_at(c + glam::DVec3::new(0.0, 0.0, dist), c, glam::DVec3::Y, fov).map_err(|e| Error::invalid("camera", e))
+    let from = glam::DVec3::new(0.0, 0.6, 1.0).normalize();
+    Camera::look_at(c + from * dist, c, glam::DVec3::Y, fov).map_err(|e| Error::invalid("camera", e))
 }

@@ -1,0 +1,1183 @@
+//! Integration tests of the glTF loader: fixtures are generated into a temp dir per test.
+
+use std::path::{Path, PathBuf};
+use std::time::Instant;
+
+use glam::{DVec3, Vec3};
+use serde_json::{json, Value};
+use vsgl_core::scene::gltf_loader::load;
+use vsgl_core::scene::{Scene, TextureUsage};
+use vsgl_core::Error;
+
+// ---------------------------------------------------------------------------------------------
+// Fixture helpers
+// ---------------------------------------------------------------------------------------------
+
+/// A fresh, empty directory unique to this process and test.
+fn tmpdir(test: &str) -> PathBuf {
+    let dir = std::env::temp_dir().join(format!("vsgl-gltf-{}-{test}", std::process::id()));
+    let _ = std::fs::remove_dir_all(&dir);
+    std::fs::create_dir_all(&dir).unwrap();
+    dir
+}
+
+/// Accumulates one binary buffer plus its bufferViews and accessors.
+#[derive(Default)]
+struct Bin {
+    data: Vec<u8>,
+    views: Vec<Value>,
+    accessors: Vec<Value>,
+}
+
+impl Bin {
+    fn align(&mut self) {
+        while !self.data.len().is_multiple_of(4) {
+            self.data.push(0);
+        }
+    }
+    fn view(&mut self, bytes: &[u8]) -> usize {
+        self.align();
+        let offset = self.data.len();
+        self.data.extend_from_slice(bytes);
+        self.views
+            .push(json!({"buffer": 0, "byteOffset": offset, "byteLength": bytes.len()}));
+        self.views.len() - 1
+    }
+    /// A float accessor of `ty` ("VEC3", "VEC2", ...) with its own bufferView.
+    fn floats(&mut self, values: &[f32], ty: &str, ncomp: usize) -> usize {
+        let bytes: Vec<u8> = values.iter().flat_map(|v| v.to_le_bytes()).collect();
+        let view = self.view(&bytes);
+        let mut acc = json!({
+            "bufferView": view, "componentType": 5126, "count": values.len() / ncomp, "type": ty
+        });
+        if ty == "VEC3" {
+            let mut min = [f32::INFINITY; 3];
+            let mut max = [f32::NEG_INFINITY; 3];
+            for c in values.chunks(3) {
+                for k in 0..3 {
+                    min[k] = min[k].min(c[k]);
+                    max[k] = max[k].max(c[k]);
+                }
+            }
+            if min.iter().chain(&max).all(|v| v.is_finite()) {
+                acc["min"] = json!(min);
+                acc["max"] = json!(max);
+            }
+        }
+        self.accessors.push(acc);
+        self.accessors.len() - 1
+    }
+    fn indices(&mut self, values: &[u32]) -> usize {
+        let bytes: Vec<u8> = values
+            .iter()
+            .flat_map(|v| (*v as u16).to_le_bytes())
+            .collect();
+        let view = self.view(&bytes);
+        self.accessors.push(json!({
+            "bufferView": view, "componentType": 5123, "count": values.len(), "type": "SCALAR"
+        }));
+        self.accessors.len() - 1
+    }
+}
+
+/// Unit quad in the z = 0 plane, counter-clockwise seen from +z.
+const QUAD_POS: [f32; 12] = [0.0, 0.0, 0.0, 1.0, 0.0, 0.0, 1.0, 1.0, 0.0, 0.0, 1.0, 0.0];
+const QUAD_UV: [f32; 8] = [0.0, 0.0, 1.0, 0.0, 1.0, 1.0, 0.0, 1.0];
+const QUAD_IDX: [u32; 6] = [0, 1, 2, 0, 2, 3];
+
+/// Root JSON with the buffer views/accessors of `bin`; `buffer` is buffers[0], `extra` is
+/// merged in (meshes, nodes, scenes, ...).
+fn root(bin: &Bin, buffer: Value, extra: Value) -> Value {
+    let mut r = json!({
+        "asset": {"version": "2.0"},
+        "buffers": [buffer],
+        "bufferViews": bin.views,
+        "accessors": bin.accessors,
+    });
+    if let (Some(r), Value::Object(extra)) = (r.as_object_mut(), extra) {
+        r.extend(extra);
+    }
+    r
+}
+
+fn write_json(path: &Path, v: &Value) {
+    std::fs::write(path, serde_json::to_vec_pretty(v).unwrap()).unwrap();
+}
+
+/// A one-mesh, one-node quad scene (node 0 has `node` merged in), buffer in "quad.bin".
+fn quad_with_node(dir: &Path, node: Value) -> PathBuf {
+    let mut bin = Bin::default();
+    let pos = bin.floats(&QUAD_POS, "VEC3", 3);
+    let idx = bin.indices(&QUAD_IDX);
+    std::fs::write(dir.join("quad.bin"), &bin.data).unwrap();
+    let mut n = json!({"mesh": 0, "name": "quad"});
+    if let (Some(n), Value::Object(extra)) = (n.as_object_mut(), node) {
+        n.extend(extra);
+    }
+    let r = root(
+        &bin,
+        json!({"uri": "quad.bin", "byteLength": bin.data.len()}),
+        json!({
+            "meshes": [{"primitives": [{"attributes": {"POSITION": pos}, "indices": idx}]}],
+            "nodes": [n],
+            "scenes": [{"nodes": [0]}],
+            "scene": 0,
+        }),
+    );
+    let path = dir.join("quad.gltf");
+    write_json(&path, &r);
+    path
+}
+
+fn base64(data: &[u8]) -> String {
+    const A: &[u8; 64] = b"ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
+    let mut out = String::new();
+    for c in data.chunks(3) {
+        let b = [c[0], *c.get(1).unwrap_or(&0), *c.get(2).unwrap_or(&0)];
+        let n = (u32::from(b[0]) << 16) | (u32::from(b[1]) << 8) | u32::from(b[2]);
+        for k in 0..4 {
+            if k <= c.len() {
+                out.push(A[(n >> (18 - 6 * k) & 63) as usize] as char);
+            } else {
+                out.push('=');
+            }
+        }
+    }
+    out
+}
+
+fn glb(json: &Value, bin: &[u8]) -> Vec<u8> {
+    let mut j = serde_json::to_vec(json).unwrap();
+    while !j.len().is_multiple_of(4) {
+        j.push(b' ');
+    }
+    let mut b = bin.to_vec();
+    while !b.len().is_multiple_of(4) {
+        b.push(0);
+    }
+    let total = 12 + 8 + j.len() + 8 + b.len();
+    let mut out = Vec::new();
+    out.extend_from_slice(b"glTF");
+    out.extend_from_slice(&2u32.to_le_bytes());
+    out.extend_from_slice(&(total as u32).to_le_bytes());
+    out.extend_from_slice(&(j.len() as u32).to_le_bytes());
+    out.extend_from_slice(b"JSON");
+    out.extend_from_slice(&j);
+    out.extend_from_slice(&(b.len() as u32).to_le_bytes());
+    out.extend_from_slice(b"BIN\0");
+    out.extend_from_slice(&b);
+    out
+}
+
+fn write_png(path: &Path, w: u32, h: u32, rgba: [u8; 4]) {
+    image::RgbaImage::from_pixel(w, h, image::Rgba(rgba))
+        .save(path)
+        .unwrap();
+}
+
+/// Asserts that loading fails with `Error::Scene` whose element and message mention all
+/// `needles` (case-insensitive).
+fn expect_scene_error(path: &Path, needles: &[&str]) -> String {
+    match load(path) {
+        Ok(s) => panic!(
+            "{}: expected an error, got a scene with {} triangles",
+            path.display(),
+            s.stats().triangles
+        ),
+        Err(e @ Error::Scene { .. }) => {
+            let text = e.to_string();
+            for n in needles {
+                assert!(
+                    text.to_lowercase().contains(&n.to_lowercase()),
+                    "error {text:?} does not mention {n:?}"
+                );
+            }
+            text
+        }
+        Err(e) => panic!("expected Error::Scene, got {e:?}"),
+    }
+}
+
+fn close3(a: [f32; 3], b: [f32; 3]) -> bool {
+    a.iter().zip(&b).all(|(x, y)| (x - y).abs() < 1e-5)
+}
+
+fn dclose(a: DVec3, b: DVec3) -> bool {
+    (a - b).length() < 1e-9
+}
+
+fn world_points(scene: &Scene, node: usize) -> Vec<DVec3> {
+    let w = scene.world_transform(node);
+    let m = scene.nodes[node].mesh.unwrap();
+    scene.meshes[m].primitives[0]
+        .positions
+        .iter()
+        .map(|p| w.transform_point3(DVec3::new(p[0] as f64, p[1] as f64, p[2] as f64)))
+        .collect()
+}
+
+// ---------------------------------------------------------------------------------------------
+// Valid files
+// ---------------------------------------------------------------------------------------------
+
+#[test]
+fn external_bin_quad_with_generated_normals_and_transform() {
+    let dir = tmpdir("external_bin");
+    let mut bin = Bin::default();
+    let pos = bin.floats(&QUAD_POS, "VEC3", 3);
+    let idx = bin.indices(&QUAD_IDX);
+    // A file name with a space, referenced percent-encoded.
+    std::fs::write(dir.join("my quad.bin"), &bin.data).unwrap();
+    let r = root(
+        &bin,
+        json!({"uri": "my%20quad.bin", "byteLength": bin.data.len()}),
+        json!({
+            "meshes": [{"name": "quad", "primitives": [{"attributes": {"POSITION": pos}, "indices": idx}]}],
+            "nodes": [{"mesh": 0, "name": "q", "translation": [5.0, 0.0, 0.0]}],
+            "scenes": [{"nodes": [0]}],
+        }),
+    );
+    let path = dir.join("quad.gltf");
+    write_json(&path, &r);
+
+    let scene = load(&path).unwrap();
+    assert_eq!(scene.source, path.display().to_string());
+    assert_eq!(scene.stats().triangles, 2);
+    assert_eq!(scene.meshes.len(), 1);
+    let prim = &scene.meshes[0].primitives[0];
+    assert_eq!(prim.indices, QUAD_IDX.to_vec());
+    assert_eq!(prim.positions.len(), 4);
+    for (p, q) in prim.positions.iter().zip(QUAD_POS.chunks(3)) {
+        assert!(close3(*p, [q[0], q[1], q[2]]));
+    }
+    // Counter-clockwise from +z: generated normals point to +z.
+    assert_eq!(prim.normals.len(), 4);
+    for n in &prim.normals {
+        assert!(close3(*n, [0.0, 0.0, 1.0]), "normal {n:?}");
+    }
+    assert!(prim.uvs.is_empty() && prim.tangents.is_empty());
+    // The default material was appended once.
+    assert_eq!(scene.materials.len(), 1);
+    assert_eq!(scene.materials[prim.material].name, "default");
+    // Node transform.
+    assert_eq!(scene.nodes.len(), 1);
+    assert_eq!(scene.nodes[0].name, "q");
+    let pts = world_points(&scene, 0);
+    assert!(dclose(pts[0], DVec3::new(5.0, 0.0, 0.0)));
+    assert!(dclose(pts[2], DVec3::new(6.0, 1.0, 0.0)));
+    let b = scene.bounds();
+    assert!(dclose(b.min, DVec3::new(5.0, 0.0, 0.0)) && dclose(b.max, DVec3::new(6.0, 1.0, 0.0)));
+    assert!(scene.warnings.is_empty(), "{:?}", scene.warnings);
+}
+
+#[test]
+fn clockwise_winding_flips_generated_normals() {
+    let dir = tmpdir("clockwise");
+    let mut bin = Bin::default();
+    let pos = bin.floats(&QUAD_POS, "VEC3", 3);
+    let idx = bin.indices(&[0, 2, 1, 0, 3, 2]);
+    std::fs::write(dir.join("q.bin"), &bin.data).unwrap();
+    let r = root(
+        &bin,
+        json!({"uri": "q.bin", "byteLength": bin.data.len()}),
+        json!({
+            "meshes": [{"primitives": [{"attributes": {"POSITION": pos}, "indices": idx}]}],
+            "nodes": [{"mesh": 0}],
+        }),
+    );
+    let path = dir.join("q.gltf");
+    write_json(&path, &r);
+    let scene = load(&path).unwrap();
+    for n in &scene.meshes[0].primitives[0].normals {
+        assert!(close3(*n, [0.0, 0.0, -1.0]), "normal {n:?}");
+    }
+}
+
+#[test]
+fn glb_with_bin_chunk() {
+    let dir = tmpdir("glb");
+    let mut bin = Bin::default();
+    let pos = bin.floats(&QUAD_POS, "VEC3", 3);
+    let idx = bin.indices(&QUAD_IDX);
+    let r = root(
+        &bin,
+        json!({"byteLength": bin.data.len()}),
+        json!({
+            "meshes": [{"primitives": [{"attributes": {"POSITION": pos}, "indices": idx}]}],
+            "nodes": [{"mesh": 0, "scale": [2.0, 2.0, 2.0]}],
+            "scenes": [{"nodes": [0]}],
+            "scene": 0,
+        }),
+    );
+    let path = dir.join("quad.glb");
+    std::fs::write(&path, glb(&r, &bin.data)).unwrap();
+    let scene = load(&path).unwrap();
+    assert_eq!(scene.stats().triangles, 2);
+    let pts = world_points(&scene, 0);
+    assert!(dclose(pts[2], DVec3::new(2.0, 2.0, 0.0)));
+}
+
+#[test]
+fn data_uri_buffer() {
+    let dir = tmpdir("data_uri");
+    let mut bin = Bin::default();
+    let pos = bin.floats(&QUAD_POS, "VEC3", 3);
+    let r = root(
+        &bin,
+        json!({
+            "uri": format!("data:application/octet-stream;base64,{}", base64(&bin.data)),
+            "byteLength": bin.data.len()
+        }),
+        // Non-indexed: 4 vertices are not a multiple of 3, but TRIANGLE_FAN (mode 6) gives 2.
+        json!({
+            "meshes": [{"primitives": [{"attributes": {"POSITION": pos}, "mode": 6}]}],
+            "nodes": [{"mesh": 0}],
+        }),
+    );
+    let path = dir.join("data.gltf");
+    write_json(&path, &r);
+    let scene = load(&path).unwrap();
+    assert_eq!(scene.stats().triangles, 2);
+    let prim = &scene.meshes[0].primitives[0];
+    assert!(close3(prim.positions[2], [1.0, 1.0, 0.0]));
+    for n in &prim.normals {
+        assert!(
+            close3(*n, [0.0, 0.0, 1.0]),
+            "fan winding kept: normal {n:?}"
+        );
+    }
+}
+
+/// Quad with UVs and a material using three PNG textures; no NORMAL, no TANGENT.
+fn textured_scene(dir: &Path, with_uvs: bool) -> PathBuf {
+    write_png(&dir.join("base color.png"), 4, 2, [255, 0, 0, 255]);
+    write_png(&dir.join("mr.png"), 2, 2, [0, 128, 255, 255]);
+    std::fs::create_dir_all(dir.join("tex")).unwrap();
+    write_png(&dir.join("tex/normal.png"), 2, 2, [128, 128, 255, 255]);
+    let mut bin = Bin::default();
+    let pos = bin.floats(&QUAD_POS, "VEC3", 3);
+    let idx = bin.indices(&QUAD_IDX);
+    let mut attributes = json!({"POSITION": pos});
+    if with_uvs {
+        attributes["TEXCOORD_0"] = json!(bin.floats(&QUAD_UV, "VEC2", 2));
+    }
+    std::fs::write(dir.join("tex.bin"), &bin.data).unwrap();
+    let r = root(
+        &bin,
+        json!({"uri": "tex.bin", "byteLength": bin.data.len()}),
+        json!({
+            "images": [{"uri": "base%20color.png"}, {"uri": "mr.png"}, {"uri": "tex/normal.png"}],
+            "textures": [{"source": 0}, {"source": 1}, {"source": 2}],
+            "materials": [{
+                "name": "painted",
+                "pbrMetallicRoughness": {
+                    "baseColorFactor": [1.0, 0.5, 0.25, 1.0],
+                    "baseColorTexture": {"index": 0},
+                    "metallicFactor": 0.25,
+                    "roughnessFactor": 0.75,
+                    "metallicRoughnessTexture": {"index": 1}
+                },
+                "normalTexture": {"index": 2, "scale": 0.5}
+            }],
+            "meshes": [{"primitives": [{"attributes": attributes, "indices": idx, "material": 0}]}],
+            "nodes": [{"mesh": 0}],
+            "scenes": [{"nodes": [0]}],
+        }),
+    );
+    let path = dir.join("tex.gltf");
+    write_json(&path, &r);
+    path
+}
+
+#[test]
+fn textured_normal_mapped_material_generates_tangents() {
+    let dir = tmpdir("textured");
+    let path = textured_scene(&dir, true);
+    let scene = load(&path).unwrap();
+    assert!(scene.warnings.is_empty(), "{:?}", scene.warnings);
+    let prim = &scene.meshes[0].primitives[0];
+    let mat = &scene.materials[prim.material];
+    assert_eq!(mat.name, "painted");
+    assert_eq!(mat.base_color_factor, [1.0, 0.5, 0.25, 1.0]);
+    assert_eq!(
+        (mat.metallic_factor, mat.roughness_factor, mat.normal_scale),
+        (0.25, 0.75, 0.5)
+    );
+
+    assert_eq!(scene.textures.len(), 3);
+    let base = &scene.textures[mat.base_color_texture.unwrap()];
+    assert_eq!(
+        (base.width, base.height, base.usage),
+        (4, 2, TextureUsage::Color)
+    );
+    assert_eq!(base.rgba8.len(), 4 * 2 * 4);
+    assert_eq!(&base.rgba8[..4], &[255, 0, 0, 255]);
+    let mr = &scene.textures[mat.metallic_roughness_texture.unwrap()];
+    assert_eq!(
+        (mr.usage, &mr.rgba8[..4]),
+        (TextureUsage::Data, &[0u8, 128, 255, 255][..])
+    );
+    let nt = &scene.textures[mat.normal_texture.unwrap()];
+    assert_eq!((nt.width, nt.usage), (2, TextureUsage::Data));
+    let stats = scene.stats();
+    assert!(stats.has_textures && stats.has_normal_maps);
+
+    assert_eq!(prim.uvs.len(), 4);
+    assert_eq!(prim.tangents.len(), 4);
+    for (t, n) in prim.tangents.iter().zip(&prim.normals) {
+        let tv = Vec3::new(t[0], t[1], t[2]);
+        let nv = Vec3::from_array(*n);
+        assert!((tv.length() - 1.0).abs() < 1e-5, "tangent {t:?} not unit");
+        assert!(
+            tv.dot(nv).abs() < 1e-5,
+            "tangent {t:?} not orthogonal to {n:?}"
+        );
+        assert!(t[3] == 1.0 || t[3] == -1.0);
+        // u grows along +x, v along +y, normal +z: T = +x, B = N × T = +y → w = +1.
+        assert!(
+            close3([t[0], t[1], t[2]], [1.0, 0.0, 0.0]) && t[3] == 1.0,
+            "tangent {t:?}"
+        );
+    }
+}
+
+#[test]
+fn normal_map_without_uvs_is_dropped_with_a_warning() {
+    let dir = tmpdir("no_uvs");
+    let path = textured_scene(&dir, false);
+    let scene = load(&path).unwrap();
+    let prim = &scene.meshes[0].primitives[0];
+    assert!(prim.tangents.is_empty());
+    assert_eq!(scene.materials[prim.material].normal_texture, None);
+    assert!(
+        scene
+            .warnings
+            .iter()
+            .any(|w| w.contains("meshes[0].primitives[0]") && w.contains("normal map")),
+        "{:?}",
+        scene.warnings
+    );
+}
+
+#[test]
+fn node_hierarchy_composes_parent_transforms() {
+    let dir = tmpdir("hierarchy");
+    let mut bin = Bin::default();
+    let pos = bin.floats(&QUAD_POS, "VEC3", 3);
+    let idx = bin.indices(&QUAD_IDX);
+    std::fs::write(dir.join("h.bin"), &bin.data).unwrap();
+    let r = root(
+        &bin,
+        json!({"uri": "h.bin", "byteLength": bin.data.len()}),
+        json!({
+            "meshes": [{"primitives": [{"attributes": {"POSITION": pos}, "indices": idx}]}],
+            "nodes": [
+                {"name": "parent", "translation": [1.0, 2.0, 3.0], "scale": [2.0, 2.0, 2.0], "children": [1]},
+                {"name": "child", "translation": [1.0, 0.0, 0.0], "mesh": 0},
+                // Not in the scene: its mesh must not be instanced.
+                {"name": "orphan", "mesh": 0},
+                // A 90° rotation about +z given as a matrix (column-major).
+                {"name": "rotated", "matrix": [0,1,0,0, -1,0,0,0, 0,0,1,0, 0,0,0,1], "mesh": 0}
+            ],
+            "scenes": [{"nodes": [0, 3]}],
+            "scene": 0,
+        }),
+    );
+    let path = dir.join("h.gltf");
+    write_json(&path, &r);
+    let scene = load(&path).unwrap();
+    assert_eq!(scene.nodes.len(), 4);
+    assert_eq!(scene.nodes[1].parent, Some(0));
+    assert_eq!(scene.nodes[0].parent, None);
+    assert_eq!(scene.nodes[2].mesh, None, "unreachable node keeps no mesh");
+    assert_eq!(scene.stats().triangles, 4);
+    assert_eq!(scene.meshes.len(), 1, "one mesh shared by two nodes");
+    let child = world_points(&scene, 1);
+    // parent(T(1,2,3)·S(2)) · child(T(1,0,0)) · p
+    assert!(dclose(child[0], DVec3::new(3.0, 2.0, 3.0)));
+    assert!(dclose(child[2], DVec3::new(5.0, 4.0, 3.0)));
+    let rotated = world_points(&scene, 3);
+    assert!(dclose(rotated[1], DVec3::new(0.0, 1.0, 0.0)));
+}
+
+#[test]
+fn spot_light_and_perspective_camera() {
+    let dir = tmpdir("light_camera");
+    let s = std::f32::consts::FRAC_1_SQRT_2;
+    let mut bin = Bin::default();
+    let pos = bin.floats(&QUAD_POS, "VEC3", 3);
+    std::fs::write(dir.join("l.bin"), &bin.data).unwrap();
+    let r = root(
+        &bin,
+        json!({"uri": "l.bin", "byteLength": bin.data.len()}),
+        json!({
+            "extensionsUsed": ["KHR_lights_punctual"],
+            "extensionsRequired": ["KHR_lights_punctual"],
+            "extensions": {"KHR_lights_punctual": {"lights": [
+                {"type": "spot", "color": [1.0, 0.5, 0.0], "intensity": 450.0,
+                 "spot": {"innerConeAngle": 0.3, "outerConeAngle": 0.5}},
+                {"type": "point", "intensity": 10.0},
+                {"type": "spot"}
+            ]}},
+            "cameras": [
+                {"type": "perspective", "perspective": {"yfov": 0.8, "znear": 0.1}},
+                {"type": "orthographic", "orthographic": {"xmag": 1.0, "ymag": 1.0, "znear": 0.1, "zfar": 10.0}}
+            ],
+            "meshes": [{"primitives": [{"attributes": {"POSITION": pos}, "mode": 4}]}],
+            "nodes": [
+                // Rotated −90° about x: local −z becomes world −y.
+                {"name": "spot", "translation": [0.0, 5.0, 0.0], "rotation": [-s, 0.0, 0.0, s],
+                 "extensions": {"KHR_lights_punctual": {"light": 0}}},
+                {"name": "bulb", "extensions": {"KHR_lights_punctual": {"light": 1}}},
+                {"name": "rig", "translation": [0.0, 0.0, 1.0], "children": [3, 4, 5]},
+                {"name": "cam", "translation": [0.0, 1.0, 9.0], "camera": 0},
+                {"name": "ortho", "camera": 1},
+                {"name": "default spot", "extensions": {"KHR_lights_punctual": {"light": 2}}}
+            ],
+            "scenes": [{"nodes": [0, 1, 2]}],
+        }),
+    );
+    let path = dir.join("l.gltf");
+    write_json(&path, &r);
+    let scene = load(&path).unwrap();
+
+    assert_eq!(scene.stats().triangles, 0, "the mesh is on no node");
+
+    assert_eq!(scene.lights.len(), 2);
+    let l = scene.lights[0];
+    assert!(dclose(l.position, DVec3::new(0.0, 5.0, 0.0)));
+    assert!(
+        (l.direction - DVec3::new(0.0, -1.0, 0.0)).length() < 1e-6,
+        "{:?}",
+        l.direction
+    );
+    assert_eq!(l.intensity, 450.0);
+    assert_eq!(l.color, Vec3::new(1.0, 0.5, 0.0));
+    assert_eq!((l.inner_cone, l.outer_cone), (0.3, 0.5));
+    let d = scene.lights[1];
+    assert!(
+        dclose(d.position, DVec3::new(0.0, 0.0, 1.0)),
+        "under the rig node: {d:?}"
+    );
+    assert!(dclose(d.direction, DVec3::new(0.0, 0.0, -1.0)));
+    assert_eq!(
+        (d.inner_cone, d.outer_cone, d.intensity),
+        (0.0, std::f32::consts::FRAC_PI_4, 1.0)
+    );
+    assert_eq!(d.color, Vec3::ONE);
+
+    assert_eq!(scene.cameras.len(), 1);
+    let c = scene.cameras[0];
+    assert!(dclose(c.eye, DVec3::new(0.0, 1.0, 10.0)));
+    assert!(dclose(c.forward, DVec3::new(0.0, 0.0, -1.0)));
+    assert!(dclose(c.up, DVec3::Y));
+    assert_eq!(c.fov_y, 0.8);
+
+    let warned = |what: &str| scene.warnings.iter().any(|w| w.contains(what));
+    assert!(
+        warned("nodes[1]") && warned("point light"),
+        "{:?}",
+        scene.warnings
+    );
+    assert!(
+        warned("nodes[4]") && warned("orthographic"),
+        "{:?}",
+        scene.warnings
+    );
+}
+
+#[test]
+fn triangle_strip_is_triangulated() {
+    let dir = tmpdir("strip");
+    let mut bin = Bin::default();
+    // Strip order 0,1,3,2 over the quad corners.
+    let pos = bin.floats(&QUAD_POS, "VEC3", 3);
+    let idx = bin.indices(&[0, 1, 3, 2]);
+    std::fs::write(dir.join("s.bin"), &bin.data).unwrap();
+    let r = root(
+        &bin,
+        json!({"uri": "s.bin", "byteLength": bin.data.len()}),
+        json!({
+            "meshes": [{"primitives": [{"attributes": {"POSITION": pos}, "indices": idx, "mode": 5}]}],
+            "nodes": [{"mesh": 0}],
+        }),
+    );
+    let path = dir.join("s.gltf");
+    write_json(&path, &r);
+    let scene = load(&path).unwrap();
+    let prim = &scene.meshes[0].primitives[0];
+    assert_eq!(prim.indices, vec![0, 1, 3, 1, 2, 3]);
+    for n in &prim.normals {
+        assert!(close3(*n, [0.0, 0.0, 1.0]), "strip winding: normal {n:?}");
+    }
+}
+
+// ---------------------------------------------------------------------------------------------
+// Hostile and malformed files
+// ---------------------------------------------------------------------------------------------
+
+#[test]
+fn truncated_buffer_is_refused() {
+    let dir = tmpdir("truncated");
+    let path = quad_with_node(&dir, json!({}));
+    let data = std::fs::read(dir.join("quad.bin")).unwrap();
+    std::fs::write(dir.join("quad.bin"), &data[..data.len() - 5]).unwrap();
+    expect_scene_error(&path, &["buffers[0].uri", "truncated"]);
+}
+
+#[test]
+fn accessor_out_of_view_bounds_is_refused() {
+    let dir = tmpdir("accessor_oob");
+    let path = quad_with_node(&dir, json!({}));
+    let mut r: Value = serde_json::from_slice(&std::fs::read(&path).unwrap()).unwrap();
+    r["accessors"][0]["count"] = json!(5); // the view holds 4 VEC3
+    write_json(&path, &r);
+    expect_scene_error(&path, &["accessors[0]", "out of bounds"]);
+    // A count whose byte size overflows u64 arithmetic.
+    r["accessors"][0]["count"] = json!(u64::MAX / 2);
+    r["accessors"][0]["byteOffset"] = json!(u64::MAX - 3);
+    write_json(&path, &r);
+    expect_scene_error(&path, &["accessors[0]"]);
+    // A view past the end of its buffer.
+    r["accessors"][0]["count"] = json!(4);
+    r["accessors"][0]["byteOffset"] = json!(0);
+    r["bufferViews"][0]["byteOffset"] = json!(1000);
+    write_json(&path, &r);
+    expect_scene_error(&path, &["bufferViews[0]", "buffers[0]"]);
+}
+
+#[test]
+fn index_out_of_range_is_refused() {
+    let dir = tmpdir("index_oob");
+    let mut bin = Bin::default();
+    let pos = bin.floats(&QUAD_POS, "VEC3", 3);
+    let idx = bin.indices(&[0, 1, 2, 0, 2, 7]);
+    std::fs::write(dir.join("i.bin"), &bin.data).unwrap();
+    let r = root(
+        &bin,
+        json!({"uri": "i.bin", "byteLength": bin.data.len()}),
+        json!({
+            "meshes": [{"primitives": [{"attributes": {"POSITION": pos}, "indices": idx}]}],
+            "nodes": [{"mesh": 0}],
+        }),
+    );
+    let path = dir.join("i.gltf");
+    write_json(&path, &r);
+    expect_scene_error(
+        &path,
+        &["meshes[0].primitives[0]", "index 7", "out of range"],
+    );
+}
+
+fn quad_with_buffer_uri(dir: &Path, uri: &str) -> PathBuf {
+    let path = quad_with_node(dir, json!({}));
+    let mut r: Value = serde_json::from_slice(&std::fs::read(&path).unwrap()).unwrap();
+    r["buffers"][0]["uri"] = json!(uri);
+    write_json(&path, &r);
+    path
+}
+
+#[test]
+fn parent_directory_uri_is_refused() {
+    let dir = tmpdir("dotdot");
+    let scene_dir = dir.join("scene");
+    std::fs::create_dir_all(&scene_dir).unwrap();
+    let path = quad_with_buffer_uri(&scene_dir, "../outside.bin");
+    // The target exists, so only the folder rule can refuse it.
+    std::fs::copy(scene_dir.join("quad.bin"), dir.join("outside.bin")).unwrap();
+    expect_scene_error(&path, &["buffers[0].uri", "escapes the scene folder"]);
+    let path = quad_with_buffer_uri(&scene_dir, "sub/../../outside.bin");
+    expect_scene_error(&path, &["buffers[0].uri", "escapes"]);
+    let path = quad_with_buffer_uri(&scene_dir, "%2e%2e/outside.bin");
+    expect_scene_error(&path, &["buffers[0].uri", "escapes"]);
+    let path = quad_with_buffer_uri(&scene_dir, "..\\outside.bin");
+    expect_scene_error(&path, &["buffers[0].uri", "escapes"]);
+    // ".." that stays inside the folder is fine.
+    std::fs::create_dir_all(scene_dir.join("sub")).unwrap();
+    let path = quad_with_buffer_uri(&scene_dir, "sub/../quad.bin");
+    assert_eq!(load(&path).unwrap().stats().triangles, 2);
+}
+
+#[cfg(unix)]
+#[test]
+fn symlink_out_of_the_folder_is_refused() {
+    let dir = tmpdir("symlink");
+    let scene_dir = dir.join("scene");
+    std::fs::create_dir_all(&scene_dir).unwrap();
+    let path = quad_with_buffer_uri(&scene_dir, "link.bin");
+    std::fs::rename(scene_dir.join("quad.bin"), dir.join("outside.bin")).unwrap();
+    std::os::unix::fs::symlink(dir.join("outside.bin"), scene_dir.join("link.bin")).unwrap();
+    expect_scene_error(&path, &["buffers[0].uri", "outside the scene folder"]);
+}
+
+#[test]
+fn absolute_uri_is_refused() {
+    let dir = tmpdir("absolute");
+    let path = quad_with_buffer_uri(&dir, "/etc/passwd");
+    expect_scene_error(&path, &["buffers[0].uri", "absolute"]);
+    let path = quad_with_buffer_uri(&dir, "%2Fetc%2Fpasswd");
+    expect_scene_error(&path, &["buffers[0].uri", "absolute"]);
+    let path = quad_with_buffer_uri(&dir, "file:///etc/passwd");
+    expect_scene_error(&path, &["buffers[0].uri", "file:"]);
+}
+
+#[test]
+fn http_uri_is_refused() {
+    let dir = tmpdir("http");
+    let path = quad_with_buffer_uri(&dir, "http://example.com/quad.bin");
+    expect_scene_error(&path, &["buffers[0].uri", "http:", "not allowed"]);
+    let path = quad_with_buffer_uri(&dir, "HTTPS://example.com/quad.bin");
+    expect_scene_error(&path, &["buffers[0].uri", "not allowed"]);
+}
+
+#[test]
+fn missing_texture_image_is_refused() {
+    let dir = tmpdir("missing_texture");
+    let path = textured_scene(&dir, true);
+    std::fs::remove_file(dir.join("mr.png")).unwrap();
+    expect_scene_error(&path, &["images[1]", "mr.png"]);
+}
+
+#[test]
+fn oversized_image_is_refused_before_decoding() {
+    let dir = tmpdir("big_image");
+    let path = textured_scene(&dir, true);
+    // 16385 × 1 pixels: tiny on disk, one pixel over the side limit.
+    image::GrayImage::new(16385, 1)
+        .save(dir.join("mr.png"))
+        .unwrap();
+    expect_scene_error(&path, &["images[1]", "16384"]);
+    // Not an image at all.
+    std::fs::write(dir.join("mr.png"), b"this is not a PNG").unwrap();
+    expect_scene_error(&path, &["images[1]"]);
+}
+
+#[test]
+fn points_primitive_is_skipped_with_a_warning() {
+    let dir = tmpdir("points");
+    let path = quad_with_node(&dir, json!({}));
+    let mut r: Value = serde_json::from_slice(&std::fs::read(&path).unwrap()).unwrap();
+    r["meshes"][0]["primitives"][0]["mode"] = json!(0);
+    write_json(&path, &r);
+    let scene = load(&path).unwrap();
+    assert_eq!(scene.stats().triangles, 0);
+    assert!(
+        scene
+            .warnings
+            .iter()
+            .any(|w| w.contains("meshes[0].primitives[0]") && w.contains("POINTS")),
+        "{:?}",
+        scene.warnings
+    );
+    r["meshes"][0]["primitives"][0]["mode"] = json!(99);
+    write_json(&path, &r);
+    expect_scene_error(&path, &["meshes[0].primitives[0].mode"]);
+}
+
+#[test]
+fn invalid_json_is_refused() {
+    let dir = tmpdir("invalid_json");
+    let path = dir.join("bad.gltf");
+    std::fs::write(&path, b"{\"asset\": {\"version\": \"2.0\"}, \"nodes\": [").unwrap();
+    expect_scene_error(&path, &["JSON"]);
+    std::fs::write(&path, b"").unwrap();
+    expect_scene_error(&path, &["JSON"]);
+    std::fs::write(&path, b"{\"asset\": {\"version\": \"1.0\"}}").unwrap();
+    expect_scene_error(&path, &["asset.version"]);
+    std::fs::write(&path, b"{\"asset\": {\"version\": \"2.0\"}, \"extensionsRequired\": [\"KHR_draco_mesh_compression\"]}").unwrap();
+    expect_scene_error(
+        &path,
+        &["extensionsRequired[0]", "KHR_draco_mesh_compression"],
+    );
+}
+
+#[test]
+fn node_cycle_is_refused() {
+    let dir = tmpdir("cycle");
+    let path = quad_with_node(&dir, json!({}));
+    let mut r: Value = serde_json::from_slice(&std::fs::read(&path).unwrap()).unwrap();
+    r["nodes"] = json!([{"children": [1]}, {"children": [2]}, {"children": [1], "mesh": 0}]);
+    r["scenes"] = json!([{"nodes": [0]}]);
+    write_json(&path, &r);
+    expect_scene_error(&path, &["nodes[1]", "two parents"]);
+    // A pure cycle: every node has exactly one parent.
+    r["nodes"] = json!([{"children": [1]}, {"children": [2]}, {"children": [0], "mesh": 0}]);
+    write_json(&path, &r);
+    expect_scene_error(&path, &["nodes[", "cycle"]);
+    r["nodes"] = json!([{"children": [0]}]);
+    write_json(&path, &r);
+    expect_scene_error(&path, &["nodes[0]", "cycle"]);
+    r["nodes"] = json!([{"children": [7]}]);
+    write_json(&path, &r);
+    expect_scene_error(&path, &["nodes[0].children[0]"]);
+}
+
+#[test]
+fn huge_byte_length_fails_fast() {
+    let dir = tmpdir("huge");
+    let path = quad_with_node(&dir, json!({}));
+    let mut r: Value = serde_json::from_slice(&std::fs::read(&path).unwrap()).unwrap();
+    r["buffers"][0]["byteLength"] = json!(1_000_000_000_000_000u64);
+    write_json(&path, &r);
+    let t = Instant::now();
+    expect_scene_error(&path, &["buffers[0]", "byteLength"]);
+    // Within the size cap but larger than the file: refused from the file size.
+    r["buffers"][0]["byteLength"] = json!(1_000_000_000u64);
+    write_json(&path, &r);
+    expect_scene_error(&path, &["buffers[0].uri", "truncated"]);
+    // Same for a data: URI and a GLB chunk.
+    r["buffers"][0]["uri"] = json!("data:application/octet-stream;base64,AAAA");
+    write_json(&path, &r);
+    expect_scene_error(&path, &["buffers[0].uri", "truncated"]);
+    assert!(t.elapsed().as_secs_f64() < 2.0, "took {:?}", t.elapsed());
+}
+
+#[test]
+fn non_finite_positions_are_refused() {
+    let dir = tmpdir("nan");
+    let mut bin = Bin::default();
+    let mut p = QUAD_POS;
+    p[4] = f32::NAN;
+    let pos = bin.floats(&p, "VEC3", 3);
+    let idx = bin.indices(&QUAD_IDX);
+    std::fs::write(dir.join("n.bin"), &bin.data).unwrap();
+    let r = root(
+        &bin,
+        json!({"uri": "n.bin", "byteLength": bin.data.len()}),
+        json!({
+            "meshes": [{"primitives": [{"attributes": {"POSITION": pos}, "indices": idx}]}],
+            "nodes": [{"mesh": 0}],
+        }),
+    );
+    let path = dir.join("n.gltf");
+    write_json(&path, &r);
+    expect_scene_error(&path, &["accessors[0]", "non-finite"]);
+}
+
+#[test]
+fn malformed_glb_containers_are_refused() {
+    let dir = tmpdir("bad_glb");
+    let path = dir.join("x.glb");
+    let mut bin = Bin::default();
+    let pos = bin.floats(&QUAD_POS, "VEC3", 3);
+    let r = root(
+        &bin,
+        json!({"byteLength": bin.data.len()}),
+        json!({"meshes": [{"primitives": [{"attributes": {"POSITION": pos}}]}], "nodes": [{"mesh": 0}]}),
+    );
+    let good = glb(&r, &bin.data);
+    // Truncated file: the header's length no longer fits.
+    std::fs::write(&path, &good[..good.len() - 8]).unwrap();
+    expect_scene_error(&path, &["GLB header"]);
+    // JSON chunk length past the end.
+    let mut bad = good.clone();
+    bad[12..16].copy_from_slice(&u32::MAX.to_le_bytes());
+    std::fs::write(&path, &bad).unwrap();
+    expect_scene_error(&path, &["GLB chunk 0"]);
+    // byteLength larger than the BIN chunk.
+    let mut r2 = r.clone();
+    r2["buffers"][0]["byteLength"] = json!(4096);
+    std::fs::write(&path, glb(&r2, &bin.data)).unwrap();
+    expect_scene_error(&path, &["buffers[0]", "BIN chunk"]);
+    // Tiny header lengths must not underflow.
+    std::fs::write(&path, b"glTF\x02\0\0\0\x04\0\0\0").unwrap();
+    expect_scene_error(&path, &["GLB header"]);
+    std::fs::write(&path, &good).unwrap();
+    assert_eq!(
+        load(&path).unwrap().meshes[0].primitives[0].indices.len(),
+        3
+    );
+}
+
+#[test]
+fn dangling_indices_are_refused() {
+    let dir = tmpdir("dangling");
+    let path = quad_with_node(&dir, json!({}));
+    let orig: Value = serde_json::from_slice(&std::fs::read(&path).unwrap()).unwrap();
+    let cases: &[(&str, Value, &str)] = &[
+        (
+            "/meshes/0/primitives/0/attributes/POSITION",
+            json!(42),
+            "accessors[42]",
+        ),
+        ("/meshes/0/primitives/0/indices", json!(42), "accessors[42]"),
+        ("/meshes/0/primitives/0/material", json!(3), "materials[3]"),
+        ("/accessors/0/bufferView", json!(9), "bufferViews[9]"),
+        ("/bufferViews/0/buffer", json!(5), "buffers[5]"),
+        ("/nodes/0/mesh", json!(8), "meshes[8]"),
+        ("/nodes/0/camera", json!(1), "cameras[1]"),
+        ("/scenes/0/nodes/0", json!(6), "scenes[0].nodes[0]"),
+        ("/scene", json!(4), "scenes[4]"),
+        ("/accessors/0/type", json!("MAT4"), "accessors[0]"),
+        ("/accessors/0/componentType", json!(5130), "accessors[0]"),
+        (
+            "/bufferViews/0/byteStride",
+            json!(2),
+            "bufferViews[0].byteStride",
+        ),
+    ];
+    for (ptr, value, needle) in cases {
+        let mut r = orig.clone();
+        set_pointer(&mut r, ptr, value.clone());
+        write_json(&path, &r);
+        expect_scene_error(&path, &[needle]);
+    }
+}
+
+/// Sets the JSON value at `ptr`, creating the last object key when absent.
+fn set_pointer(r: &mut Value, ptr: &str, value: Value) {
+    let (parent, key) = ptr.rsplit_once('/').unwrap();
+    let parent = r.pointer_mut(parent).unwrap();
+    match parent {
+        Value::Array(a) => a[key.parse::<usize>().unwrap()] = value,
+        Value::Object(o) => {
+            o.insert(key.to_string(), value);
+        }
+        _ => panic!("{ptr}: parent is not a container"),
+    }
+}
+
+#[test]
+fn sparse_accessor_substitutes_values() {
+    let dir = tmpdir("sparse");
+    let mut bin = Bin::default();
+    let idx = bin.indices(&QUAD_IDX);
+    // Sparse POSITION without a bufferView: zeros, then vertices 1..3 substituted.
+    let sparse_idx = bin.view(&[1u8, 0, 2, 0, 3, 0]);
+    let vals: Vec<u8> = QUAD_POS[3..].iter().flat_map(|v| v.to_le_bytes()).collect();
+    let sparse_vals = bin.view(&vals);
+    bin.accessors.push(json!({
+        "componentType": 5126, "count": 4, "type": "VEC3",
+        "min": [0.0, 0.0, 0.0], "max": [1.0, 1.0, 0.0],
+        "sparse": {"count": 3,
+                   "indices": {"bufferView": sparse_idx, "componentType": 5123},
+                   "values": {"bufferView": sparse_vals}}
+    }));
+    std::fs::write(dir.join("s.bin"), &bin.data).unwrap();
+    let r = root(
+        &bin,
+        json!({"uri": "s.bin", "byteLength": bin.data.len()}),
+        json!({
+            "meshes": [{"primitives": [{"attributes": {"POSITION": 1}, "indices": idx}]}],
+            "nodes": [{"mesh": 0}],
+        }),
+    );
+    let path = dir.join("s.gltf");
+    write_json(&path, &r);
+    let scene = load(&path).unwrap();
+    let prim = &scene.meshes[0].primitives[0];
+    for (p, q) in prim.positions.iter().zip(QUAD_POS.chunks(3)) {
+        assert!(close3(*p, [q[0], q[1], q[2]]), "{:?}", prim.positions);
+    }
+    // A sparse index past the accessor's count.
+    let mut r2 = r.clone();
+    r2["accessors"][1]["count"] = json!(3);
+    write_json(&path, &r2);
+    expect_scene_error(&path, &["accessors[1].sparse.indices", "out of range"]);
+    // More sparse values than the view holds.
+    let mut r3 = r.clone();
+    r3["accessors"][1]["sparse"]["values"]["byteOffset"] = json!(8);
+    write_json(&path, &r3);
+    expect_scene_error(&path, &["accessors[1].sparse.values"]);
+}
+
+/// Deterministic xorshift, for the mutation test below.
+fn xorshift(state: &mut u64) -> u64 {
+    *state ^= *state << 13;
+    *state ^= *state >> 7;
+    *state ^= *state << 17;
+    *state
+}
+
+#[test]
+fn mutated_files_never_panic() {
+    let dir = tmpdir("mutations");
+    // A textured GLB-free scene (JSON text) and a GLB, both valid before mutation.
+    let gltf_path = textured_scene(&dir, true);
+    let gltf_bytes = std::fs::read(&gltf_path).unwrap();
+    let mut bin = Bin::default();
+    let pos = bin.floats(&QUAD_POS, "VEC3", 3);
+    let uv = bin.floats(&QUAD_UV, "VEC2", 2);
+    let idx = bin.indices(&QUAD_IDX);
+    let r = root(
+        &bin,
+        json!({"byteLength": bin.data.len()}),
+        json!({
+            "meshes": [{"primitives": [{"attributes": {"POSITION": pos, "TEXCOORD_0": uv}, "indices": idx}]}],
+            "nodes": [{"mesh": 0, "children": [1]}, {"camera": 0}],
+            "cameras": [{"type": "perspective", "perspective": {"yfov": 0.8, "znear": 0.1}}],
+        }),
+    );
+    let glb_bytes = glb(&r, &bin.data);
+    let glb_path = dir.join("m.glb");
+    let mut state = 0x9E37_79B9_7F4A_7C15u64;
+    let mut outcomes = [0usize; 2];
+    for round in 0..1500 {
+        let (path, orig) = if round % 2 == 0 {
+            (&gltf_path, &gltf_bytes)
+        } else {
+            (&glb_path, &glb_bytes)
+        };
+        let mut data = orig.clone();
+        let edits = 1 + xorshift(&mut state) % 4;
+        for _ in 0..edits {
+            let at = (xorshift(&mut state) % data.len() as u64) as usize;
+            match xorshift(&mut state) % 4 {
+                // Digits keep JSON valid more often, reaching the deeper checks.
+                0 => data[at] = b"0123456789"[(xorshift(&mut state) % 10) as usize],
+                1 => data[at] = xorshift(&mut state) as u8,
+                2 => data[at] ^= 1 << (xorshift(&mut state) % 8),
+                _ => data.truncate(at.max(1)),
+            }
+        }
+        std::fs::write(path, &data).unwrap();
+        // Any outcome but a panic is acceptable; errors must be Error::Scene.
+        match load(path) {
+            Ok(_) => outcomes[0] += 1,
+            Err(Error::Scene { .. }) => outcomes[1] += 1,
+            Err(e) => panic!("unexpected error kind {e:?}"),
+        }
+    }
+    println!("mutations: {} loaded, {} refused", outcomes[0], outcomes[1]);
+    assert!(outcomes[1] > 0);
+}
+
+/// The Python fixture generator (used by the Python tests) must produce what its tables
+/// promise with this loader. Skipped when no `python3` is on PATH.
+#[test]
+fn python_fixtures_match_the_loader() {
+    let script = Path::new(concat!(
+        env!("CARGO_MANIFEST_DIR"),
+        "/../../tests/gltf_fixtures.py"
+    ));
+    let dir = tmpdir("python_fixtures");
+    let status = std::process::Command::new("python3")
+        .arg(script)
+        .arg("--write")
+        .arg(&dir)
+        .output();
+    let out = match status {
+        Ok(out) => out,
+        Err(e) => {
+            println!("skipping: python3 not available ({e})");
+            return;
+        }
+    };
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    let manifest: Value =
+        serde_json::from_slice(&std::fs::read(dir.join("manifest.json")).unwrap()).unwrap();
+    let manifest = manifest.as_object().unwrap();
+    assert!(manifest.len() >= 20);
+    for (name, entry) in manifest {
+        let path = PathBuf::from(entry["path"].as_str().unwrap());
+        let expect = entry["expect"].clone();
+        match entry["kind"].as_str().unwrap() {
+            "valid" => {
+                let scene = load(&path).unwrap_or_else(|e| panic!("{name}: {e}"));
+                assert_eq!(
+                    scene.stats().triangles as u64,
+                    expect.as_u64().unwrap(),
+                    "{name}"
+                );
+            }
+            "warning" => {
+                let scene = load(&path).unwrap_or_else(|e| panic!("{name}: {e}"));
+                let needle = expect.as_str().unwrap();
+                assert!(
+                    scene.warnings.iter().any(|w| w.contains(needle)),
+                    "{name}: {:?}",
+                    scene.warnings
+                );
+            }
+            _ => {
+                let keyword = entry["keyword"].as_str().unwrap();
+                let text = expect_scene_error(&path, &[expect.as_str().unwrap(), keyword]);
+                println!("{name}: {text}");
+            }
+        }
+    }
+}
+
+// ---------------------------------------------------------------------------------------------
+// Real scenes
+// ---------------------------------------------------------------------------------------------
+
+#[test]
+fn real_scenes_load_with_documented_triangle_counts() {
+    let root = Path::new(concat!(
+        env!("CARGO_MANIFEST_DIR"),
+        "/../../../shared/scenes"
+    ));
+    if !root.is_dir() {
+        println!("skipping: ../shared/scenes not found at {}", root.display());
+        return;
+    }
+    let cases = [
+        ("CornellBox/CornellBox.glb", 36usize, false),
+        ("CornellBoxOriginal/CornellBoxOriginal.glb", 32, false),
+        ("FlightHelmet/FlightHelmet.gltf", 94_722, true),
+        ("BoomBox/BoomBox.gltf", 6_036, true),
+        ("LightsSpot/LightsSpot.gltf", 2, false),
+    ];
+    for (file, triangles, textured) in cases {
+        let t = Instant::now();
+        let scene = load(&root.join(file)).unwrap_or_else(|e| panic!("{file}: {e}"));
+        let stats = scene.stats();
+        println!(
+            "{file}: {} triangles, {} meshes, {} materials, {} textures, {} lights, {} cameras, {:.2}s, warnings {:?}",
+            stats.triangles,
+            stats.meshes,
+            stats.materials,
+            stats.textures,
+            stats.lights,
+            scene.cameras.len(),
+            t.elapsed().as_secs_f64(),
+            scene.warnings
+        );
+        assert_eq!(stats.triangles, triangles, "{file}");
+        assert_eq!(stats.has_textures, textured, "{file}");
+        assert_eq!(stats.has_normal_maps, textured, "{file}");
+        assert!(!scene.bounds().is_empty(), "{file}");
+        for m in &scene.meshes {
+            for p in &m.primitives {
+                assert_eq!(p.normals.len(), p.positions.len(), "{file}");
+                if scene.materials[p.material].normal_texture.is_some() {
+                    assert_eq!(p.tangents.len(), p.positions.len(), "{file}");
+                }
+            }
+        }
+        for tex in &scene.textures {
+            assert_eq!(
+                tex.rgba8.len(),
+                (tex.width * tex.height * 4) as usize,
+                "{file}"
+            );
+        }
+        if file.starts_with("LightsSpot") {
+            assert_eq!(scene.lights.len(), 3);
+            for l in &scene.lights {
+                assert_eq!(l.intensity, 450.0);
+                assert!((l.position.y - 5.0).abs() < 1e-3, "{l:?}");
+                assert!(
+                    l.direction.y < -0.5,
+                    "spot lights point down at the plane: {l:?}"
+                );
+                assert!(
+                    (l.inner_cone - 0.314).abs() < 1e-3 && (l.outer_cone - 0.524).abs() < 1e-3,
+                    "{l:?}"
+                );
+            }
+        }
+        if file.starts_with("CornellBoxOriginal") {
+            let b = scene.bounds();
+            assert!(
+                b.min.y > -0.01 && (b.max.y - 1.99).abs() < 0.02,
+                "Z-up root matrix applied: {b:?}"
+            );
+        }
+    }
+}

@@ -1,0 +1,475 @@
+"""Generators of small glTF 2.0 fixture files for the loader tests (standard library only).
+
+Every ``write_<name>(dirpath) -> pathlib.Path`` writes one scene (plus its ``.bin`` and
+images) into ``dirpath`` and returns the path to load with ``vsgl.Scene.load(path)``.
+Use a fresh directory per fixture: several fixtures use the same auxiliary file names.
+
+* ``VALID``: name -> (writer, expected triangle count of ``scene.stats``).
+* ``WARNING_CASES``: name -> (writer, substring of one of ``scene.warnings``); these load.
+* ``HOSTILE``: name -> (writer, substring of the ``vsgl.SceneError`` message). The substring
+  is the glTF element the loader names (``buffers[0].uri``, ``accessors[0]``, ...);
+  ``HOSTILE_KEYWORDS`` gives a second, lower-case word of the message for each.
+
+Run ``python tests/gltf_fixtures.py --write DIR`` to write every fixture into its own
+subfolder of DIR, plus ``DIR/manifest.json`` describing them (used by the Rust test
+``python_fixtures_match_the_loader`` in ``crates/vsgl-core/tests/gltf_loader.rs``).
+"""
+
+from __future__ import annotations
+
+import base64
+import json
+import math
+import os
+import pathlib
+import struct
+import sys
+import zlib
+
+__all__ = ["VALID", "WARNING_CASES", "HOSTILE", "HOSTILE_KEYWORDS", "write_all"]
+
+# Unit quad in z = 0, counter-clockwise seen from +z (normals +z).
+QUAD_POS = [0.0, 0.0, 0.0, 1.0, 0.0, 0.0, 1.0, 1.0, 0.0, 0.0, 1.0, 0.0]
+QUAD_UV = [0.0, 0.0, 1.0, 0.0, 1.0, 1.0, 0.0, 1.0]
+QUAD_IDX = [0, 1, 2, 0, 2, 3]
+
+
+# ------------------------------------------------------------------------------------------
+# Building blocks
+# ------------------------------------------------------------------------------------------
+
+
+class _Bin:
+    """One binary buffer with its bufferViews and accessors."""
+
+    def __init__(self) -> None:
+        self.data = bytearray()
+        self.views: list[dict] = []
+        self.accessors: list[dict] = []
+
+    def view(self, payload: bytes) -> int:
+        while len(self.data) % 4:
+            self.data.append(0)
+        self.views.append({"buffer": 0, "byteOffset": len(self.data), "byteLength": len(payload)})
+        self.data += payload
+        return len(self.views) - 1
+
+    def floats(self, values: list[float], type_: str, ncomp: int) -> int:
+        view = self.view(struct.pack(f"<{len(values)}f", *values))
+        acc = {"bufferView": view, "componentType": 5126, "count": len(values) // ncomp, "type": type_}
+        if type_ == "VEC3":
+            cols = [values[k::3] for k in range(3)]
+            if all(math.isfinite(v) for v in values):
+                acc["min"] = [min(c) for c in cols]
+                acc["max"] = [max(c) for c in cols]
+        self.accessors.append(acc)
+        return len(self.accessors) - 1
+
+    def indices(self, values: list[int]) -> int:
+        view = self.view(struct.pack(f"<{len(values)}H", *values))
+        self.accessors.append({"bufferView": view, "componentType": 5123, "count": len(values), "type": "SCALAR"})
+        return len(self.accessors) - 1
+
+
+def _root(b: _Bin, buffer: dict, **extra) -> dict:
+    root = {
+        "asset": {"version": "2.0", "generator": "vsgl tests/gltf_fixtures.py"},
+        "buffers": [buffer],
+        "bufferViews": b.views,
+        "accessors": b.accessors,
+    }
+    root.update(extra)
+    return root
+
+
+def _write_json(path: pathlib.Path, root: dict) -> pathlib.Path:
+    path.write_text(json.dumps(root, indent=1))
+    return path
+
+
+def _png(width: int, height: int, rgba: tuple[int, int, int, int], with_pixels: bool = True) -> bytes:
+    """An 8-bit RGBA PNG of one colour. Without pixels: the header plus a 16-byte IDAT, so
+    only a loader that decodes before checking the size would notice the missing pixels."""
+
+    def chunk(kind: bytes, payload: bytes) -> bytes:
+        body = kind + payload
+        return struct.pack(">I", len(payload)) + body + struct.pack(">I", zlib.crc32(body) & 0xFFFFFFFF)
+
+    out = b"\x89PNG\r\n\x1a\n" + chunk(b"IHDR", struct.pack(">IIBBBBB", width, height, 8, 6, 0, 0, 0))
+    if with_pixels:
+        row = b"\x00" + bytes(rgba) * width
+        out += chunk(b"IDAT", zlib.compress(row * height))
+    else:
+        out += chunk(b"IDAT", zlib.compress(b"\x00" * 16))  # far too short for the header's size
+    return out + chunk(b"IEND", b"")
+
+
+def _glb(root: dict, binary: bytes) -> bytes:
+    j = json.dumps(root).encode()
+    j += b" " * (-len(j) % 4)
+    b = bytes(binary) + b"\x00" * (-len(binary) % 4)
+    total = 12 + 8 + len(j) + 8 + len(b)
+    return (
+        b"glTF"
+        + struct.pack("<II", 2, total)
+        + struct.pack("<I", len(j))
+        + b"JSON"
+        + j
+        + struct.pack("<I", len(b))
+        + b"BIN\x00"
+        + b
+    )
+
+
+def _quad(dirpath, *, uri="quad.bin", node=None, mode=None, indices=QUAD_IDX, positions=QUAD_POS,
+          byte_length=None, name="quad.gltf") -> pathlib.Path:
+    """Quad mesh on node 0 of scene 0, buffer written to ``quad.bin``."""
+    d = pathlib.Path(dirpath)
+    b = _Bin()
+    pos = b.floats(positions, "VEC3", 3)
+    prim = {"attributes": {"POSITION": pos}}
+    if indices is not None:
+        prim["indices"] = b.indices(indices)
+    if mode is not None:
+        prim["mode"] = mode
+    (d / "quad.bin").write_bytes(bytes(b.data))
+    n = {"mesh": 0, "name": "quad"}
+    n.update(node or {})
+    root = _root(
+        b,
+        {"uri": uri, "byteLength": len(b.data) if byte_length is None else byte_length},
+        meshes=[{"name": "quad", "primitives": [prim]}],
+        nodes=[n],
+        scenes=[{"nodes": [0]}],
+        scene=0,
+    )
+    return _write_json(d / name, root)
+
+
+# ------------------------------------------------------------------------------------------
+# Valid scenes
+# ------------------------------------------------------------------------------------------
+
+
+def write_external_buffer(dirpath) -> pathlib.Path:
+    """Indexed quad, buffer in an external file whose name has a space (URI "%20")."""
+    d = pathlib.Path(dirpath)
+    path = _quad(d, uri="my%20quad.bin", node={"translation": [5.0, 0.0, 0.0]})
+    (d / "quad.bin").rename(d / "my quad.bin")
+    return path
+
+
+def write_glb(dirpath) -> pathlib.Path:
+    """Indexed quad in a .glb whose BIN chunk holds buffer 0."""
+    b = _Bin()
+    pos = b.floats(QUAD_POS, "VEC3", 3)
+    idx = b.indices(QUAD_IDX)
+    root = _root(
+        b,
+        {"byteLength": len(b.data)},
+        meshes=[{"primitives": [{"attributes": {"POSITION": pos}, "indices": idx}]}],
+        nodes=[{"mesh": 0, "scale": [2.0, 2.0, 2.0]}],
+        scenes=[{"nodes": [0]}],
+        scene=0,
+    )
+    path = pathlib.Path(dirpath) / "quad.glb"
+    path.write_bytes(_glb(root, bytes(b.data)))
+    return path
+
+
+def write_data_uri(dirpath) -> pathlib.Path:
+    """Indexed quad whose buffer is a base64 data: URI."""
+    b = _Bin()
+    pos = b.floats(QUAD_POS, "VEC3", 3)
+    idx = b.indices(QUAD_IDX)
+    uri = "data:application/octet-stream;base64," + base64.b64encode(bytes(b.data)).decode()
+    root = _root(
+        b,
+        {"uri": uri, "byteLength": len(b.data)},
+        meshes=[{"primitives": [{"attributes": {"POSITION": pos}, "indices": idx}]}],
+        nodes=[{"mesh": 0}],
+    )
+    return _write_json(pathlib.Path(dirpath) / "data_uri.gltf", root)
+
+
+def _textured(dirpath, *, with_uvs=True, missing_image=False, huge_image=False) -> pathlib.Path:
+    d = pathlib.Path(dirpath)
+    (d / "tex").mkdir(exist_ok=True)
+    (d / "base color.png").write_bytes(_png(4, 2, (255, 0, 0, 255)))
+    if huge_image:
+        # A PNG header claiming 20000 x 20000: must be refused before decoding.
+        (d / "mr.png").write_bytes(_png(20000, 20000, (0, 0, 0, 255), with_pixels=False))
+    elif not missing_image:
+        (d / "mr.png").write_bytes(_png(2, 2, (0, 128, 255, 255)))
+    (d / "tex" / "normal.png").write_bytes(_png(2, 2, (128, 128, 255, 255)))
+    b = _Bin()
+    attributes = {"POSITION": b.floats(QUAD_POS, "VEC3", 3)}
+    if with_uvs:
+        attributes["TEXCOORD_0"] = b.floats(QUAD_UV, "VEC2", 2)
+    idx = b.indices(QUAD_IDX)
+    (d / "tex.bin").write_bytes(bytes(b.data))
+    root = _root(
+        b,
+        {"uri": "tex.bin", "byteLength": len(b.data)},
+        images=[{"uri": "base%20color.png"}, {"uri": "mr.png"}, {"uri": "tex/normal.png"}],
+        textures=[{"source": 0}, {"source": 1}, {"source": 2}],
+        materials=[{
+            "name": "painted",
+            "pbrMetallicRoughness": {
+                "baseColorFactor": [1.0, 0.5, 0.25, 1.0],
+                "baseColorTexture": {"index": 0},
+                "metallicFactor": 0.25,
+                "roughnessFactor": 0.75,
+                "metallicRoughnessTexture": {"index": 1},
+            },
+            "normalTexture": {"index": 2, "scale": 0.5},
+        }],
+        meshes=[{"primitives": [{"attributes": attributes, "indices": idx, "material": 0}]}],
+        nodes=[{"mesh": 0}],
+        scenes=[{"nodes": [0]}],
+    )
+    return _write_json(d / "textured.gltf", root)
+
+
+def write_textured(dirpath) -> pathlib.Path:
+    """Quad with UVs, no NORMAL/TANGENT; baseColor + metallicRoughness + normal PNG textures.
+    The loader generates normals (+z) and tangents (+x, w = +1)."""
+    return _textured(dirpath)
+
+
+def write_hierarchy(dirpath) -> pathlib.Path:
+    """Quad on a child node (translation 1,0,0) of a parent (translation 1,2,3, scale 2):
+    vertex (0,0,0) lands at (3,2,3). Node 2 is outside the scene: its mesh is not instanced."""
+    d = pathlib.Path(dirpath)
+    path = _quad(d)
+    root = json.loads(path.read_text())
+    root["nodes"] = [
+        {"name": "parent", "translation": [1.0, 2.0, 3.0], "scale": [2.0, 2.0, 2.0], "children": [1]},
+        {"name": "child", "translation": [1.0, 0.0, 0.0], "mesh": 0},
+        {"name": "orphan", "mesh": 0},
+    ]
+    return _write_json(path, root)
+
+
+def write_spot_light_camera(dirpath) -> pathlib.Path:
+    """A spot light at (0,5,0) pointing down (-y), intensity 450, cones 0.3/0.5, and a
+    perspective camera (yfov 0.8) at (0,1,10) looking down -z; plus a point light
+    (warning, skipped)."""
+    s = math.sqrt(0.5)
+    d = pathlib.Path(dirpath)
+    path = _quad(d)
+    root = json.loads(path.read_text())
+    root["extensionsUsed"] = ["KHR_lights_punctual"]
+    root["extensions"] = {"KHR_lights_punctual": {"lights": [
+        {"type": "spot", "color": [1.0, 0.5, 0.0], "intensity": 450.0,
+         "spot": {"innerConeAngle": 0.3, "outerConeAngle": 0.5}},
+        {"type": "point", "intensity": 10.0},
+    ]}}
+    root["cameras"] = [{"type": "perspective", "perspective": {"yfov": 0.8, "znear": 0.1}}]
+    root["nodes"] += [
+        {"name": "spot", "translation": [0.0, 5.0, 0.0], "rotation": [-s, 0.0, 0.0, s],
+         "extensions": {"KHR_lights_punctual": {"light": 0}}},
+        {"name": "bulb", "extensions": {"KHR_lights_punctual": {"light": 1}}},
+        {"name": "cam", "translation": [0.0, 1.0, 10.0], "camera": 0},
+    ]
+    root["scenes"] = [{"nodes": [0, 1, 2, 3]}]
+    return _write_json(path, root)
+
+
+# ------------------------------------------------------------------------------------------
+# Loads, with a warning
+# ------------------------------------------------------------------------------------------
+
+
+def write_points_primitive(dirpath) -> pathlib.Path:
+    """mode 0 (POINTS): skipped with a warning naming meshes[0].primitives[0]; 0 triangles."""
+    return _quad(dirpath, mode=0, indices=None)
+
+
+def write_normal_map_without_uvs(dirpath) -> pathlib.Path:
+    """Normal-mapped material on a primitive without TEXCOORD_0: normal map dropped."""
+    return _textured(dirpath, with_uvs=False)
+
+
+# ------------------------------------------------------------------------------------------
+# Hostile and malformed files: each must raise vsgl.SceneError
+# ------------------------------------------------------------------------------------------
+
+
+def write_truncated_buffer(dirpath) -> pathlib.Path:
+    """quad.bin is 5 bytes shorter than the buffer's byteLength."""
+    d = pathlib.Path(dirpath)
+    path = _quad(d)
+    data = (d / "quad.bin").read_bytes()
+    (d / "quad.bin").write_bytes(data[:-5])
+    return path
+
+
+def write_accessor_out_of_bounds(dirpath) -> pathlib.Path:
+    """POSITION accessor count 5 in a bufferView that holds 4 VEC3."""
+    path = _quad(dirpath)
+    root = json.loads(path.read_text())
+    root["accessors"][0]["count"] = 5
+    return _write_json(path, root)
+
+
+def write_index_out_of_range(dirpath) -> pathlib.Path:
+    """Index 7 with 4 vertices."""
+    return _quad(dirpath, indices=[0, 1, 2, 0, 2, 7])
+
+
+def write_parent_dir_uri(dirpath) -> pathlib.Path:
+    """Buffer URI "../outside.bin" (the target exists, outside the scene folder)."""
+    d = pathlib.Path(dirpath)
+    scene_dir = d / "scene"
+    scene_dir.mkdir(exist_ok=True)
+    path = _quad(scene_dir, uri="../outside.bin")
+    (d / "outside.bin").write_bytes((scene_dir / "quad.bin").read_bytes())
+    return path
+
+
+def write_absolute_uri(dirpath) -> pathlib.Path:
+    return _quad(dirpath, uri="/etc/passwd")
+
+
+def write_http_uri(dirpath) -> pathlib.Path:
+    return _quad(dirpath, uri="http://example.com/quad.bin")
+
+
+def write_missing_texture(dirpath) -> pathlib.Path:
+    """images[1] ("mr.png") does not exist."""
+    return _textured(dirpath, missing_image=True)
+
+
+def write_oversized_image(dirpath) -> pathlib.Path:
+    """images[1] is a PNG whose header claims 20000 x 20000 pixels (almost no pixel data)."""
+    return _textured(dirpath, huge_image=True)
+
+
+def write_invalid_json(dirpath) -> pathlib.Path:
+    path = pathlib.Path(dirpath) / "invalid.gltf"
+    path.write_text('{"asset": {"version": "2.0"}, "nodes": [')
+    return path
+
+
+def write_node_cycle(dirpath) -> pathlib.Path:
+    """nodes 0 -> 1 -> 2 -> 0: every node has exactly one parent."""
+    path = _quad(dirpath)
+    root = json.loads(path.read_text())
+    root["nodes"] = [{"children": [1]}, {"children": [2]}, {"children": [0], "mesh": 0}]
+    return _write_json(path, root)
+
+
+def write_two_parents(dirpath) -> pathlib.Path:
+    """nodes[1] is a child of both nodes[0] and nodes[2]."""
+    path = _quad(dirpath)
+    root = json.loads(path.read_text())
+    root["nodes"] = [{"children": [1]}, {"mesh": 0}, {"children": [1]}]
+    root["scenes"] = [{"nodes": [0, 2]}]
+    return _write_json(path, root)
+
+
+def write_huge_byte_length(dirpath) -> pathlib.Path:
+    """byteLength 10**15: must fail at once, without allocating."""
+    return _quad(dirpath, byte_length=10**15)
+
+
+def write_non_finite_position(dirpath) -> pathlib.Path:
+    pos = list(QUAD_POS)
+    pos[4] = float("nan")
+    return _quad(dirpath, positions=pos)
+
+
+def write_bad_glb_header(dirpath) -> pathlib.Path:
+    """A GLB whose header declares a length of 4 bytes (less than the header itself)."""
+    path = pathlib.Path(dirpath) / "bad.glb"
+    path.write_bytes(b"glTF" + struct.pack("<II", 2, 4))
+    return path
+
+
+def write_unsupported_required_extension(dirpath) -> pathlib.Path:
+    path = _quad(dirpath)
+    root = json.loads(path.read_text())
+    root["extensionsUsed"] = root["extensionsRequired"] = ["KHR_draco_mesh_compression"]
+    return _write_json(path, root)
+
+
+# ------------------------------------------------------------------------------------------
+# Tables
+# ------------------------------------------------------------------------------------------
+
+VALID = {
+    "external_buffer": (write_external_buffer, 2),
+    "glb": (write_glb, 2),
+    "data_uri": (write_data_uri, 2),
+    "textured": (write_textured, 2),
+    "hierarchy": (write_hierarchy, 2),
+    "spot_light_camera": (write_spot_light_camera, 2),
+}
+
+WARNING_CASES = {
+    "points_primitive": (write_points_primitive, "meshes[0].primitives[0]"),
+    "normal_map_without_uvs": (write_normal_map_without_uvs, "normal map dropped"),
+}
+
+HOSTILE = {
+    "truncated_buffer": (write_truncated_buffer, "buffers[0].uri"),
+    "accessor_out_of_bounds": (write_accessor_out_of_bounds, "accessors[0]"),
+    "index_out_of_range": (write_index_out_of_range, "meshes[0].primitives[0]"),
+    "parent_dir_uri": (write_parent_dir_uri, "buffers[0].uri"),
+    "absolute_uri": (write_absolute_uri, "buffers[0].uri"),
+    "http_uri": (write_http_uri, "buffers[0].uri"),
+    "missing_texture": (write_missing_texture, "images[1]"),
+    "oversized_image": (write_oversized_image, "images[1]"),
+    "invalid_json": (write_invalid_json, "JSON"),
+    "node_cycle": (write_node_cycle, "nodes["),
+    "two_parents": (write_two_parents, "nodes[1]"),
+    "huge_byte_length": (write_huge_byte_length, "buffers[0]"),
+    "non_finite_position": (write_non_finite_position, "accessors[0]"),
+    "bad_glb_header": (write_bad_glb_header, "GLB header"),
+    "unsupported_required_extension": (write_unsupported_required_extension, "extensionsRequired[0]"),
+}
+
+# A second word of each hostile case's message (compare lower-cased).
+HOSTILE_KEYWORDS = {
+    "truncated_buffer": "truncated",
+    "accessor_out_of_bounds": "out of bounds",
+    "index_out_of_range": "out of range",
+    "parent_dir_uri": "escapes",
+    "absolute_uri": "absolute",
+    "http_uri": "not allowed",
+    "missing_texture": "mr.png",
+    "oversized_image": "16384",
+    "invalid_json": "invalid",
+    "node_cycle": "cycle",
+    "two_parents": "two parents",
+    "huge_byte_length": "limit",
+    "non_finite_position": "non-finite",
+    "bad_glb_header": "length",
+    "unsupported_required_extension": "not supported",
+}
+
+
+def write_all(dirpath) -> dict:
+    """Writes every fixture into its own subfolder of ``dirpath``; returns (and writes as
+    ``manifest.json``) {name: {"path", "kind", "expect"}}."""
+    root = pathlib.Path(dirpath)
+    root.mkdir(parents=True, exist_ok=True)
+    manifest = {}
+    for kind, table in (("valid", VALID), ("warning", WARNING_CASES), ("hostile", HOSTILE)):
+        for name, (writer, expect) in table.items():
+            sub = root / name
+            sub.mkdir(exist_ok=True)
+            entry = {"path": str(writer(sub)), "kind": kind, "expect": expect}
+            if kind == "hostile":
+                entry["keyword"] = HOSTILE_KEYWORDS[name]
+            manifest[name] = entry
+    (root / "manifest.json").write_text(json.dumps(manifest, indent=1))
+    return manifest
+
+
+if __name__ == "__main__":
+    if len(sys.argv) != 3 or sys.argv[1] != "--write":
+        sys.exit(f"usage: {os.path.basename(sys.argv[0])} --write DIR")
+    for name, entry in write_all(sys.argv[2]).items():
+        print(f"{entry['kind']:8} {name:32} {entry['path']}")
