@@ -112,6 +112,8 @@ def test_save_png_and_npy(tmp_path, renderer):
     frame = renderer.render(vsgl.scenes.cornell_box())
     frame.save(tmp_path / "a.png")
     frame.save(tmp_path / "a.npy")
+    frame.save(tmp_path / "a.exr")
+    assert (tmp_path / "a.exr").read_bytes()[:4] == b"\x76\x2f\x31\x01"  # OpenEXR magic
     png = np.asarray(Image.open(tmp_path / "a.png"))
     assert png.shape == (48, 64, 3) and png.max() > 0
     np.testing.assert_array_equal(np.load(tmp_path / "a.npy"), frame.image)

@@ -37,6 +37,20 @@ pub fn encode_png(rgb: &[f32], width: u32, height: u32, exposure: f32) -> Result
     Ok(out)
 }
 
+/// OpenEXR, linear float32 RGB (for HDR viewers and compositing tools).
+pub fn encode_exr(rgb: &[f32], width: u32, height: u32) -> Result<Vec<u8>> {
+    let mut out = std::io::Cursor::new(Vec::new());
+    image::ImageEncoder::write_image(
+        image::codecs::openexr::OpenExrEncoder::new(&mut out),
+        bytemuck::cast_slice(rgb),
+        width,
+        height,
+        image::ExtendedColorType::Rgb32F,
+    )
+    .map_err(|e| Error::invalid("path", format!("EXR encoding failed: {e}")))?;
+    Ok(out.into_inner())
+}
+
 /// NumPy format 1.0: magic, header dict padded to a multiple of 64 bytes, little-endian f32.
 pub fn encode_npy(data: &[f32], shape: &[usize]) -> Vec<u8> {
     let dims: Vec<String> = shape.iter().map(|d| d.to_string()).collect();
@@ -73,6 +87,15 @@ mod tests {
         let header = std::str::from_utf8(&b[10..10 + hlen]).unwrap();
         assert!(header.contains("'shape': (1, 2, 3)"), "{header}");
         assert_eq!(b.len(), 10 + hlen + 24);
+    }
+
+    #[test]
+    fn exr_round_trips_linear_floats() {
+        let rgb: Vec<f32> = (0..2 * 3 * 3).map(|i| i as f32 * 0.37 + 1e-3).collect();
+        let bytes = encode_exr(&rgb, 3, 2).unwrap();
+        let img = image::load_from_memory_with_format(&bytes, image::ImageFormat::OpenExr).unwrap().to_rgb32f();
+        assert_eq!((img.width(), img.height()), (3, 2));
+        assert_eq!(img.as_raw(), &rgb);
     }
 
     #[test]

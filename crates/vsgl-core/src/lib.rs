@@ -5,6 +5,7 @@ pub mod error;
 pub mod frame_data;
 pub mod gpu;
 pub mod image_io;
+pub mod oracle;
 pub mod passes;
 pub mod renderer;
 pub mod scene;

@@ -211,9 +211,15 @@ impl PyScene {
     fn node_names(&self) -> Vec<String> {
         self.inner.nodes.iter().map(|n| n.name.clone()).collect()
     }
+    /// The spot lights; assign a list to replace them all.
     #[getter]
     fn lights(&self) -> Vec<PySpotLight> {
         self.inner.lights.iter().map(|l| PySpotLight { inner: *l }).collect()
+    }
+    #[setter]
+    fn set_lights(&mut self, lights: Vec<PySpotLight>) {
+        self.inner.lights = lights.into_iter().map(|l| l.inner).collect();
+        self.inner.version += 1;
     }
     #[getter]
     fn cameras(&self) -> Vec<PyCamera> {
@@ -313,8 +319,8 @@ impl PyFrame {
         }
         Ok(d)
     }
-    /// Writes the image: `.png` (tone-mapped sRGB, `exposure` multiplies first) or `.npy`
-    /// (linear float32, shape (H, W, 3)).
+    /// Writes the image: `.png` (tone-mapped sRGB, `exposure` multiplies first), `.exr` or
+    /// `.npy` (both linear float32, the latter of shape (H, W, 3)).
     #[pyo3(signature = (path, exposure=1.0))]
     fn save(&self, py: Python<'_>, path: std::path::PathBuf, exposure: f32) -> PyResult<()> {
         if !exposure.is_finite() || exposure <= 0.0 {
@@ -326,7 +332,8 @@ impl PyFrame {
         let bytes = py.detach(|| match ext.as_str() {
             "png" => image_io::encode_png(rgb, w, h, exposure),
             "npy" => Ok(image_io::encode_npy(rgb, &[h as usize, w as usize, 3])),
-            _ => Err(vsgl_core::Error::invalid("path", format!("unsupported extension {ext:?}; use .png or .npy"))),
+            "exr" => image_io::encode_exr(rgb, w, h),
+            _ => Err(vsgl_core::Error::invalid("path", format!("unsupported extension {ext:?}; use .png, .exr or .npy"))),
         });
         let bytes = bytes.map_err(to_py)?;
         image_io::write_file(&path, &bytes).map_err(to_py)

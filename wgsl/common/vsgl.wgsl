@@ -1,0 +1,134 @@
+// Virtual spherical Gaussian lights: the VSGL from summed VPL moments, its incoming-radiance SG
+// at a shading point, and diffuse / specular shading by SG product integrals.
+// Sources ([Tok15], [Tok15s], [Tok16s], [XSD13] as in sg.wgsl):
+//   a VSGL is a radiant-intensity SG I_v(ω) = c_v G(ω; ξ_v, λ_v) [W/sr] per BRDF component
+//   (diffuse, specular) and one isotropic positional Gaussian N(μ_v, σ_v²) [Tok16s §3].
+// Positions: every position here is relative to a caller-chosen local origin (e.g. the light
+// position), never absolute world coordinates: σ² = E[‖y‖²] − ‖μ‖² cancels catastrophically
+// 1e5 m from the origin in f32 (DESIGN.md "Numerics").
+// Every function is pure; the f64 twins are in crates/vsgl-core/src/oracle/vsgl.rs.
+#include "common/constants.wgsl"
+#include "common/math.wgsl"
+#include "common/sg.wgsl"
+#include "common/ggx.wgsl"
+
+// Floor of the positional variance as a fraction of the second moment E[‖y − o‖²] it is computed
+// from: σ² = E[‖y − o‖²] − ‖μ − o‖² is only known to a few ULP of E[‖y − o‖²] (2^-24 = 6e-8 each,
+// more after mip or tree summation), so smaller values are rounding noise, possibly negative.
+// 1e-6 is ~8 ULP; it bounds σ below by 1e-3·‖y − o‖, relative to the scene's own scale.
+const VSGL_VARIANCE_MIN_FRACTION: f32 = 1.0e-6;
+
+// Positional Gaussian of a VSGL: mean μ_v (relative to the local origin) and variance σ_v².
+struct VsglPosition {
+    mean: vec3f,
+    variance: f32,
+}
+
+// Radiant-intensity SG of a VPL cluster from its summed moments [Tok16s §3.1, §3.3; Tok15 §3.1.1]:
+//   sum_weight                  = Σ Φ_j R_j                       (total reflected power, W)
+//   sum_weighted_mean_direction = Σ Φ_j R_j ξ̄_j, ξ̄_j = sg_toksvig_mean_direction(lobe_j)
+// ξ̄_v = (Σ Φ R ξ̄)/(Σ Φ R), ξ_v = ξ̄_v/‖ξ̄_v‖, λ_v = r/(1 − r) (sg_from_toksvig_mean_direction),
+// c_v = Σ Φ R / A(λ_v), so that ∫ I_v dω = Σ Φ_j R_j exactly (energy conservation).
+// The returned amplitude is c_v. A cluster without power returns amplitude 0.
+fn vsgl_lobe_from_moments(sum_weight: f32, sum_weighted_mean_direction: vec3f) -> Sg {
+    if (!(sum_weight > 0.0)) {
+        return Sg(vec3f(0.0, 0.0, 1.0), 0.0, 0.0);
+    }
+    let lobe = sg_from_toksvig_mean_direction(sum_weighted_mean_direction / sum_weight);
+    return Sg(lobe.axis, lobe.sharpness, min(sum_weight * lobe.amplitude, FLT_MAX));
+}
+
+// Positional Gaussian of a VPL cluster [Tok16s §3.2; Tok15 §3.1.2], weights w_j = Φ_j(R_d,j + R_s,j):
+//   μ_v = Σ w y / Σ w,  σ_v² = Σ w ‖y‖² / Σ w − ‖μ_v‖²,  with y relative to the local origin.
+// Clamp: σ_v² ≥ VSGL_VARIANCE_MIN_FRACTION·(Σ w ‖y‖² / Σ w) (rounding floor, see the constant).
+fn vsgl_position_from_moments(sum_weight: f32, sum_weighted_position: vec3f, sum_weighted_position_len2: f32) -> VsglPosition {
+    if (!(sum_weight > 0.0)) {
+        return VsglPosition(vec3f(0.0), 0.0);
+    }
+    let inv_weight = 1.0 / sum_weight;
+    let mean = sum_weighted_position * inv_weight;
+    let second_moment = max(sum_weighted_position_len2 * inv_weight, 0.0);
+    let variance = max(second_moment - dot(mean, mean), VSGL_VARIANCE_MIN_FRACTION * second_moment);
+    return VsglPosition(mean, variance);
+}
+
+// Incoming radiance at shading point y_p from a VSGL as one SG [Tok15 Eq. 5; Tok16s Eq. 7]:
+//   L_in(ω) ≈ c_v/(2πσ²)·G(ω; −ξ_v, λ_v)·G(ω; ξ_μ, λσ) = c_in G(ω; ξ_in, λ_in),
+//   ξ_μ = (μ_v − y_p)/‖μ_v − y_p‖, λσ = ‖μ_v − y_p‖²/σ², (Eq. 6: the positional Gaussian seen
+//   from y_p, on the sphere of radius ‖μ_v − y_p‖), λ_in = ‖λσ ξ_μ − λ_v ξ_v‖,
+//   c_in = c_v/(2πσ²)·exp(λ_in − λ_v − λσ).
+// Stable form (DESIGN.md): the exponent comes from sg_product as the log-amplitude
+// −λ_v λσ ‖ξ_v + ξ_μ‖²/(λ_in + λ_v + λσ), never as the difference λ_in − λ_v − λσ.
+// Clamp: σ² is floored at d²/SG_SHARPNESS_MAX so that λσ ≤ SG_SHARPNESS_MAX. The coefficient is
+// formed from the same floored σ², so c_in·A(λ_in) → I_v(−ξ_μ)/d² (the point-light limit) is
+// kept exactly when the clamp is active. σ² ≥ FLT_MIN only guards d = σ = 0.
+// The visibility V(y_p, μ_v) of [Tok15 Eq. 5] is left to the caller (multiply the amplitude).
+fn vsgl_incoming_radiance(lobe: Sg, position: VsglPosition, shading_position: vec3f) -> Sg {
+    let to_mean = position.mean - shading_position;
+    let dist2 = dot(to_mean, to_mean);
+    let variance = max(max(position.variance, dist2 / SG_SHARPNESS_MAX), FLT_MIN);
+    let sharpness_sigma = dist2 / variance;
+    // At the mean itself (d = 0) λσ = 0 and ξ_μ is irrelevant.
+    let axis_mu = safe_normalize(to_mean, -lobe.axis);
+    let p = sg_product(-lobe.axis, lobe.sharpness, axis_mu, sharpness_sigma);
+    let coefficient = min(lobe.amplitude / (TWO_PI * variance), FLT_MAX);
+    return Sg(p.axis, p.sharpness, coefficient * exp(p.log_amplitude));
+}
+
+// Diffuse reflected radiance over R_d, cosine pulled out of the integral [Tok16s §4.2;
+// Tok15s App. B, after Wang et al. 2009]:  L_d/R_d ≈ c_in/π · A(λ_in) · max(ξ_in·n, 0).
+fn vsgl_diffuse(radiance: Sg, normal: vec3f) -> f32 {
+    let cos_axis = max(dot(radiance.axis, normal), 0.0);
+    return min(radiance.amplitude * INV_PI * sg_integral(radiance.sharpness) * cos_axis, FLT_MAX);
+}
+
+// The papers' cheap form [Tok16s §4.2, A(λ) ≈ 2π/λ after Iwasaki et al. 2012]:
+// L_d/R_d ≈ 2c_in/λ_in · max(ξ_in·n, 0), with λ_in floored at SG_INTEGRAL_APPROX_SHARPNESS_MIN
+// (sg_integral_approx) so it stays finite and ≤ the exact value at λ_in = 0.
+fn vsgl_diffuse_approx(radiance: Sg, normal: vec3f) -> f32 {
+    let cos_axis = max(dot(radiance.axis, normal), 0.0);
+    return min(radiance.amplitude * INV_PI * sg_integral_approx(radiance.sharpness) * cos_axis, FLT_MAX);
+}
+
+// Diffuse reflected radiance over R_d with the clamped cosine kept inside the integral
+// (sg_clamped_cosine_integral, derived for vsgl): L_d/R_d ≈ c_in/π · ∫ G_in max(ω·n, 0) dω.
+// No light leaks from lobes below the horizon, and correct for broad lobes.
+fn vsgl_diffuse_accurate(radiance: Sg, normal: vec3f) -> f32 {
+    let integral = sg_clamped_cosine_integral(radiance.axis, radiance.sharpness, normal);
+    return min(radiance.amplitude * INV_PI * integral, FLT_MAX);
+}
+
+// Diffuse reflected radiance over R_d as the product integral of two SGs [Tok16s §4.2 "Using
+// Eq. 1 and Eq. 7"; used with few VSGLs in the 2015 poster]: the Lambert lobe replaced by
+// G(ω; n, λd)/A(λd) (lambert_lobe_sg). Leaks light from lobes below the horizon.
+fn vsgl_diffuse_sg_product(radiance: Sg, normal: vec3f) -> f32 {
+    let lambert = lambert_lobe_sg(normal);
+    let integral = sg_product_integral(radiance.axis, radiance.sharpness, lambert.axis, lambert.sharpness);
+    return min(radiance.amplitude * lambert.amplitude * integral, FLT_MAX);
+}
+
+// Specular reflected radiance over R_s for the GGX BRDF (Fresnel = 1) [Tok16s §4.2 boxed;
+// Tok15s App. B]:
+//   L_s ≈ π c_in C(ξ_in) Ĝ(ξ_in; x, y, z, ηxν/(ηx+ν), ηyν/(ηy+ν)) / √((ηx+ν)(ηy+ν)), ν = λ_in/2,
+// with ρ_s max(ω·n,0) ≈ C(ω)·Ĝ(ω) and Ĝ the GGX lobe ASG at y_p (ggx_lobe_asg). For GGX,
+// ρ_s cos = R_s D G2/(4 n·ω_o) and D = D(n)·D/D(n) with D(n) = 1/(πα²), so
+//   C(ω) = R_s G2(ω, ω_o)/(4πα² n·ω_o).
+// Since √(ηx ηy) = λh/(8 n·ω_o) = 1/(4α² n·ω_o), C = R_s G2 √(ηx ηy)/π, and the boxed formula
+// equals R_s G2 · sg_asg_product_integral_over_asg_integral — the form used here: identical
+// while no bandwidth is clamped, and it keeps the lobe's energy (→ c_in R_s G2 for a broad
+// light) when ggx_lobe_asg clamps ηy at grazing view, where C's 1/(n·ω_o) would blow up.
+// Zero when the light axis or the view is below the surface (G2 → 0 there continuously).
+// Accuracy (oracle test vsgl_specular_vs_quadrature, against the exact GGX integral): exact in
+// the point-light limit (< 1e-3); for extended lights +0…+21% (α = 0.05…0.2), because the SG
+// NDF G(h; n, 2/α²) has GGX's peak and projected area but a wider core and no long tails.
+fn vsgl_specular(radiance: Sg, normal: vec3f, w_o: vec3f, alpha: f32) -> f32 {
+    let n_dot_l = dot(normal, radiance.axis);
+    let n_dot_v = dot(normal, w_o);
+    if (n_dot_l <= 0.0 || n_dot_v <= 0.0) {
+        return 0.0;
+    }
+    let asg = ggx_lobe_asg(normal, w_o, alpha);
+    let g2 = ggx_smith_g2(n_dot_l, n_dot_v, alpha);
+    let lobe = sg_asg_product_integral_over_asg_integral(radiance.axis, radiance.sharpness, asg);
+    return min(radiance.amplitude * g2 * lobe, FLT_MAX);
+}
