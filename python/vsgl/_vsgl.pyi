@@ -104,6 +104,7 @@ class Frame:
     def aov(self, name: str) -> npt.NDArray[np.float32]: ...
     @property
     def aovs(self) -> list[str]: ...
+    def rsm(self, name: str) -> npt.NDArray[np.float32]: ...
     @property
     def width(self) -> int: ...
     @property
@@ -138,6 +139,13 @@ class Renderer:
         *,
         shadow_size: int = 1024,
         plan: str = "auto",
+        num_lights: int = 256,
+        rsm_size: int | None = None,
+        sampling: str = "stratified",
+        seed: int = 0,
+        vpl_clamp: float = 0.0,
+        visibility: str = "none",
+        capture_rsm: bool = False,
     ) -> Frame: ...
 
 def adapters() -> list[dict[str, Any]]: ...

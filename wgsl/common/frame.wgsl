@@ -8,6 +8,9 @@ struct FrameUniforms {
     cam_right: vec4f,
     cam_up: vec4f,
     cam_forward: vec4f,
+    // Where the view's rays start, relative to the frame origin: 0 for the camera, the light
+    // position for a reflective shadow map. Positions a view writes are relative to it.
+    view_origin: vec4f,
     size: vec2u,
     light_count: u32,
     texture_layer_size: u32,

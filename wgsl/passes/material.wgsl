@@ -1,4 +1,6 @@
-// Material pass: turns the visibility buffer (triangle ids) into the G-buffer in compute.
+// Material pass: turns the visibility buffer (triangle ids) into the G-buffer in compute. It
+// serves the camera and, with a light's view, the reflective shadow map (positions are then
+// relative to the light).
 // Barycentrics come from intersecting the pixel's camera ray with the visible triangle
 // (Möller & Trumbore 1997), which is exact and perspective-correct; texture LOD comes from the
 // ray differentials of the neighbouring pixels (Igehy 1999), computed the same way.
@@ -72,9 +74,13 @@ fn main(@builtin(global_invocation_id) gid: vec3u) {
     let i0 = indices[3u * tri];
     let i1 = indices[3u * tri + 1u];
     let i2 = indices[3u * tri + 2u];
-    let a = vertices[i0];
-    let b = vertices[i1];
-    let c = vertices[i2];
+    // Vertices relative to the view's ray origin (the camera, or the light for an RSM).
+    var a = vertices[i0];
+    var b = vertices[i1];
+    var c = vertices[i2];
+    a.position -= frame.view_origin.xyz;
+    b.position -= frame.view_origin.xyz;
+    c.position -= frame.view_origin.xyz;
     let d = camera_ray(frame, vec2f(pixel) + 0.5);
     let hit = ray_triangle(d, a.position, b.position, c.position);
     // The raster says the pixel centre is inside; rounding may put it a hair outside.

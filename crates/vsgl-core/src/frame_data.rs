@@ -10,6 +10,7 @@ pub struct FrameUniforms {
     pub cam_right: [f32; 4],
     pub cam_up: [f32; 4],
     pub cam_forward: [f32; 4],
+    pub view_origin: [f32; 4],
     pub size: [u32; 2],
     pub light_count: u32,
     pub texture_layer_size: u32,
@@ -17,7 +18,7 @@ pub struct FrameUniforms {
     pub shadow_size: f32,
     pub _pad: [f32; 2],
 }
-const _: () = assert!(std::mem::size_of::<FrameUniforms>() == 144);
+const _: () = assert!(std::mem::size_of::<FrameUniforms>() == 160);
 
 #[repr(C)]
 #[derive(Clone, Copy, bytemuck::Pod, bytemuck::Zeroable)]
@@ -60,6 +61,7 @@ pub fn frame_uniforms(cam: &Camera, width: u32, height: u32, lights: u32, layer:
         cam_right: v4(right * t * aspect),
         cam_up: v4(cam.up * t),
         cam_forward: v4(cam.forward),
+        view_origin: [0.0; 4],
         size: [width, height],
         light_count: lights,
         texture_layer_size: layer,
@@ -95,6 +97,30 @@ pub fn spot_light_raw(light: &SpotLight, origin: DVec3, extent: f64, layer: u32,
         view_proj: light_view_proj(light, origin, extent).to_cols_array_2d(),
         texel_tan: (2.0 * (fov * 0.5).tan() / shadow_size as f64) as f32,
         shadow_layer: layer,
+        _pad: [0.0; 2],
+    }
+}
+
+/// The view of a spot light's reflective shadow map: a square perspective image over the outer
+/// cone (at most [`SHADOW_FOV_MAX`]), rays starting at the light.
+pub fn light_view_uniforms(light: &SpotLight, origin: DVec3, extent: f64, size: u32, texture_layer_size: u32) -> FrameUniforms {
+    let fov = (2.0 * light.outer_cone as f64).min(SHADOW_FOV_MAX);
+    let t = (fov * 0.5).tan();
+    let dir = light.direction.normalize();
+    let up = orthogonal(dir);
+    let right = dir.cross(up).normalize();
+    let v4 = |v: DVec3| [v.x as f32, v.y as f32, v.z as f32, 0.0];
+    FrameUniforms {
+        view_proj: light_view_proj(light, origin, extent).to_cols_array_2d(),
+        cam_right: v4(right * t),
+        cam_up: v4(up * t),
+        cam_forward: v4(dir),
+        view_origin: v4(light.position - origin),
+        size: [size, size],
+        light_count: 1,
+        texture_layer_size,
+        scene_extent: extent as f32,
+        shadow_size: size as f32,
         _pad: [0.0; 2],
     }
 }

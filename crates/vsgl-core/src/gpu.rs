@@ -148,6 +148,31 @@ impl Gpu {
         })
     }
 
+    /// A compute pipeline with an explicit single bind group 0 of `bindings` (in binding order),
+    /// for modules whose entry points use different subsets of the same bindings (an automatic
+    /// layout would differ per entry point).
+    pub fn compute_pipeline_explicit(&self, label: &str, module: &wgpu::ShaderModule, entry: &str, bindings: &[wgpu::BindingType]) -> wgpu::ComputePipeline {
+        let entries: Vec<wgpu::BindGroupLayoutEntry> = bindings
+            .iter()
+            .enumerate()
+            .map(|(i, ty)| wgpu::BindGroupLayoutEntry { binding: i as u32, visibility: wgpu::ShaderStages::COMPUTE, ty: *ty, count: None })
+            .collect();
+        let bgl = self.device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor { label: Some(label), entries: &entries });
+        let layout = self.device.create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
+            label: Some(label),
+            bind_group_layouts: &[Some(&bgl)],
+            immediate_size: 0,
+        });
+        self.device.create_compute_pipeline(&wgpu::ComputePipelineDescriptor {
+            label: Some(label),
+            layout: Some(&layout),
+            module,
+            entry_point: Some(entry),
+            compilation_options: Default::default(),
+            cache: None,
+        })
+    }
+
     /// Reads back whole buffers (each must have COPY_SRC) as f32/u32 words, waiting for the GPU.
     pub fn read_buffers(&self, buffers: &[&wgpu::Buffer]) -> Result<Vec<Vec<u8>>> {
         let mut enc = self.device.create_command_encoder(&wgpu::CommandEncoderDescriptor { label: Some("readback_encoder") });
@@ -205,6 +230,14 @@ impl Gpu {
         }
         r
     }
+}
+
+/// Binding types for [`Gpu::compute_pipeline_explicit`].
+pub fn uniform_binding() -> wgpu::BindingType {
+    wgpu::BindingType::Buffer { ty: wgpu::BufferBindingType::Uniform, has_dynamic_offset: false, min_binding_size: None }
+}
+pub fn storage_binding(read_only: bool) -> wgpu::BindingType {
+    wgpu::BindingType::Buffer { ty: wgpu::BufferBindingType::Storage { read_only }, has_dynamic_offset: false, min_binding_size: None }
 }
 
 /// Workgroups needed to cover `threads` with groups of `group` (callers count threads, not

@@ -1,9 +1,14 @@
 //! The frame: validates settings, plans passes, records them top to bottom, reads back AOVs.
 
 use crate::error::{Error, Result};
-use crate::frame_data::{frame_uniforms, spot_light_raw};
+use crate::frame_data::{frame_uniforms, light_view_uniforms, spot_light_raw, SpotLightRaw};
 use crate::gpu::{Gpu, PassTimer};
-use crate::passes::{direct::DirectPass, material::GBuffer, material::MaterialPass, shadow_map::ShadowMapPass, visibility::VisibilityPass};
+use crate::passes::vpl_sample::{Sampling, VplSamplePass, VPL_BYTES};
+use crate::passes::vpl_shading::{IndirectTargets, VplShadingPass};
+use crate::passes::{
+    direct::DirectPass, material::GBuffer, material::MaterialPass, pdf_mips::PdfMipsPass, rsm_flux::Rsm,
+    rsm_flux::RsmFluxPass, shadow_map::ShadowMapPass, storage_buffer, visibility::VisibilityPass,
+};
 use crate::scene::{Camera, Scene};
 use crate::upload::GpuScene;
 use std::sync::Arc;
@@ -11,9 +16,17 @@ use std::time::Instant;
 use wgpu::util::DeviceExt;
 
 /// Methods that render in this build.
-pub const METHODS: &[&str] = &["direct"];
+pub const METHODS: &[&str] = &["direct", "vpl", "reference"];
 /// Methods of DESIGN.md that later work adds; asking for one says so.
-pub const PLANNED_METHODS: &[&str] = &["vpl", "vsgl", "vsgl2", "reference", "pathtrace"];
+pub const PLANNED_METHODS: &[&str] = &["vsgl", "vsgl2", "pathtrace"];
+
+/// Query pairs one frame may time: the reference's batches are the most numerous.
+const TIMER_CAPACITY: u32 = 2048;
+/// Most VPL batches the reference splits its work into (each is one timed pass).
+const REFERENCE_MAX_BATCHES: u64 = 1024;
+/// Pixel·VPL evaluations per reference submission: small enough that no batch runs long
+/// enough to trip a GPU watchdog (~10 ms on an H100), unless that would exceed the batch cap.
+const REFERENCE_BATCH_EVALUATIONS: u64 = 1 << 31;
 
 /// Settings of one render (the keyword arguments of `Renderer.render`).
 #[derive(Clone, Debug)]
@@ -23,11 +36,35 @@ pub struct RenderOptions {
     pub shadow_size: u32,
     /// `"auto"` leaves out what the scene does not need; `"full"` runs every variant.
     pub plan: String,
+    /// VPL count per spot light (`vpl`).
+    pub num_lights: u32,
+    /// RSM side (power of two, 32…4096); `None`: 256 for `vpl`, 1024 for `reference`.
+    pub rsm_size: Option<u32>,
+    pub sampling: Sampling,
+    pub seed: u32,
+    /// Lower bound of the VPL distance as a fraction of the scene's bounds diagonal
+    /// (0 = no clamping, unbiased).
+    pub vpl_clamp: f32,
+    /// Visibility of virtual lights; only `"none"` so far (the papers' accuracy setting).
+    pub visibility: String,
+    /// Read back the first light's RSM into the frame (for tests and plots).
+    pub capture_rsm: bool,
 }
 
 impl Default for RenderOptions {
     fn default() -> Self {
-        Self { method: "direct".into(), shadow_size: 1024, plan: "auto".into() }
+        Self {
+            method: "direct".into(),
+            shadow_size: 1024,
+            plan: "auto".into(),
+            num_lights: 256,
+            rsm_size: None,
+            sampling: Sampling::Stratified,
+            seed: 0,
+            vpl_clamp: 0.0,
+            visibility: "none".into(),
+            capture_rsm: false,
+        }
     }
 }
 
@@ -49,7 +86,27 @@ impl RenderOptions {
         if self.plan != "auto" && self.plan != "full" {
             return Err(Error::invalid("plan", format!("must be \"auto\" or \"full\", got {:?}", self.plan)));
         }
+        if !(1..=1 << 20).contains(&self.num_lights) {
+            return Err(Error::invalid("num_lights", format!("must be in 1..=1048576, got {}", self.num_lights)));
+        }
+        if let Some(s) = self.rsm_size {
+            if !(32..=4096).contains(&s) || !s.is_power_of_two() {
+                return Err(Error::invalid("rsm_size", format!("must be a power of two in 32..=4096, got {s}")));
+            }
+        }
+        if !(self.vpl_clamp.is_finite() && self.vpl_clamp >= 0.0) {
+            return Err(Error::invalid("vpl_clamp", format!("must be finite and >= 0, got {}", self.vpl_clamp)));
+        }
+        if self.visibility != "none" {
+            return Err(Error::invalid("visibility", format!(
+                "only \"none\" is available in this build (virtual lights are unshadowed), got {:?}", self.visibility
+            )));
+        }
         Ok(())
+    }
+
+    fn rsm_size(&self) -> u32 {
+        self.rsm_size.unwrap_or(if self.method == "reference" { 1024 } else { 256 })
     }
 }
 
@@ -67,6 +124,8 @@ pub struct Frame {
     pub passes: Vec<String>,
     pub skipped: Vec<(String, String)>,
     pub settings: Vec<(String, String)>,
+    /// The first light's RSM when `capture_rsm` was set: side and (name, channels, data).
+    pub rsm: Option<(u32, Vec<(String, usize, Vec<f32>)>)>,
 }
 
 impl Frame {
@@ -86,11 +145,26 @@ pub struct Renderer {
     shadow_map: ShadowMapPass,
     material: MaterialPass,
     direct: DirectPass,
+    rsm_flux: RsmFluxPass,
+    pdf_mips: PdfMipsPass,
+    vpl_sample: VplSamplePass,
+    vpl_shading: VplShadingPass,
 }
 
-/// Whether a vector of f64 is finite, for argument checks.
-pub fn finite3(v: glam::DVec3) -> bool {
-    v.is_finite()
+fn uniform_buffer(gpu: &Gpu, label: &str, bytes: &[u8]) -> wgpu::Buffer {
+    gpu.device.create_buffer_init(&wgpu::util::BufferInitDescriptor { label: Some(label), contents: bytes, usage: wgpu::BufferUsages::UNIFORM })
+}
+
+fn light_storage(gpu: &Gpu, light: &SpotLightRaw) -> wgpu::Buffer {
+    gpu.device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
+        label: Some("spot_light_storage_buffer"),
+        contents: bytemuck::bytes_of(light),
+        usage: wgpu::BufferUsages::STORAGE,
+    })
+}
+
+fn rgb(v: &[f32]) -> Vec<f32> {
+    v.chunks_exact(4).flat_map(|p| [p[0], p[1], p[2]]).collect()
 }
 
 impl Renderer {
@@ -101,14 +175,35 @@ impl Renderer {
                 return Err(Error::invalid(name, format!("must be in 1..={max} on this adapter, got {v}")));
             }
         }
-        let (visibility, shadow_map, material, direct) = gpu.scoped("pipeline creation", || {
-            Ok((VisibilityPass::new(&gpu)?, ShadowMapPass::new(&gpu)?, MaterialPass::new(&gpu)?, DirectPass::new(&gpu)?))
+        let r = gpu.scoped("pipeline creation", || {
+            Ok(Self {
+                gpu: gpu.clone(),
+                width,
+                height,
+                visibility: VisibilityPass::new(&gpu)?,
+                shadow_map: ShadowMapPass::new(&gpu)?,
+                material: MaterialPass::new(&gpu)?,
+                direct: DirectPass::new(&gpu)?,
+                rsm_flux: RsmFluxPass::new(&gpu)?,
+                pdf_mips: PdfMipsPass::new(&gpu)?,
+                vpl_sample: VplSamplePass::new(&gpu)?,
+                vpl_shading: VplShadingPass::new(&gpu)?,
+            })
         })?;
-        Ok(Self { gpu, width, height, visibility, shadow_map, material, direct })
+        Ok(r)
     }
 
     pub fn render(&self, scene: &Scene, camera: Option<&Camera>, opts: &RenderOptions) -> Result<Frame> {
         opts.validate()?;
+        if opts.method != "direct" {
+            let n = opts.rsm_size() as u64;
+            if n * n * 16 > self.gpu.limits.max_storage_buffer_binding_size as u64 {
+                return Err(Error::invalid("rsm_size", format!(
+                    "{n}² texels exceed this adapter's storage binding limit of {} bytes",
+                    self.gpu.limits.max_storage_buffer_binding_size
+                )));
+            }
+        }
         let camera = match camera.or(scene.cameras.first()) {
             Some(c) => *c,
             None => default_camera(scene)?,
@@ -122,8 +217,8 @@ impl Renderer {
         let wall = Instant::now();
         let stats = scene.stats();
         let full = opts.plan == "full";
-        let mut passes = Vec::new();
-        let mut skipped = Vec::new();
+        let mut passes: Vec<String> = Vec::new();
+        let mut skipped: Vec<(String, String)> = Vec::new();
 
         let origin = camera.eye;
         let gscene = GpuScene::upload(gpu, scene, origin)?;
@@ -135,11 +230,7 @@ impl Renderer {
             .map(|(i, l)| spot_light_raw(l, origin, extent, i as u32, opts.shadow_size))
             .collect();
         let uniforms = frame_uniforms(camera, w, h, lights.len() as u32, gscene.texture_layer_size, extent, opts.shadow_size);
-        let frame_buf = gpu.device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
-            label: Some("frame_uniform_buffer"),
-            contents: bytemuck::bytes_of(&uniforms),
-            usage: wgpu::BufferUsages::UNIFORM,
-        });
+        let frame_buf = uniform_buffer(gpu, "frame_uniform_buffer", bytemuck::bytes_of(&uniforms));
         let light_bytes: Vec<u8> = if lights.is_empty() { vec![0; 128] } else { bytemuck::cast_slice(&lights).to_vec() };
         let light_buf = gpu.device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
             label: Some("spot_light_buffer"),
@@ -147,51 +238,125 @@ impl Renderer {
             usage: wgpu::BufferUsages::STORAGE,
         });
 
-        let mut timer = PassTimer::new(gpu, 64);
-        let mut enc = gpu.device.create_command_encoder(&wgpu::CommandEncoderDescriptor { label: Some("frame_encoder") });
+        let mut timer = PassTimer::new(gpu, TIMER_CAPACITY);
+        let new_encoder = || gpu.device.create_command_encoder(&wgpu::CommandEncoderDescriptor { label: Some("frame_encoder") });
+        let mut enc = new_encoder();
 
         let vis = VisibilityPass::targets(gpu, w, h);
-        self.visibility.record(gpu, &mut enc, &mut timer, &frame_buf, &gscene.raster_vertices, gscene.raster_vertex_count, &vis);
-        passes.push("visibility".to_string());
+        self.visibility.record(gpu, &mut enc, &mut timer, "visibility", &frame_buf, &gscene.raster_vertices, gscene.raster_vertex_count, &vis);
+        passes.push("visibility".into());
 
         let shadow_tex = ShadowMapPass::target(gpu, opts.shadow_size, lights.len() as u32);
         if !lights.is_empty() {
             let vps: Vec<_> = lights.iter().map(|l| l.view_proj).collect();
             self.shadow_map.record(gpu, &mut enc, &mut timer, &shadow_tex, &vps, &gscene.raster_vertices, gscene.raster_vertex_count);
-            passes.push("shadow_map".to_string());
+            passes.push("shadow_map".into());
         } else {
             // Clear the one placeholder layer so the binding is defined.
             self.shadow_map.record(gpu, &mut enc, &mut PassTimer::new_disabled(), &shadow_tex, &[], &gscene.raster_vertices, 0);
-            skipped.push(("shadow_map".to_string(), "the scene has no spot light".to_string()));
+            skipped.push(("shadow_map".into(), "the scene has no spot light".into()));
         }
 
         let gbuffer = GBuffer::new(gpu, w, h);
         let textured = full || stats.has_textures;
-        self.material.record(gpu, &mut enc, &mut timer, &frame_buf, &vis.ids, &gscene, textured, &gbuffer, (w, h));
-        if textured {
-            passes.push("material".to_string());
-        } else {
-            passes.push("material[untextured]".to_string());
-            skipped.push(("material_texture_fetch".to_string(), "no material in the scene uses a texture".to_string()));
+        let material_name = if textured { "material" } else { "material[untextured]" };
+        self.material.record(gpu, &mut enc, &mut timer, "material", &frame_buf, &vis.ids, &gscene, textured, &gbuffer, (w, h));
+        passes.push(material_name.into());
+        if !textured {
+            skipped.push(("material_texture_fetch".into(), "no material in the scene uses a texture".into()));
         }
 
-        let direct_out = gpu.device.create_buffer(&wgpu::BufferDescriptor {
-            label: Some("direct_radiance_buffer"),
-            size: w as u64 * h as u64 * 16,
-            usage: wgpu::BufferUsages::STORAGE | wgpu::BufferUsages::COPY_SRC,
-            mapped_at_creation: false,
-        });
+        let direct_out = storage_buffer(gpu, "direct_radiance_buffer", w as u64 * h as u64 * 16);
         let shadow_view = shadow_tex.create_view(&wgpu::TextureViewDescriptor {
             label: Some("shadow_map_array_view"),
             dimension: Some(wgpu::TextureViewDimension::D2Array),
             ..Default::default()
         });
         self.direct.record(gpu, &mut enc, &mut timer, &frame_buf, &light_buf, &shadow_view, &gbuffer, &direct_out, (w, h));
-        passes.push("direct".to_string());
+        passes.push("direct".into());
+
+        // Indirect light: one RSM per spot light, then VPLs (sampled, or every texel).
+        let indirect = IndirectTargets {
+            diffuse: storage_buffer(gpu, "indirect_diffuse_buffer", w as u64 * h as u64 * 16),
+            specular: storage_buffer(gpu, "indirect_specular_buffer", w as u64 * h as u64 * 16),
+        };
+        let mut captured_rsm: Option<(u32, Vec<(String, usize, Vec<f32>)>)> = None;
+        if opts.method == "direct" {
+            skipped.push(("indirect".into(), "method=\"direct\" computes direct light only".into()));
+        } else if lights.is_empty() {
+            skipped.push(("indirect".into(), "the scene has no spot light".into()));
+        } else {
+            let n = opts.rsm_size();
+            let rsm = Rsm::new(gpu, n);
+            let rsm_vis = VisibilityPass::targets(gpu, n, n);
+            let min_distance2 = (opts.vpl_clamp as f64 * extent).powi(2) as f32;
+            let reference = opts.method == "reference";
+            let vpl_capacity = if reference { (n as u64 * n as u64).min(1 << 20) } else { opts.num_lights as u64 };
+            let vpls = storage_buffer(gpu, "vpl_buffer", vpl_capacity * VPL_BYTES);
+            for (i, light) in scene.lights.iter().enumerate() {
+                let view = light_view_uniforms(light, origin, extent, n, gscene.texture_layer_size);
+                let view_buf = uniform_buffer(gpu, "rsm_view_uniform_buffer", bytemuck::bytes_of(&view));
+                let light_one = light_storage(gpu, &lights[i]);
+                self.visibility.record(gpu, &mut enc, &mut timer, "rsm_visibility", &view_buf, &gscene.raster_vertices, gscene.raster_vertex_count, &rsm_vis);
+                self.material.record(gpu, &mut enc, &mut timer, "rsm_material", &view_buf, &rsm_vis.ids, &gscene, textured, &rsm.gbuffer, (n, n));
+                self.rsm_flux.record(gpu, &mut enc, &mut timer, &view_buf, light_one.as_entire_binding(), &rsm);
+                if reference {
+                    // Every texel is a VPL, in batches bounded by the evaluation budget.
+                    let texels = n as u64 * n as u64;
+                    let pixels = w as u64 * h as u64;
+                    let per_batch = (REFERENCE_BATCH_EVALUATIONS / pixels.max(1))
+                        .max(texels.div_ceil(REFERENCE_MAX_BATCHES))
+                        .clamp(64, vpl_capacity);
+                    let mut first = 0u64;
+                    while first < texels {
+                        let count = per_batch.min(texels - first);
+                        self.vpl_sample.record_every_texel(gpu, &mut enc, &mut timer, light_one.as_entire_binding(), &rsm, first as u32, count as u32, &vpls);
+                        self.vpl_shading.record(gpu, &mut enc, &mut timer, &frame_buf, &vpls, count as u32, min_distance2, &gbuffer, &indirect, (w, h));
+                        first += count;
+                        if first < texels && count * pixels >= REFERENCE_BATCH_EVALUATIONS / 2 {
+                            // Submit this batch on its own so no submission runs for long.
+                            let done = std::mem::replace(&mut enc, new_encoder());
+                            gpu.queue.submit([done.finish()]);
+                            gpu.wait("reference batch")?;
+                        }
+                    }
+                } else {
+                    self.pdf_mips.record(gpu, &mut enc, &mut timer, &rsm);
+                    self.vpl_sample.record_importance(gpu, &mut enc, &mut timer, light_one.as_entire_binding(), &rsm, opts.num_lights, opts.sampling, opts.seed, &vpls);
+                    self.vpl_shading.record(gpu, &mut enc, &mut timer, &frame_buf, &vpls, opts.num_lights, min_distance2, &gbuffer, &indirect, (w, h));
+                }
+                if i == 0 && opts.capture_rsm {
+                    // Read back before the next light overwrites the shared RSM buffers.
+                    let done = std::mem::replace(&mut enc, new_encoder());
+                    gpu.queue.submit([done.finish()]);
+                    let b = gpu.read_buffers(&[&rsm.gbuffer.position, &rsm.gbuffer.normal, &rsm.flux_diffuse, &rsm.flux_specular])?;
+                    let f = |x: &Vec<u8>| -> Vec<f32> { bytemuck::cast_slice::<u8, f32>(x).to_vec() };
+                    let (pos, nrm, fd, fs) = (f(&b[0]), f(&b[1]), f(&b[2]), f(&b[3]));
+                    let roughness: Vec<f32> = nrm.chunks_exact(4).map(|p| p[3]).collect();
+                    let weight: Vec<f32> = fd.chunks_exact(4).map(|p| p[3]).collect();
+                    captured_rsm = Some((n, vec![
+                        ("position".into(), 3, rgb(&pos)),
+                        ("normal".into(), 3, rgb(&nrm)),
+                        ("roughness".into(), 1, roughness),
+                        ("flux_diffuse".into(), 3, rgb(&fd)),
+                        ("flux_specular".into(), 3, rgb(&fs)),
+                        ("weight".into(), 1, weight),
+                    ]));
+                }
+            }
+            passes.extend(["rsm_visibility", "rsm_material", "rsm_flux"].map(String::from));
+            if reference {
+                passes.extend(["vpl_sample[every_texel]", "vpl_shading"].map(String::from));
+                skipped.push(("pdf_mips".into(), "the reference uses every RSM texel, no importance sampling".into()));
+            } else {
+                passes.extend(["pdf_mips", "vpl_sample", "vpl_shading"].map(String::from));
+            }
+            skipped.push(("vpl_shadow_maps".into(), "visibility=\"none\": virtual lights are unshadowed".into()));
+        }
 
         timer.resolve(&mut enc);
         gpu.queue.submit([enc.finish()]);
-        let read = gpu.read_buffers(&[&direct_out, &gbuffer.base_color, &gbuffer.normal, &gbuffer.position])?;
+        let read = gpu.read_buffers(&[&direct_out, &gbuffer.base_color, &gbuffer.normal, &gbuffer.position, &indirect.diffuse, &indirect.specular])?;
         let wall_ms = wall.elapsed().as_secs_f64() * 1e3;
         let mut timings = timer.read(gpu)?;
         let clock = if timings.is_empty() {
@@ -203,25 +368,30 @@ impl Renderer {
             "gpu-timestamp"
         };
 
-        let n = (w * h) as usize;
         let f = |b: &Vec<u8>| -> Vec<f32> { bytemuck::cast_slice::<u8, f32>(b).to_vec() };
-        let rgb = |v: &[f32]| -> Vec<f32> { v.chunks_exact(4).flat_map(|p| [p[0], p[1], p[2]]).collect() };
         let direct = rgb(&f(&read[0]));
         let albedo = rgb(&f(&read[1]));
-        let normal_cam = f(&read[2]);
-        let normal: Vec<f32> = normal_cam.chunks_exact(4).flat_map(|p| [p[0], p[1], p[2]]).collect();
-        let pos = f(&read[3]);
-        // View depth; 0 where no surface was hit (never Inf, see docs).
-        let depth: Vec<f32> = pos.chunks_exact(4).map(|p| if p[3] > 0.0 { p[3] } else { 0.0 }).collect();
-        debug_assert_eq!(depth.len(), n);
-        let aovs = vec![
-            ("image".to_string(), 3, direct.clone()),
-            ("direct".to_string(), 3, direct),
-            ("albedo".to_string(), 3, albedo),
-            ("normal".to_string(), 3, normal),
-            ("depth".to_string(), 1, depth),
-        ];
-        let settings = vec![
+        let normal = rgb(&f(&read[2]));
+        // View depth; 0 where no surface was hit (never Inf, see docs/rendering.md).
+        let depth: Vec<f32> = f(&read[3]).chunks_exact(4).map(|p| if p[3] > 0.0 { p[3] } else { 0.0 }).collect();
+        let mut aovs = Vec::new();
+        if opts.method == "direct" {
+            aovs.push(("image".to_string(), 3, direct.clone()));
+        } else {
+            let ind_d = rgb(&f(&read[4]));
+            let ind_s = rgb(&f(&read[5]));
+            let indirect: Vec<f32> = ind_d.iter().zip(&ind_s).map(|(a, b)| a + b).collect();
+            let image: Vec<f32> = direct.iter().zip(&indirect).map(|(a, b)| a + b).collect();
+            aovs.push(("image".to_string(), 3, image));
+            aovs.push(("indirect".to_string(), 3, indirect));
+            aovs.push(("indirect_diffuse".to_string(), 3, ind_d));
+            aovs.push(("indirect_specular".to_string(), 3, ind_s));
+        }
+        aovs.push(("direct".to_string(), 3, direct));
+        aovs.push(("albedo".to_string(), 3, albedo));
+        aovs.push(("normal".to_string(), 3, normal));
+        aovs.push(("depth".to_string(), 1, depth));
+        let mut settings = vec![
             ("method".into(), opts.method.clone()),
             ("width".into(), w.to_string()),
             ("height".into(), h.to_string()),
@@ -229,7 +399,17 @@ impl Renderer {
             ("plan".into(), opts.plan.clone()),
             ("adapter".into(), gpu.adapter.name.clone()),
         ];
-        Ok(Frame { width: w, height: h, aovs, timings_ms: timings, timings_clock: clock.into(), passes, skipped, settings })
+        if opts.method != "direct" {
+            settings.push(("rsm_size".into(), opts.rsm_size().to_string()));
+            settings.push(("visibility".into(), opts.visibility.clone()));
+            settings.push(("vpl_clamp".into(), opts.vpl_clamp.to_string()));
+        }
+        if opts.method == "vpl" {
+            settings.push(("num_lights".into(), opts.num_lights.to_string()));
+            settings.push(("sampling".into(), match opts.sampling { Sampling::Stratified => "stratified", Sampling::Random => "random" }.into()));
+            settings.push(("seed".into(), opts.seed.to_string()));
+        }
+        Ok(Frame { width: w, height: h, aovs, timings_ms: timings, timings_clock: clock.into(), passes, skipped, settings, rsm: captured_rsm })
     }
 }
 

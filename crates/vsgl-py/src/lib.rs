@@ -11,6 +11,7 @@ use pyo3::prelude::*;
 use pyo3::types::{PyBytes, PyDict};
 use std::sync::Arc;
 use vsgl_core::scene::{builtin, Camera, Scene, SpotLight};
+use vsgl_core::passes::vpl_sample::Sampling;
 use vsgl_core::{image_io, Frame, RenderOptions, Renderer};
 
 fn vec3(name: &str, v: Vec<f64>) -> PyResult<DVec3> {
@@ -276,6 +277,19 @@ impl PyFrame {
     fn aovs(&self) -> Vec<String> {
         self.inner.aov_names()
     }
+    /// One buffer of the first light's reflective shadow map, (N, N, C) float32, when the
+    /// frame was rendered with `capture_rsm=True`: position (relative to the light), normal,
+    /// roughness, flux_diffuse (Φ·R_d), flux_specular (Φ·R_s), weight (Φ·(R_d+R_s) summed).
+    fn rsm<'py>(&self, py: Python<'py>, name: &str) -> PyResult<Bound<'py, PyAny>> {
+        let Some((n, buffers)) = &self.inner.rsm else {
+            return Err(PyValueError::new_err("name: this frame kept no RSM; render with capture_rsm=True and a method that uses one"));
+        };
+        let (c, data) = buffers.iter().find(|(k, _, _)| k == name).map(|(_, c, d)| (*c, d)).ok_or_else(|| {
+            let names: Vec<&str> = buffers.iter().map(|(k, _, _)| k.as_str()).collect();
+            PyValueError::new_err(format!("name: unknown RSM buffer {name:?}; available: {}", names.join(", ")))
+        })?;
+        Ok(PyArray1::from_slice(py, data).reshape([*n as usize, *n as usize, c])?.into_any())
+    }
     #[getter]
     fn width(&self) -> u32 {
         self.inner.width
@@ -391,12 +405,50 @@ impl PyRenderer {
     }
     /// Renders `scene` seen by `camera` (default: the scene's first camera, else one framing
     /// the scene). Releases the GIL while the GPU works.
-    #[pyo3(signature = (scene, camera=None, method="direct", *, shadow_size=1024, plan="auto"))]
-    fn render(&self, py: Python<'_>, scene: PyRef<'_, PyScene>, camera: Option<PyCamera>, method: &str, shadow_size: i64, plan: &str) -> PyResult<PyFrame> {
-        if !(16..=8192).contains(&shadow_size) {
-            return Err(PyValueError::new_err(format!("shadow_size: must be in 16..=8192, got {shadow_size}")));
-        }
-        let opts = RenderOptions { method: method.into(), shadow_size: shadow_size as u32, plan: plan.into() };
+    ///
+    /// Methods: "direct"; "vpl" (`num_lights` VPLs per spot light importance-sampled from an
+    /// `rsm_size`² reflective shadow map, `sampling` "stratified" or "random", `seed`,
+    /// `vpl_clamp` = minimum VPL distance as a fraction of the scene size, 0 = unbiased);
+    /// "reference" (every texel of an `rsm_size`² RSM as a VPL, default 1024²).
+    /// `capture_rsm=True` keeps the first light's RSM for `Frame.rsm(name)`.
+    #[pyo3(signature = (scene, camera=None, method="direct", *, shadow_size=1024, plan="auto", num_lights=256, rsm_size=None, sampling="stratified", seed=0, vpl_clamp=0.0, visibility="none", capture_rsm=false))]
+    #[allow(clippy::too_many_arguments)]
+    fn render(
+        &self,
+        py: Python<'_>,
+        scene: PyRef<'_, PyScene>,
+        camera: Option<PyCamera>,
+        method: &str,
+        shadow_size: i64,
+        plan: &str,
+        num_lights: i64,
+        rsm_size: Option<i64>,
+        sampling: &str,
+        seed: i64,
+        vpl_clamp: f64,
+        visibility: &str,
+        capture_rsm: bool,
+    ) -> PyResult<PyFrame> {
+        let in_u32 = |name: &str, v: i64, lo: i64, hi: i64| -> PyResult<u32> {
+            if (lo..=hi).contains(&v) { Ok(v as u32) } else { Err(PyValueError::new_err(format!("{name}: must be in {lo}..={hi}, got {v}"))) }
+        };
+        let sampling = match sampling {
+            "stratified" => Sampling::Stratified,
+            "random" => Sampling::Random,
+            other => return Err(PyValueError::new_err(format!("sampling: must be \"stratified\" or \"random\", got {other:?}"))),
+        };
+        let opts = RenderOptions {
+            method: method.into(),
+            shadow_size: in_u32("shadow_size", shadow_size, 16, 8192)?,
+            plan: plan.into(),
+            num_lights: in_u32("num_lights", num_lights, 1, 1 << 20)?,
+            rsm_size: rsm_size.map(|v| in_u32("rsm_size", v, 32, 4096)).transpose()?,
+            sampling,
+            seed: in_u32("seed", seed, 0, u32::MAX as i64)?,
+            vpl_clamp: finite("vpl_clamp", vpl_clamp)? as f32,
+            visibility: visibility.into(),
+            capture_rsm,
+        };
         let s: &Scene = &scene.inner;
         let cam = camera.map(|c| c.inner);
         let r = &self.inner;

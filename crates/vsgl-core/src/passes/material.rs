@@ -79,6 +79,7 @@ impl MaterialPass {
         gpu: &Gpu,
         enc: &mut wgpu::CommandEncoder,
         timer: &mut PassTimer,
+        label: &str,
         frame_uniforms: &wgpu::Buffer,
         ids: &wgpu::TextureView,
         scene: &GpuScene,
@@ -114,9 +115,9 @@ impl MaterialPass {
             layout: &pipeline.get_bind_group_layout(1),
             entries: &e,
         });
-        let q = timer.begin("material");
+        let q = timer.begin(label);
         let mut pass = enc.begin_compute_pass(&wgpu::ComputePassDescriptor {
-            label: Some("material_pass"),
+            label: Some(label),
             timestamp_writes: timer.compute_writes(q),
         });
         pass.set_pipeline(pipeline);

@@ -3,8 +3,14 @@
 
 pub mod direct;
 pub mod material;
+pub mod pdf_mips;
+pub mod rsm_flux;
 pub mod shadow_map;
 pub mod visibility;
+pub mod vpl_sample;
+pub mod vpl_shading;
+
+use crate::gpu::{Gpu, PassTimer};
 
 /// Bind group entries for buffers/views in binding order 0, 1, 2, …
 pub fn entries<'a>(resources: &[wgpu::BindingResource<'a>]) -> Vec<wgpu::BindGroupEntry<'a>> {
@@ -13,4 +19,47 @@ pub fn entries<'a>(resources: &[wgpu::BindingResource<'a>]) -> Vec<wgpu::BindGro
         .enumerate()
         .map(|(i, r)| wgpu::BindGroupEntry { binding: i as u32, resource: r.clone() })
         .collect()
+}
+
+/// Records one timed compute dispatch: bind group `g` gets `groups[g]` in binding order
+/// (the pipeline's automatic layout), then `workgroups` are dispatched.
+pub fn run_compute(
+    gpu: &Gpu,
+    enc: &mut wgpu::CommandEncoder,
+    timer: &mut PassTimer,
+    label: &str,
+    pipeline: &wgpu::ComputePipeline,
+    groups: &[&[wgpu::BindingResource<'_>]],
+    workgroups: (u32, u32, u32),
+) {
+    let binds: Vec<wgpu::BindGroup> = groups
+        .iter()
+        .enumerate()
+        .map(|(g, resources)| {
+            gpu.device.create_bind_group(&wgpu::BindGroupDescriptor {
+                label: Some(label),
+                layout: &pipeline.get_bind_group_layout(g as u32),
+                entries: &entries(resources),
+            })
+        })
+        .collect();
+    let q = timer.begin(label);
+    let mut pass = enc.begin_compute_pass(&wgpu::ComputePassDescriptor { label: Some(label), timestamp_writes: timer.compute_writes(q) });
+    pass.set_pipeline(pipeline);
+    for (g, b) in binds.iter().enumerate() {
+        pass.set_bind_group(g as u32, b, &[]);
+    }
+    if workgroups.0 > 0 && workgroups.1 > 0 && workgroups.2 > 0 {
+        pass.dispatch_workgroups(workgroups.0, workgroups.1, workgroups.2);
+    }
+}
+
+/// A storage buffer of `size` bytes (at least 16, as wgpu rejects empty bindings).
+pub fn storage_buffer(gpu: &Gpu, label: &str, size: u64) -> wgpu::Buffer {
+    gpu.device.create_buffer(&wgpu::BufferDescriptor {
+        label: Some(label),
+        size: size.max(16),
+        usage: wgpu::BufferUsages::STORAGE | wgpu::BufferUsages::COPY_SRC | wgpu::BufferUsages::COPY_DST,
+        mapped_at_creation: false,
+    })
 }

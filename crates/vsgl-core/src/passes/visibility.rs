@@ -74,11 +74,13 @@ impl VisibilityPass {
         }
     }
 
+    #[allow(clippy::too_many_arguments)]
     pub fn record(
         &self,
         gpu: &Gpu,
         enc: &mut wgpu::CommandEncoder,
         timer: &mut PassTimer,
+        label: &str,
         frame_uniforms: &wgpu::Buffer,
         vertices: &wgpu::Buffer,
         vertex_count: u32,
@@ -89,9 +91,9 @@ impl VisibilityPass {
             layout: &self.pipeline.get_bind_group_layout(0),
             entries: &[wgpu::BindGroupEntry { binding: 0, resource: frame_uniforms.as_entire_binding() }],
         });
-        let q = timer.begin("visibility");
+        let q = timer.begin(label);
         let mut pass = enc.begin_render_pass(&wgpu::RenderPassDescriptor {
-            label: Some("visibility_pass"),
+            label: Some(label),
             color_attachments: &[Some(wgpu::RenderPassColorAttachment {
                 view: &targets.ids,
                 depth_slice: None,

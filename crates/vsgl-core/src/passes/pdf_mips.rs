@@ -1,0 +1,77 @@
+//! The sampling-weight pyramid (compute): 2×2 sums level by level, so the top holds the total
+//! and hierarchical sample warping can descend it. wgpu has no GenerateMips, and sums (not
+//! averages) keep the probabilities exact.
+
+use super::run_compute;
+use crate::error::Result;
+use crate::gpu::{groups, Gpu, PassTimer};
+use crate::passes::rsm_flux::Rsm;
+use wgpu::util::DeviceExt;
+
+const WORKGROUP: u32 = 8;
+
+/// Level start offsets (level 0 = size², …, top = 1) and the total texel count, for a
+/// power-of-two `size`.
+pub fn pyramid_layout(size: u32) -> (Vec<u32>, u32) {
+    let mut offsets = Vec::new();
+    let mut offset = 0u32;
+    let mut s = size;
+    loop {
+        offsets.push(offset);
+        offset += s * s;
+        if s == 1 {
+            break;
+        }
+        s /= 2;
+    }
+    (offsets, offset)
+}
+
+#[repr(C)]
+#[derive(Clone, Copy, bytemuck::Pod, bytemuck::Zeroable)]
+struct LevelRaw {
+    src_offset: u32,
+    dst_offset: u32,
+    dst_size: u32,
+    _pad: u32,
+}
+
+pub struct PdfMipsPass {
+    pipeline: wgpu::ComputePipeline,
+}
+
+impl PdfMipsPass {
+    pub fn new(gpu: &Gpu) -> Result<Self> {
+        let module = gpu.shader("passes/pdf_mips.wgsl")?;
+        Ok(Self { pipeline: gpu.compute_pipeline("pdf_mips_pipeline", &module, "main") })
+    }
+
+    pub fn record(&self, gpu: &Gpu, enc: &mut wgpu::CommandEncoder, timer: &mut PassTimer, rsm: &Rsm) {
+        let (offsets, _) = pyramid_layout(rsm.size);
+        for level in 1..offsets.len() {
+            let dst_size = rsm.size >> level;
+            let uniform = gpu.device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
+                label: Some("pdf_mips_level_uniform_buffer"),
+                contents: bytemuck::bytes_of(&LevelRaw { src_offset: offsets[level - 1], dst_offset: offsets[level], dst_size, _pad: 0 }),
+                usage: wgpu::BufferUsages::UNIFORM,
+            });
+            run_compute(
+                gpu,
+                enc,
+                timer,
+                "pdf_mips",
+                &self.pipeline,
+                &[&[uniform.as_entire_binding(), rsm.pyramid.as_entire_binding()]],
+                (groups(dst_size, WORKGROUP), groups(dst_size, WORKGROUP), 1),
+            );
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    #[test]
+    fn layout_of_8() {
+        assert_eq!(super::pyramid_layout(8), (vec![0, 64, 80, 84], 85));
+    }
+}

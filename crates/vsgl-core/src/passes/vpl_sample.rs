@@ -1,0 +1,118 @@
+//! VPL sampling (compute): importance sampling of the RSM by hierarchical sample warping, or
+//! every texel as a VPL (the reference).
+
+use super::run_compute;
+use crate::error::Result;
+use crate::gpu::{groups, storage_binding, uniform_binding, Gpu, PassTimer};
+use crate::passes::rsm_flux::Rsm;
+use wgpu::util::DeviceExt;
+
+const WORKGROUP: u32 = 64;
+
+/// GPU twin of `Vpl` in `wgsl/common/vpl.wgsl` (80 bytes).
+#[repr(C)]
+#[derive(Clone, Copy, Debug, bytemuck::Pod, bytemuck::Zeroable)]
+pub struct VplRaw {
+    pub position: [f32; 3],
+    pub roughness: f32,
+    pub normal: [f32; 3],
+    pub _pad0: f32,
+    pub flux_diffuse: [f32; 3],
+    pub _pad1: f32,
+    pub flux_specular: [f32; 3],
+    pub _pad2: f32,
+    pub to_light: [f32; 3],
+    pub _pad3: f32,
+}
+pub const VPL_BYTES: u64 = 80;
+const _: () = assert!(std::mem::size_of::<VplRaw>() == VPL_BYTES as usize);
+
+#[repr(C)]
+#[derive(Clone, Copy, bytemuck::Pod, bytemuck::Zeroable)]
+struct SampleParamsRaw {
+    count: u32,
+    levels: u32,
+    rsm_size: u32,
+    mode: u32,
+    seed: u32,
+    first: u32,
+    _pad: [u32; 2],
+}
+
+/// How importance-sampled VPL positions are drawn.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Sampling {
+    /// Fibonacci lattice (low discrepancy), rotated per seed.
+    Stratified,
+    /// Seeded random numbers.
+    Random,
+}
+
+pub struct VplSamplePass {
+    importance: wgpu::ComputePipeline,
+    every_texel: wgpu::ComputePipeline,
+}
+
+impl VplSamplePass {
+    pub fn new(gpu: &Gpu) -> Result<Self> {
+        let module = gpu.shader("passes/vpl_sample.wgsl")?;
+        // Both entry points share one layout (every_texel ignores the pyramid bindings).
+        let mut bindings = vec![uniform_binding()];
+        bindings.extend([storage_binding(true); 7]);
+        bindings.push(storage_binding(false));
+        Ok(Self {
+            importance: gpu.compute_pipeline_explicit("vpl_sample_importance_pipeline", &module, "importance", &bindings),
+            every_texel: gpu.compute_pipeline_explicit("vpl_sample_every_texel_pipeline", &module, "every_texel", &bindings),
+        })
+    }
+
+    #[allow(clippy::too_many_arguments)]
+    fn dispatch(&self, gpu: &Gpu, enc: &mut wgpu::CommandEncoder, timer: &mut PassTimer, pipeline: &wgpu::ComputePipeline, params: SampleParamsRaw, light: wgpu::BindingResource<'_>, rsm: &Rsm, out: &wgpu::Buffer) {
+        let uniform = gpu.device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
+            label: Some("vpl_sample_params_uniform_buffer"),
+            contents: bytemuck::bytes_of(&params),
+            usage: wgpu::BufferUsages::UNIFORM,
+        });
+        run_compute(
+            gpu,
+            enc,
+            timer,
+            "vpl_sample",
+            pipeline,
+            &[&[
+                uniform.as_entire_binding(),
+                light,
+                rsm.pyramid.as_entire_binding(),
+                rsm.level_offsets.as_entire_binding(),
+                rsm.gbuffer.position.as_entire_binding(),
+                rsm.gbuffer.normal.as_entire_binding(),
+                rsm.flux_diffuse.as_entire_binding(),
+                rsm.flux_specular.as_entire_binding(),
+                out.as_entire_binding(),
+            ]],
+            (groups(params.count, WORKGROUP), 1, 1),
+        );
+    }
+
+    /// `count` VPLs with p ∝ Φ·(R_d + R_s), estimator weights 1/(N p).
+    #[allow(clippy::too_many_arguments)]
+    pub fn record_importance(&self, gpu: &Gpu, enc: &mut wgpu::CommandEncoder, timer: &mut PassTimer, light: wgpu::BindingResource<'_>, rsm: &Rsm, count: u32, sampling: Sampling, seed: u32, out: &wgpu::Buffer) {
+        let params = SampleParamsRaw {
+            count,
+            levels: rsm.levels,
+            rsm_size: rsm.size,
+            mode: match sampling { Sampling::Stratified => 0, Sampling::Random => 1 },
+            seed,
+            first: 0,
+            _pad: [0; 2],
+        };
+        self.dispatch(gpu, enc, timer, &self.importance, params, light, rsm, out);
+    }
+
+    /// Texels `first .. first + count` as VPLs of weight Φ·R.
+    #[allow(clippy::too_many_arguments)]
+    pub fn record_every_texel(&self, gpu: &Gpu, enc: &mut wgpu::CommandEncoder, timer: &mut PassTimer, light: wgpu::BindingResource<'_>, rsm: &Rsm, first: u32, count: u32, out: &wgpu::Buffer) {
+        let params = SampleParamsRaw { count, levels: rsm.levels, rsm_size: rsm.size, mode: 0, seed: 0, first, _pad: [0; 2] };
+        self.dispatch(gpu, enc, timer, &self.every_texel, params, light, rsm, out);
+    }
+}

@@ -1,0 +1,76 @@
+//! VPL shading (compute): adds the radiance of a batch of VPLs to the indirect buffers.
+
+use super::run_compute;
+use crate::error::Result;
+use crate::gpu::{groups, Gpu, PassTimer};
+use crate::passes::material::GBuffer;
+use wgpu::util::DeviceExt;
+
+const WORKGROUP: u32 = 8;
+
+#[repr(C)]
+#[derive(Clone, Copy, bytemuck::Pod, bytemuck::Zeroable)]
+struct ShadeParamsRaw {
+    vpl_count: u32,
+    min_distance2: f32,
+    _pad: [u32; 2],
+}
+
+/// Diffuse and specular indirect radiance (vec4f per pixel each).
+pub struct IndirectTargets {
+    pub diffuse: wgpu::Buffer,
+    pub specular: wgpu::Buffer,
+}
+
+pub struct VplShadingPass {
+    pipeline: wgpu::ComputePipeline,
+}
+
+impl VplShadingPass {
+    pub fn new(gpu: &Gpu) -> Result<Self> {
+        let module = gpu.shader("passes/vpl_shading.wgsl")?;
+        Ok(Self { pipeline: gpu.compute_pipeline("vpl_shading_pipeline", &module, "main") })
+    }
+
+    #[allow(clippy::too_many_arguments)]
+    pub fn record(
+        &self,
+        gpu: &Gpu,
+        enc: &mut wgpu::CommandEncoder,
+        timer: &mut PassTimer,
+        frame: &wgpu::Buffer,
+        vpls: &wgpu::Buffer,
+        vpl_count: u32,
+        min_distance2: f32,
+        gbuffer: &GBuffer,
+        out: &IndirectTargets,
+        size: (u32, u32),
+    ) {
+        let uniform = gpu.device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
+            label: Some("vpl_shading_params_uniform_buffer"),
+            contents: bytemuck::bytes_of(&ShadeParamsRaw { vpl_count, min_distance2, _pad: [0; 2] }),
+            usage: wgpu::BufferUsages::UNIFORM,
+        });
+        run_compute(
+            gpu,
+            enc,
+            timer,
+            "vpl_shading",
+            &self.pipeline,
+            &[
+                &[frame.as_entire_binding()],
+                &[
+                    uniform.as_entire_binding(),
+                    vpls.as_entire_binding(),
+                    gbuffer.position.as_entire_binding(),
+                    gbuffer.normal.as_entire_binding(),
+                    gbuffer.geo_normal.as_entire_binding(),
+                    gbuffer.base_color.as_entire_binding(),
+                    out.diffuse.as_entire_binding(),
+                    out.specular.as_entire_binding(),
+                ],
+            ],
+            (groups(size.0, WORKGROUP), groups(size.1, WORKGROUP), 1),
+        );
+    }
+}

@@ -1,0 +1,59 @@
+// Reflective shadow map flux (compute): after the material pass has resolved the light's view
+// into an RSM G-buffer (positions relative to the light), give every texel the flux it
+// receives and the reflected power weights Φ·R_d, Φ·R_s [Dachsbacher & Stamminger 2005].
+//   Φ_texel = I · color · cone(ω) · Δω,  Δω = t² (2/N)² cos³θ
+// where t = tan(half field of view), N the RSM side and θ the angle to the light axis: the solid
+// angle of a texel of a perspective image plane at unit distance (area t²(2/N)², foreshortened
+// by cosθ and at distance 1/cosθ).
+#include "common/constants.wgsl"
+#include "common/frame.wgsl"
+#include "common/gbuffer.wgsl"
+
+const WORKGROUP: u32 = 8u;
+
+@group(0) @binding(0) var<uniform> view: FrameUniforms;
+@group(1) @binding(0) var<storage, read> light: SpotLightRaw;
+@group(1) @binding(1) var<storage, read> rsm_position: array<vec4f>;
+@group(1) @binding(2) var<storage, read> rsm_geo_normal: array<vec4f>;
+@group(1) @binding(3) var<storage, read> rsm_base_color: array<vec4f>;
+// Φ·R_d (rgb), w = Φ·(R_d + R_s) summed over rgb: the sampling weight.
+@group(1) @binding(4) var<storage, read_write> rsm_flux_diffuse: array<vec4f>;
+// Φ·R_s (rgb), w unused.
+@group(1) @binding(5) var<storage, read_write> rsm_flux_specular: array<vec4f>;
+// Level 0 of the sampling-weight pyramid.
+@group(1) @binding(6) var<storage, read_write> pdf_level0: array<f32>;
+
+@compute @workgroup_size(WORKGROUP, WORKGROUP, 1)
+fn main(@builtin(global_invocation_id) gid: vec3u) {
+    let n = view.size.x;
+    if (gid.x >= n || gid.y >= n) {
+        return;
+    }
+    let index = gid.y * n + gid.x;
+    let pos = rsm_position[index];
+    if (pos.w == GBUFFER_BACKGROUND) {
+        rsm_flux_diffuse[index] = vec4f(0.0);
+        rsm_flux_specular[index] = vec4f(0.0);
+        pdf_level0[index] = 0.0;
+        return;
+    }
+    // The texel's ray, unnormalised: forward + ndc.x·right·t + ndc.y·up·t; cosθ = 1/‖ray‖.
+    let pixel = vec2f(gid.xy) + 0.5;
+    let ndc = vec2f(2.0 * pixel.x / f32(n) - 1.0, 1.0 - 2.0 * pixel.y / f32(n));
+    let ray = view.cam_forward.xyz + ndc.x * view.cam_right.xyz + ndc.y * view.cam_up.xyz;
+    let inv_len = inverseSqrt(dot(ray, ray));
+    let cos_theta = dot(ray, view.cam_forward.xyz) * inv_len;
+    let tan2 = dot(view.cam_up.xyz, view.cam_up.xyz);
+    let texel = 2.0 / f32(n);
+    let solid_angle = tan2 * texel * texel * cos_theta * cos_theta * cos_theta;
+    let to_light = -ray * inv_len;
+    let flux = light.intensity * light.color * spot_cone_attenuation(light, to_light) * solid_angle;
+    let base = rsm_base_color[index].rgb;
+    let metallic = rsm_geo_normal[index].w;
+    let fd = flux * gbuffer_diffuse_reflectance(base, metallic);
+    let fs = flux * gbuffer_specular_reflectance(base, metallic);
+    let weight = fd.r + fd.g + fd.b + fs.r + fs.g + fs.b;
+    rsm_flux_diffuse[index] = vec4f(fd, weight);
+    rsm_flux_specular[index] = vec4f(fs, 0.0);
+    pdf_level0[index] = weight;
+}

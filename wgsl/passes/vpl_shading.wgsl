@@ -1,0 +1,81 @@
+// VPL shading (compute): every pixel sums the VPLs of the current batch, without visibility
+// (the papers' configuration for accuracy comparisons). VPLs are staged through workgroup
+// memory in tiles so each is read from device memory once per workgroup. Results are added to
+// the indirect buffers, so large VPL sets are shaded in several dispatches (the reference).
+#include "common/constants.wgsl"
+#include "common/frame.wgsl"
+#include "common/gbuffer.wgsl"
+#include "common/vpl.wgsl"
+
+struct ShadeParams {
+    vpl_count: u32,
+    // Lower bound of the squared VPL distance (0 = unclamped).
+    min_distance2: f32,
+    _pad0: u32,
+    _pad1: u32,
+}
+
+const WORKGROUP: u32 = 8u;
+const TILE: u32 = 64u; // = WORKGROUP², one VPL loaded per thread
+
+@group(0) @binding(0) var<uniform> frame: FrameUniforms;
+@group(1) @binding(0) var<uniform> params: ShadeParams;
+@group(1) @binding(1) var<storage, read> vpls: array<Vpl>;
+@group(1) @binding(2) var<storage, read> gbuf_position: array<vec4f>;
+@group(1) @binding(3) var<storage, read> gbuf_normal: array<vec4f>;
+@group(1) @binding(4) var<storage, read> gbuf_geo_normal: array<vec4f>;
+@group(1) @binding(5) var<storage, read> gbuf_base_color: array<vec4f>;
+@group(1) @binding(6) var<storage, read_write> indirect_diffuse: array<vec4f>;
+@group(1) @binding(7) var<storage, read_write> indirect_specular: array<vec4f>;
+
+var<workgroup> tile: array<Vpl, TILE>;
+
+@compute @workgroup_size(WORKGROUP, WORKGROUP, 1)
+fn main(@builtin(global_invocation_id) gid: vec3u, @builtin(local_invocation_index) local: u32) {
+    let inside = gid.x < frame.size.x && gid.y < frame.size.y;
+    let index = gid.y * frame.size.x + gid.x;
+    var p = vec3f(0.0);
+    var n = vec3f(0.0, 0.0, 1.0);
+    var v = vec3f(0.0, 0.0, 1.0);
+    var rd = vec3f(0.0);
+    var rs = vec3f(0.0);
+    var alpha = 1.0;
+    var has_surface = false;
+    if (inside) {
+        let pos = gbuf_position[index];
+        if (pos.w != GBUFFER_BACKGROUND) {
+            has_surface = true;
+            p = pos.xyz;
+            n = gbuf_normal[index].xyz;
+            alpha = ggx_alpha_from_roughness(gbuf_normal[index].w);
+            let metallic = gbuf_geo_normal[index].w;
+            let base = gbuf_base_color[index].rgb;
+            rd = gbuffer_diffuse_reflectance(base, metallic);
+            rs = gbuffer_specular_reflectance(base, metallic);
+            v = -p / max(length(p), FLT_MIN);
+        }
+    }
+    var diffuse = vec3f(0.0);
+    var specular = vec3f(0.0);
+    // Every thread takes part in the tile loads and barriers, with a surface or not.
+    for (var base_index = 0u; base_index < params.vpl_count; base_index += TILE) {
+        let load = base_index + local;
+        if (load < params.vpl_count) {
+            tile[local] = vpls[load];
+        }
+        workgroupBarrier();
+        let n_tile = min(TILE, params.vpl_count - base_index);
+        if (has_surface) {
+            for (var k = 0u; k < n_tile; k++) {
+                let r = vpl_radiance(tile[k], p, n, v, rd, rs, alpha, params.min_distance2);
+                diffuse += r.diffuse;
+                specular += r.specular;
+            }
+        }
+        workgroupBarrier();
+    }
+    if (inside) {
+        indirect_diffuse[index] += vec4f(min(diffuse, vec3f(FLT_MAX)), 0.0);
+        indirect_specular[index] += vec4f(min(specular, vec3f(FLT_MAX)), 0.0);
+    }
+}
