@@ -26,7 +26,7 @@ def test_unknown_method_lists_valid_ones(renderer):
     with pytest.raises(ValueError, match=r"method.*valid methods: direct"):
         renderer.render(vsgl.scenes.cornell_box(), method="photon_mapping")
     with pytest.raises(ValueError, match="planned"):
-        renderer.render(vsgl.scenes.cornell_box(), method="vsgl")
+        renderer.render(vsgl.scenes.cornell_box(), method="vsgl2")
 
 
 @pytest.mark.parametrize(

@@ -105,6 +105,7 @@ class Frame:
     @property
     def aovs(self) -> list[str]: ...
     def rsm(self, name: str) -> npt.NDArray[np.float32]: ...
+    def vsgls(self) -> npt.NDArray[np.void]: ...
     @property
     def width(self) -> int: ...
     @property
@@ -146,6 +147,12 @@ class Renderer:
         vpl_clamp: float = 0.0,
         visibility: str = "none",
         capture_rsm: bool = False,
+        kernel: str = "integral",
+        K: float = 1.0,
+        bisection_steps: int = 12,
+        interleave: int = 8,
+        denoise: bool = True,
+        diffuse: str = "papers",
     ) -> Frame: ...
 
 def adapters() -> list[dict[str, Any]]: ...

@@ -8,6 +8,7 @@
 #include "common/constants.wgsl"
 #include "common/frame.wgsl"
 #include "common/vpl.wgsl"
+#include "common/rsm_warp.wgsl"
 
 struct SampleParams {
     // Number of VPLs to write.
@@ -25,8 +26,6 @@ struct SampleParams {
 }
 
 const WORKGROUP: u32 = 64u;
-// 1/φ, the Fibonacci lattice's irrational step.
-const INV_GOLDEN_RATIO: f32 = 0.618033988749895;
 
 @group(0) @binding(0) var<uniform> params: SampleParams;
 @group(0) @binding(1) var<storage, read> light: SpotLightRaw;
@@ -38,48 +37,6 @@ const INV_GOLDEN_RATIO: f32 = 0.618033988749895;
 @group(0) @binding(6) var<storage, read> rsm_flux_diffuse: array<vec4f>;
 @group(0) @binding(7) var<storage, read> rsm_flux_specular: array<vec4f>;
 @group(0) @binding(8) var<storage, read_write> vpls: array<Vpl>;
-
-// PCG hash [Jarzynski & Olano 2020], for seeded random numbers.
-fn pcg_hash(x: u32) -> u32 {
-    let state = x * 747796405u + 2891336453u;
-    let word = ((state >> ((state >> 28u) + 4u)) ^ state) * 277803737u;
-    return (word >> 22u) ^ word;
-}
-
-// A float in [0, 1) from the top 24 bits.
-fn unit_float(x: u32) -> f32 {
-    return f32(x >> 8u) * (1.0 / 16777216.0);
-}
-
-fn sample_point(i: u32) -> vec2f {
-    let shift = vec2f(unit_float(pcg_hash(params.seed * 2u + 1u)), unit_float(pcg_hash(params.seed * 2u + 2u)));
-    var u: vec2f;
-    if (params.mode == 0u) {
-        u = vec2f((f32(i) + 0.5) / f32(params.count), fract(f32(i) * INV_GOLDEN_RATIO));
-    } else {
-        let h = pcg_hash(i ^ pcg_hash(params.seed + 0x9e3779b9u));
-        u = vec2f(unit_float(h), unit_float(pcg_hash(h)));
-    }
-    return fract(u + shift);
-}
-
-fn weight_at(level: u32, xy: vec2u) -> f32 {
-    let size = params.rsm_size >> level;
-    return pyramid[level_offsets[level] + xy.y * size + xy.x];
-}
-
-// Chooses between two children of weights a and b with u ∈ [0,1), rescaling u to [0,1) inside
-// the chosen one. Returns 0 or 1.
-fn warp_choice(a: f32, b: f32, u: ptr<function, f32>) -> u32 {
-    let total = a + b;
-    let split = select(0.5, a / total, total > 0.0);
-    if (*u < split) {
-        *u = min(*u / max(split, FLT_MIN), 0.99999994);
-        return 0u;
-    }
-    *u = min((*u - split) / max(1.0 - split, FLT_MIN), 0.99999994);
-    return 1u;
-}
 
 fn write_vpl(out_index: u32, texel: u32, scale: f32) {
     let pos = rsm_position[texel].xyz;
@@ -101,26 +58,8 @@ fn importance(@builtin(global_invocation_id) gid: vec3u) {
     if (i >= params.count) {
         return;
     }
-    let u = sample_point(i);
-    var ux = u.x;
-    var uy = u.y;
-    var xy = vec2u(0u, 0u);
-    for (var level = i32(params.levels) - 2; level >= 0; level--) {
-        let l = u32(level);
-        let c = 2u * xy;
-        let w00 = weight_at(l, c);
-        let w10 = weight_at(l, c + vec2u(1u, 0u));
-        let w01 = weight_at(l, c + vec2u(0u, 1u));
-        let w11 = weight_at(l, c + vec2u(1u, 1u));
-        let column = warp_choice(w00 + w01, w10 + w11, &ux);
-        var row: u32;
-        if (column == 0u) {
-            row = warp_choice(w00, w01, &uy);
-        } else {
-            row = warp_choice(w10, w11, &uy);
-        }
-        xy = c + vec2u(column, row);
-    }
+    let warped = warp_descend(warp_sample_point(i, params.count, params.mode == 0u, params.seed), params.rsm_size, params.levels);
+    let xy = warped.texel;
     let texel = xy.y * params.rsm_size + xy.x;
     let total = pyramid[level_offsets[params.levels - 1u]];
     let w = pyramid[texel];

@@ -5,6 +5,10 @@ use crate::frame_data::{frame_uniforms, light_view_uniforms, spot_light_raw, Spo
 use crate::gpu::{Gpu, PassTimer};
 use crate::passes::vpl_sample::{Sampling, VplSamplePass, VPL_BYTES};
 use crate::passes::vpl_shading::{IndirectTargets, VplShadingPass};
+use crate::passes::vsgl_gen::{GenSettings, Kernel, VsglGenPass, VSGL_BYTES};
+use crate::passes::vsgl_moments::{MomentChains, VsglMomentsPass};
+use crate::passes::vsgl_shading::{DiffuseMode, VsglShadingPass};
+use crate::passes::{denoise::DenoisePass, moment_mips::MomentMipsPass};
 use crate::passes::{
     direct::DirectPass, material::GBuffer, material::MaterialPass, pdf_mips::PdfMipsPass, rsm_flux::Rsm,
     rsm_flux::RsmFluxPass, shadow_map::ShadowMapPass, storage_buffer, visibility::VisibilityPass,
@@ -16,9 +20,9 @@ use std::time::Instant;
 use wgpu::util::DeviceExt;
 
 /// Methods that render in this build.
-pub const METHODS: &[&str] = &["direct", "vpl", "reference"];
+pub const METHODS: &[&str] = &["direct", "vpl", "vsgl", "reference"];
 /// Methods of DESIGN.md that later work adds; asking for one says so.
-pub const PLANNED_METHODS: &[&str] = &["vsgl", "vsgl2", "pathtrace"];
+pub const PLANNED_METHODS: &[&str] = &["vsgl2", "pathtrace"];
 
 /// Query pairs one frame may time: the reference's batches are the most numerous.
 const TIMER_CAPACITY: u32 = 2048;
@@ -49,6 +53,17 @@ pub struct RenderOptions {
     pub visibility: String,
     /// Read back the first light's RSM into the frame (for tests and plots).
     pub capture_rsm: bool,
+    /// VSGL kernel size rule (`vsgl`).
+    pub kernel: Kernel,
+    /// K of the 2016 paper: kernel probability mass K/N (> 0).
+    pub k: f32,
+    /// Bisection iterations of the integral kernel (1…32).
+    pub bisection_steps: u32,
+    /// Interleaved sampling tile side (1…16): each pixel evaluates N/k² VSGLs.
+    pub interleave: u32,
+    /// Run the geometry-aware filter after interleaved shading.
+    pub denoise: bool,
+    pub diffuse: DiffuseMode,
 }
 
 impl Default for RenderOptions {
@@ -64,6 +79,12 @@ impl Default for RenderOptions {
             vpl_clamp: 0.0,
             visibility: "none".into(),
             capture_rsm: false,
+            kernel: Kernel::Integral,
+            k: 1.0,
+            bisection_steps: 12,
+            interleave: 8,
+            denoise: true,
+            diffuse: DiffuseMode::Papers,
         }
     }
 }
@@ -97,6 +118,15 @@ impl RenderOptions {
         if !(self.vpl_clamp.is_finite() && self.vpl_clamp >= 0.0) {
             return Err(Error::invalid("vpl_clamp", format!("must be finite and >= 0, got {}", self.vpl_clamp)));
         }
+        if !(self.k.is_finite() && self.k > 0.0) {
+            return Err(Error::invalid("K", format!("must be finite and > 0, got {}", self.k)));
+        }
+        if !(1..=32).contains(&self.bisection_steps) {
+            return Err(Error::invalid("bisection_steps", format!("must be in 1..=32, got {}", self.bisection_steps)));
+        }
+        if !(1..=16).contains(&self.interleave) {
+            return Err(Error::invalid("interleave", format!("must be in 1..=16, got {}", self.interleave)));
+        }
         if self.visibility != "none" {
             return Err(Error::invalid("visibility", format!(
                 "only \"none\" is available in this build (virtual lights are unshadowed), got {:?}", self.visibility
@@ -126,6 +156,8 @@ pub struct Frame {
     pub settings: Vec<(String, String)>,
     /// The first light's RSM when `capture_rsm` was set: side and (name, channels, data).
     pub rsm: Option<(u32, Vec<(String, usize, Vec<f32>)>)>,
+    /// The first light's VSGLs (`vsgl`): VSGL_FLOATS floats each, fields in VSGL_FIELDS order.
+    pub vsgls: Option<Vec<f32>>,
 }
 
 impl Frame {
@@ -149,6 +181,11 @@ pub struct Renderer {
     pdf_mips: PdfMipsPass,
     vpl_sample: VplSamplePass,
     vpl_shading: VplShadingPass,
+    vsgl_moments: VsglMomentsPass,
+    moment_mips: MomentMipsPass,
+    vsgl_gen: VsglGenPass,
+    vsgl_shading: VsglShadingPass,
+    denoise: DenoisePass,
 }
 
 fn uniform_buffer(gpu: &Gpu, label: &str, bytes: &[u8]) -> wgpu::Buffer {
@@ -188,6 +225,11 @@ impl Renderer {
                 pdf_mips: PdfMipsPass::new(&gpu)?,
                 vpl_sample: VplSamplePass::new(&gpu)?,
                 vpl_shading: VplShadingPass::new(&gpu)?,
+                vsgl_moments: VsglMomentsPass::new(&gpu)?,
+                moment_mips: MomentMipsPass::new(&gpu)?,
+                vsgl_gen: VsglGenPass::new(&gpu)?,
+                vsgl_shading: VsglShadingPass::new(&gpu)?,
+                denoise: DenoisePass::new(&gpu)?,
             })
         })?;
         Ok(r)
@@ -200,6 +242,13 @@ impl Renderer {
             if n * n * 16 > self.gpu.limits.max_storage_buffer_binding_size as u64 {
                 return Err(Error::invalid("rsm_size", format!(
                     "{n}² texels exceed this adapter's storage binding limit of {} bytes",
+                    self.gpu.limits.max_storage_buffer_binding_size
+                )));
+            }
+            if opts.method == "vsgl" && MomentChains::bytes(n as u32) > self.gpu.limits.max_storage_buffer_binding_size as u64 {
+                return Err(Error::invalid("rsm_size", format!(
+                    "the VSGL moment mips of a {n}² RSM ({} bytes) exceed this adapter's storage binding limit of {} bytes",
+                    MomentChains::bytes(n as u32),
                     self.gpu.limits.max_storage_buffer_binding_size
                 )));
             }
@@ -281,6 +330,14 @@ impl Renderer {
             specular: storage_buffer(gpu, "indirect_specular_buffer", w as u64 * h as u64 * 16),
         };
         let mut captured_rsm: Option<(u32, Vec<(String, usize, Vec<f32>)>)> = None;
+        // VSGLs with interleaving are shaded into `noisy` and filtered into `indirect`.
+        let filter = opts.method == "vsgl" && opts.interleave > 1 && opts.denoise;
+        let noisy = IndirectTargets {
+            diffuse: storage_buffer(gpu, "indirect_noisy_diffuse_buffer", if filter { w as u64 * h as u64 * 16 } else { 16 }),
+            specular: storage_buffer(gpu, "indirect_noisy_specular_buffer", if filter { w as u64 * h as u64 * 16 } else { 16 }),
+        };
+        let mut vsgl_chains: Option<MomentChains> = None;
+        let mut first_vsgls: Option<wgpu::Buffer> = None;
         if opts.method == "direct" {
             skipped.push(("indirect".into(), "method=\"direct\" computes direct light only".into()));
         } else if lights.is_empty() {
@@ -291,7 +348,11 @@ impl Renderer {
             let rsm_vis = VisibilityPass::targets(gpu, n, n);
             let min_distance2 = (opts.vpl_clamp as f64 * extent).powi(2) as f32;
             let reference = opts.method == "reference";
-            let vpl_capacity = if reference { (n as u64 * n as u64).min(1 << 20) } else { opts.num_lights as u64 };
+            let vpl_capacity = match opts.method.as_str() {
+                "reference" => (n as u64 * n as u64).min(1 << 20),
+                "vpl" => opts.num_lights as u64,
+                _ => 1,
+            };
             let vpls = storage_buffer(gpu, "vpl_buffer", vpl_capacity * VPL_BYTES);
             for (i, light) in scene.lights.iter().enumerate() {
                 let view = light_view_uniforms(light, origin, extent, n, gscene.texture_layer_size);
@@ -320,6 +381,27 @@ impl Renderer {
                             gpu.wait("reference batch")?;
                         }
                     }
+                } else if opts.method == "vsgl" {
+                    let chains = vsgl_chains.get_or_insert_with(|| MomentChains::new(gpu, n));
+                    self.pdf_mips.record(gpu, &mut enc, &mut timer, &rsm);
+                    self.vsgl_moments.record(gpu, &mut enc, &mut timer, &rsm, chains);
+                    self.moment_mips.record(gpu, &mut enc, &mut timer, n, chains);
+                    let buf = storage_buffer(gpu, "vsgl_buffer", opts.num_lights as u64 * VSGL_BYTES);
+                    let gen = GenSettings {
+                        count: opts.num_lights,
+                        stratified: opts.sampling == Sampling::Stratified,
+                        seed: opts.seed,
+                        kernel: opts.kernel,
+                        k: opts.k,
+                        bisection_steps: opts.bisection_steps,
+                        light_offset: lights[i].position,
+                    };
+                    self.vsgl_gen.record(gpu, &mut enc, &mut timer, &rsm, chains, &gen, &buf);
+                    let target = if filter { &noisy } else { &indirect };
+                    self.vsgl_shading.record(gpu, &mut enc, &mut timer, &frame_buf, &buf, opts.num_lights, opts.interleave, opts.diffuse, &gbuffer, target, (w, h));
+                    if i == 0 {
+                        first_vsgls = Some(buf);
+                    }
                 } else {
                     self.pdf_mips.record(gpu, &mut enc, &mut timer, &rsm);
                     self.vpl_sample.record_importance(gpu, &mut enc, &mut timer, light_one.as_entire_binding(), &rsm, opts.num_lights, opts.sampling, opts.seed, &vpls);
@@ -345,7 +427,17 @@ impl Renderer {
                 }
             }
             passes.extend(["rsm_visibility", "rsm_material", "rsm_flux"].map(String::from));
-            if reference {
+            if opts.method == "vsgl" {
+                passes.extend(["pdf_mips", "vsgl_moments", "moment_mips", "vsgl_gen", "vsgl_shading"].map(String::from));
+                if filter {
+                    self.denoise.record(gpu, &mut enc, &mut timer, &frame_buf, opts.interleave, &gbuffer, &noisy, &indirect, (w, h));
+                    passes.push("denoise".into());
+                } else if opts.interleave == 1 {
+                    skipped.push(("denoise".into(), "interleave=1: every pixel evaluates every VSGL".into()));
+                } else {
+                    skipped.push(("denoise".into(), "denoise=False".into()));
+                }
+            } else if reference {
                 passes.extend(["vpl_sample[every_texel]", "vpl_shading"].map(String::from));
                 skipped.push(("pdf_mips".into(), "the reference uses every RSM texel, no importance sampling".into()));
             } else {
@@ -357,6 +449,10 @@ impl Renderer {
         timer.resolve(&mut enc);
         gpu.queue.submit([enc.finish()]);
         let read = gpu.read_buffers(&[&direct_out, &gbuffer.base_color, &gbuffer.normal, &gbuffer.position, &indirect.diffuse, &indirect.specular])?;
+        let vsgls = match &first_vsgls {
+            Some(b) => Some(bytemuck::cast_slice::<u8, f32>(&gpu.read_buffers(&[b])?[0]).to_vec()),
+            None => None,
+        };
         let wall_ms = wall.elapsed().as_secs_f64() * 1e3;
         let mut timings = timer.read(gpu)?;
         let clock = if timings.is_empty() {
@@ -404,12 +500,20 @@ impl Renderer {
             settings.push(("visibility".into(), opts.visibility.clone()));
             settings.push(("vpl_clamp".into(), opts.vpl_clamp.to_string()));
         }
-        if opts.method == "vpl" {
+        if opts.method == "vsgl" {
+            settings.push(("kernel".into(), match opts.kernel { Kernel::Density => "density", Kernel::Integral => "integral" }.into()));
+            settings.push(("K".into(), opts.k.to_string()));
+            settings.push(("bisection_steps".into(), opts.bisection_steps.to_string()));
+            settings.push(("interleave".into(), opts.interleave.to_string()));
+            settings.push(("denoise".into(), opts.denoise.to_string()));
+            settings.push(("diffuse".into(), match opts.diffuse { DiffuseMode::Papers => "papers", DiffuseMode::Accurate => "accurate" }.into()));
+        }
+        if opts.method == "vpl" || opts.method == "vsgl" {
             settings.push(("num_lights".into(), opts.num_lights.to_string()));
             settings.push(("sampling".into(), match opts.sampling { Sampling::Stratified => "stratified", Sampling::Random => "random" }.into()));
             settings.push(("seed".into(), opts.seed.to_string()));
         }
-        Ok(Frame { width: w, height: h, aovs, timings_ms: timings, timings_clock: clock.into(), passes, skipped, settings, rsm: captured_rsm })
+        Ok(Frame { width: w, height: h, aovs, timings_ms: timings, timings_clock: clock.into(), passes, skipped, settings, rsm: captured_rsm, vsgls })
     }
 }
 

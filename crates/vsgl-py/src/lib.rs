@@ -12,6 +12,8 @@ use pyo3::types::{PyBytes, PyDict};
 use std::sync::Arc;
 use vsgl_core::scene::{builtin, Camera, Scene, SpotLight};
 use vsgl_core::passes::vpl_sample::Sampling;
+use vsgl_core::passes::vsgl_gen::{Kernel, VSGL_FIELDS, VSGL_FLOATS};
+use vsgl_core::passes::vsgl_shading::DiffuseMode;
 use vsgl_core::{image_io, Frame, RenderOptions, Renderer};
 
 fn vec3(name: &str, v: Vec<f64>) -> PyResult<DVec3> {
@@ -277,6 +279,27 @@ impl PyFrame {
     fn aovs(&self) -> Vec<String> {
         self.inner.aov_names()
     }
+    /// The first light's VSGLs (`method="vsgl"`) as a NumPy structured array with fields
+    /// mean (relative to the camera), variance, diffuse_axis, diffuse_sharpness, diffuse_power
+    /// (rgb, W), level, specular_axis, specular_sharpness, specular_power, pdf.
+    fn vsgls<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyAny>> {
+        let Some(data) = &self.inner.vsgls else {
+            return Err(PyValueError::new_err("this frame has no VSGLs; render with method=\"vsgl\" and a spot light"));
+        };
+        let np = py.import("numpy")?;
+        let fields = pyo3::types::PyList::empty(py);
+        for (name, n) in VSGL_FIELDS {
+            if *n == 1 {
+                fields.append((*name, "<f4"))?;
+            } else {
+                fields.append((*name, "<f4", (*n,)))?;
+            }
+        }
+        let dtype = np.call_method1("dtype", (fields,))?;
+        let flat = PyArray1::from_slice(py, data).reshape([data.len() / VSGL_FLOATS, VSGL_FLOATS])?;
+        let structured = flat.call_method1("view", (dtype,))?;
+        structured.call_method1("reshape", (data.len() / VSGL_FLOATS,))
+    }
     /// One buffer of the first light's reflective shadow map, (N, N, C) float32, when the
     /// frame was rendered with `capture_rsm=True`: position (relative to the light), normal,
     /// roughness, flux_diffuse (Φ·R_d), flux_specular (Φ·R_s), weight (Φ·(R_d+R_s) summed).
@@ -411,7 +434,7 @@ impl PyRenderer {
     /// `vpl_clamp` = minimum VPL distance as a fraction of the scene size, 0 = unbiased);
     /// "reference" (every texel of an `rsm_size`² RSM as a VPL, default 1024²).
     /// `capture_rsm=True` keeps the first light's RSM for `Frame.rsm(name)`.
-    #[pyo3(signature = (scene, camera=None, method="direct", *, shadow_size=1024, plan="auto", num_lights=256, rsm_size=None, sampling="stratified", seed=0, vpl_clamp=0.0, visibility="none", capture_rsm=false))]
+    #[pyo3(signature = (scene, camera=None, method="direct", *, shadow_size=1024, plan="auto", num_lights=256, rsm_size=None, sampling="stratified", seed=0, vpl_clamp=0.0, visibility="none", capture_rsm=false, kernel="integral", K=1.0, bisection_steps=12, interleave=8, denoise=true, diffuse="papers"))]
     #[allow(clippy::too_many_arguments)]
     fn render(
         &self,
@@ -428,6 +451,12 @@ impl PyRenderer {
         vpl_clamp: f64,
         visibility: &str,
         capture_rsm: bool,
+        kernel: &str,
+        #[allow(non_snake_case)] K: f64,
+        bisection_steps: i64,
+        interleave: i64,
+        denoise: bool,
+        diffuse: &str,
     ) -> PyResult<PyFrame> {
         let in_u32 = |name: &str, v: i64, lo: i64, hi: i64| -> PyResult<u32> {
             if (lo..=hi).contains(&v) { Ok(v as u32) } else { Err(PyValueError::new_err(format!("{name}: must be in {lo}..={hi}, got {v}"))) }
@@ -436,6 +465,16 @@ impl PyRenderer {
             "stratified" => Sampling::Stratified,
             "random" => Sampling::Random,
             other => return Err(PyValueError::new_err(format!("sampling: must be \"stratified\" or \"random\", got {other:?}"))),
+        };
+        let kernel = match kernel {
+            "integral" => Kernel::Integral,
+            "density" => Kernel::Density,
+            other => return Err(PyValueError::new_err(format!("kernel: must be \"integral\" or \"density\", got {other:?}"))),
+        };
+        let diffuse = match diffuse {
+            "papers" => DiffuseMode::Papers,
+            "accurate" => DiffuseMode::Accurate,
+            other => return Err(PyValueError::new_err(format!("diffuse: must be \"papers\" or \"accurate\", got {other:?}"))),
         };
         let opts = RenderOptions {
             method: method.into(),
@@ -448,6 +487,12 @@ impl PyRenderer {
             vpl_clamp: finite("vpl_clamp", vpl_clamp)? as f32,
             visibility: visibility.into(),
             capture_rsm,
+            kernel,
+            k: finite("K", K)? as f32,
+            bisection_steps: in_u32("bisection_steps", bisection_steps, 1, 32)?,
+            interleave: in_u32("interleave", interleave, 1, 16)?,
+            denoise,
+            diffuse,
         };
         let s: &Scene = &scene.inner;
         let cam = camera.map(|c| c.inner);

@@ -1,14 +1,19 @@
 //! One GPU pass per module. Each owns its pipeline(s) and records itself into an encoder;
 //! `crate::renderer` wires them top to bottom.
 
+pub mod denoise;
 pub mod direct;
 pub mod material;
+pub mod moment_mips;
 pub mod pdf_mips;
 pub mod rsm_flux;
 pub mod shadow_map;
 pub mod visibility;
 pub mod vpl_sample;
 pub mod vpl_shading;
+pub mod vsgl_gen;
+pub mod vsgl_moments;
+pub mod vsgl_shading;
 
 use crate::gpu::{Gpu, PassTimer};
 

@@ -1,0 +1,50 @@
+//! Mip levels of the VSGL moment chains (compute): 2×2 averages, level by level.
+
+use super::run_compute;
+use crate::error::Result;
+use crate::gpu::{groups, Gpu, PassTimer};
+use crate::passes::vsgl_moments::MomentChains;
+use wgpu::util::DeviceExt;
+
+const WORKGROUP: u32 = 8;
+
+#[repr(C)]
+#[derive(Clone, Copy, bytemuck::Pod, bytemuck::Zeroable)]
+struct LevelRaw {
+    src_offset: u32,
+    dst_offset: u32,
+    dst_size: u32,
+    chain_len: u32,
+}
+
+pub struct MomentMipsPass {
+    pipeline: wgpu::ComputePipeline,
+}
+
+impl MomentMipsPass {
+    pub fn new(gpu: &Gpu) -> Result<Self> {
+        let module = gpu.shader("passes/moment_mips.wgsl")?;
+        Ok(Self { pipeline: gpu.compute_pipeline("moment_mips_pipeline", &module, "main") })
+    }
+
+    pub fn record(&self, gpu: &Gpu, enc: &mut wgpu::CommandEncoder, timer: &mut PassTimer, rsm_size: u32, chains: &MomentChains) {
+        let (offsets, _) = super::pdf_mips::pyramid_layout(rsm_size);
+        for level in 1..offsets.len() {
+            let dst_size = rsm_size >> level;
+            let uniform = gpu.device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
+                label: Some("moment_mips_level_uniform_buffer"),
+                contents: bytemuck::bytes_of(&LevelRaw { src_offset: offsets[level - 1], dst_offset: offsets[level], dst_size, chain_len: chains.chain_len }),
+                usage: wgpu::BufferUsages::UNIFORM,
+            });
+            run_compute(
+                gpu,
+                enc,
+                timer,
+                "moment_mips",
+                &self.pipeline,
+                &[&[uniform.as_entire_binding(), chains.buffer.as_entire_binding()]],
+                (groups(dst_size, WORKGROUP), groups(dst_size, WORKGROUP), 1),
+            );
+        }
+    }
+}

@@ -1,0 +1,112 @@
+//! VSGL generation (compute): filtered importance sampling of the mipmapped RSM, with the
+//! 2015 density kernel or the 2016 bisection ("integral") kernel.
+
+use super::run_compute;
+use crate::error::Result;
+use crate::gpu::{groups, Gpu, PassTimer};
+use crate::passes::rsm_flux::Rsm;
+use crate::passes::vsgl_moments::MomentChains;
+use wgpu::util::DeviceExt;
+
+const WORKGROUP: u32 = 64;
+
+/// GPU twin of `VsglRaw` in `wgsl/common/vsgl_record.wgsl` (80 bytes = 20 f32).
+pub const VSGL_FLOATS: usize = 20;
+pub const VSGL_BYTES: u64 = 80;
+
+/// Field names and widths of a VSGL record, in order (for `Frame.vsgls()`).
+pub const VSGL_FIELDS: &[(&str, usize)] = &[
+    ("mean", 3),
+    ("variance", 1),
+    ("diffuse_axis", 3),
+    ("diffuse_sharpness", 1),
+    ("diffuse_power", 3),
+    ("level", 1),
+    ("specular_axis", 3),
+    ("specular_sharpness", 1),
+    ("specular_power", 3),
+    ("pdf", 1),
+];
+
+/// Kernel size rule.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Kernel {
+    /// 2015: l = l_max − ½ log2(N p(s)).
+    Density,
+    /// 2016: (4^l/M) p̄(s, l) = K/N by bisection.
+    Integral,
+}
+
+#[repr(C)]
+#[derive(Clone, Copy, bytemuck::Pod, bytemuck::Zeroable)]
+struct GenParamsRaw {
+    count: u32,
+    levels: u32,
+    rsm_size: u32,
+    stratified: u32,
+    seed: u32,
+    kernel: u32,
+    bisection_steps: u32,
+    chain_len: u32,
+    light_offset: [f32; 3],
+    k: f32,
+}
+
+/// What one generation dispatch needs besides the RSM.
+#[derive(Clone, Copy, Debug)]
+pub struct GenSettings {
+    pub count: u32,
+    pub stratified: bool,
+    pub seed: u32,
+    pub kernel: Kernel,
+    pub k: f32,
+    pub bisection_steps: u32,
+    pub light_offset: [f32; 3],
+}
+
+pub struct VsglGenPass {
+    pipeline: wgpu::ComputePipeline,
+}
+
+impl VsglGenPass {
+    pub fn new(gpu: &Gpu) -> Result<Self> {
+        let module = gpu.shader("passes/vsgl_gen.wgsl")?;
+        Ok(Self { pipeline: gpu.compute_pipeline("vsgl_gen_pipeline", &module, "main") })
+    }
+
+    #[allow(clippy::too_many_arguments)]
+    pub fn record(&self, gpu: &Gpu, enc: &mut wgpu::CommandEncoder, timer: &mut PassTimer, rsm: &Rsm, chains: &MomentChains, s: &GenSettings, out: &wgpu::Buffer) {
+        let params = GenParamsRaw {
+            count: s.count,
+            levels: rsm.levels,
+            rsm_size: rsm.size,
+            stratified: s.stratified as u32,
+            seed: s.seed,
+            kernel: match s.kernel { Kernel::Density => 0, Kernel::Integral => 1 },
+            bisection_steps: s.bisection_steps,
+            chain_len: chains.chain_len,
+            light_offset: s.light_offset,
+            k: s.k,
+        };
+        let uniform = gpu.device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
+            label: Some("vsgl_gen_params_uniform_buffer"),
+            contents: bytemuck::bytes_of(&params),
+            usage: wgpu::BufferUsages::UNIFORM,
+        });
+        run_compute(
+            gpu,
+            enc,
+            timer,
+            "vsgl_gen",
+            &self.pipeline,
+            &[&[
+                uniform.as_entire_binding(),
+                rsm.pyramid.as_entire_binding(),
+                rsm.level_offsets.as_entire_binding(),
+                chains.buffer.as_entire_binding(),
+                out.as_entire_binding(),
+            ]],
+            (groups(s.count, WORKGROUP), 1, 1),
+        );
+    }
+}

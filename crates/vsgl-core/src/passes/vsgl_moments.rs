@@ -1,0 +1,73 @@
+//! The papers' additional RSM buffers (compute): per-texel VSGL moments, level 0 of five mip
+//! chains (layout in `wgsl/passes/vsgl_moments.wgsl`).
+
+use super::{run_compute, storage_buffer};
+use crate::error::Result;
+use crate::gpu::{groups, Gpu, PassTimer};
+use crate::passes::rsm_flux::Rsm;
+use wgpu::util::DeviceExt;
+
+const WORKGROUP: u32 = 8;
+/// A, B, C, D, E of the shader.
+pub const CHAINS: u64 = 5;
+
+/// The five moment mip chains in one buffer (chain c at c·chain_len vec4s).
+pub struct MomentChains {
+    pub buffer: wgpu::Buffer,
+    pub chain_len: u32,
+}
+
+impl MomentChains {
+    pub fn new(gpu: &Gpu, rsm_size: u32) -> Self {
+        let (_, chain_len) = super::pdf_mips::pyramid_layout(rsm_size);
+        Self { buffer: storage_buffer(gpu, "vsgl_moment_chain_buffer", CHAINS * chain_len as u64 * 16), chain_len }
+    }
+
+    /// Bytes needed for an RSM of side `rsm_size`.
+    pub fn bytes(rsm_size: u32) -> u64 {
+        CHAINS * super::pdf_mips::pyramid_layout(rsm_size).1 as u64 * 16
+    }
+}
+
+#[repr(C)]
+#[derive(Clone, Copy, bytemuck::Pod, bytemuck::Zeroable)]
+struct MomentParamsRaw {
+    rsm_size: u32,
+    chain_len: u32,
+    _pad: [u32; 2],
+}
+
+pub struct VsglMomentsPass {
+    pipeline: wgpu::ComputePipeline,
+}
+
+impl VsglMomentsPass {
+    pub fn new(gpu: &Gpu) -> Result<Self> {
+        let module = gpu.shader("passes/vsgl_moments.wgsl")?;
+        Ok(Self { pipeline: gpu.compute_pipeline("vsgl_moments_pipeline", &module, "main") })
+    }
+
+    pub fn record(&self, gpu: &Gpu, enc: &mut wgpu::CommandEncoder, timer: &mut PassTimer, rsm: &Rsm, chains: &MomentChains) {
+        let uniform = gpu.device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
+            label: Some("vsgl_moments_params_uniform_buffer"),
+            contents: bytemuck::bytes_of(&MomentParamsRaw { rsm_size: rsm.size, chain_len: chains.chain_len, _pad: [0; 2] }),
+            usage: wgpu::BufferUsages::UNIFORM,
+        });
+        run_compute(
+            gpu,
+            enc,
+            timer,
+            "vsgl_moments",
+            &self.pipeline,
+            &[&[
+                uniform.as_entire_binding(),
+                rsm.gbuffer.position.as_entire_binding(),
+                rsm.gbuffer.normal.as_entire_binding(),
+                rsm.flux_diffuse.as_entire_binding(),
+                rsm.flux_specular.as_entire_binding(),
+                chains.buffer.as_entire_binding(),
+            ]],
+            (groups(rsm.size, WORKGROUP), groups(rsm.size, WORKGROUP), 1),
+        );
+    }
+}

@@ -1,0 +1,83 @@
+//! VSGL shading (compute): SG incoming radiance, diffuse and SG–ASG specular, interleaved.
+
+use super::run_compute;
+use crate::error::Result;
+use crate::gpu::{groups, Gpu, PassTimer};
+use crate::passes::material::GBuffer;
+use crate::passes::vpl_shading::IndirectTargets;
+use wgpu::util::DeviceExt;
+
+const WORKGROUP: u32 = 8;
+
+#[repr(C)]
+#[derive(Clone, Copy, bytemuck::Pod, bytemuck::Zeroable)]
+struct ShadeParamsRaw {
+    count: u32,
+    interleave: u32,
+    diffuse_mode: u32,
+    _pad: u32,
+}
+
+/// Diffuse shading form.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum DiffuseMode {
+    /// The papers' cosine-pulled-out form with A(λ) ≈ 2π/λ.
+    Papers,
+    /// The clamped cosine kept inside the integral (no light from below the horizon).
+    Accurate,
+}
+
+pub struct VsglShadingPass {
+    pipeline: wgpu::ComputePipeline,
+}
+
+impl VsglShadingPass {
+    pub fn new(gpu: &Gpu) -> Result<Self> {
+        let module = gpu.shader("passes/vsgl_shading.wgsl")?;
+        Ok(Self { pipeline: gpu.compute_pipeline("vsgl_shading_pipeline", &module, "main") })
+    }
+
+    #[allow(clippy::too_many_arguments)]
+    pub fn record(
+        &self,
+        gpu: &Gpu,
+        enc: &mut wgpu::CommandEncoder,
+        timer: &mut PassTimer,
+        frame: &wgpu::Buffer,
+        vsgls: &wgpu::Buffer,
+        count: u32,
+        interleave: u32,
+        diffuse: DiffuseMode,
+        gbuffer: &GBuffer,
+        out: &IndirectTargets,
+        size: (u32, u32),
+    ) {
+        let params = ShadeParamsRaw { count, interleave, diffuse_mode: (diffuse == DiffuseMode::Accurate) as u32, _pad: 0 };
+        let uniform = gpu.device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
+            label: Some("vsgl_shading_params_uniform_buffer"),
+            contents: bytemuck::bytes_of(&params),
+            usage: wgpu::BufferUsages::UNIFORM,
+        });
+        run_compute(
+            gpu,
+            enc,
+            timer,
+            "vsgl_shading",
+            &self.pipeline,
+            &[
+                &[frame.as_entire_binding()],
+                &[
+                    uniform.as_entire_binding(),
+                    vsgls.as_entire_binding(),
+                    gbuffer.position.as_entire_binding(),
+                    gbuffer.normal.as_entire_binding(),
+                    gbuffer.geo_normal.as_entire_binding(),
+                    gbuffer.base_color.as_entire_binding(),
+                    out.diffuse.as_entire_binding(),
+                    out.specular.as_entire_binding(),
+                ],
+            ],
+            (groups(size.0, WORKGROUP), groups(size.1, WORKGROUP), 1),
+        );
+    }
+}

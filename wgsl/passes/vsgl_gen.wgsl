@@ -1,0 +1,146 @@
+// VSGL generation by filtered importance sampling of the mipmapped RSM (compute), one thread per
+// VSGL [Tok15 §4.2; Tok16 §3–4, Algorithm 1]:
+//  1. kernel centre x_i ∝ p by hierarchical sample warping (stratified: Fibonacci lattice);
+//  2. kernel level l_i:
+//     "density"  [Tok15 §4.2]: l = l_top − ½ log2(N p(x_i)),
+//     "integral" [Tok16 Eq. 3, Algorithm 1]: solve (4^l/M) p̄(x_i, l) = K/N by bisection;
+//  3. cluster totals of every moment f from the mips read trilinearly at (x_i, l_i):
+//     "density"  [Tok16 Eq. 4]: ∫f g ≈ f̄(x_i, l_i) / max(N p(x_i), 1),
+//     "integral" [Tok16 Eq. 5]: ∫f g ≈ f̄(x_i, l_i) / (N p̄(x_i, l_i)),
+//     with f̄, p̄ in density units on the unit square (M × the texel average);
+//  4. the VSGL from the moments [Tok15 §3.1; Tok16s §3]: Toksvig-merged lobes and the
+//     positional Gaussian (vsgl.wgsl).
+#include "common/constants.wgsl"
+#include "common/math.wgsl"
+#include "common/sg.wgsl"
+#include "common/vsgl.wgsl"
+#include "common/vsgl_record.wgsl"
+#include "common/rsm_warp.wgsl"
+
+struct GenParams {
+    count: u32,
+    levels: u32,
+    rsm_size: u32,
+    stratified: u32,
+    seed: u32,
+    // 0 = density (2015), 1 = integral (2016 bisection).
+    kernel: u32,
+    bisection_steps: u32,
+    chain_len: u32,
+    // Light position relative to the frame origin: moments are relative to the light.
+    light_offset: vec3f,
+    // K of [Tok16 §4.2] (kernel size trade-off).
+    k: f32,
+}
+
+const WORKGROUP: u32 = 64u;
+
+@group(0) @binding(0) var<uniform> params: GenParams;
+@group(0) @binding(1) var<storage, read> pyramid: array<f32>;
+@group(0) @binding(2) var<storage, read> level_offsets: array<u32>;
+@group(0) @binding(3) var<storage, read> moments: array<vec4f>;
+@group(0) @binding(4) var<storage, read_write> vsgls: array<VsglRaw>;
+
+fn moment_texel(chain: u32, level: u32, xy: vec2i) -> vec4f {
+    let side = i32(params.rsm_size >> level);
+    let c = clamp(xy, vec2i(0), vec2i(side - 1));
+    return moments[chain * params.chain_len + level_offsets[level] + u32(c.y * side + c.x)];
+}
+
+// Bilinear read of level `level` at a continuous level-0 position `s` (texel units).
+fn moment_bilinear(chain: u32, level: u32, s: vec2f) -> vec4f {
+    let coord = s / f32(1u << level) - 0.5;
+    let base = floor(coord);
+    let f = coord - base;
+    let i = vec2i(base);
+    let a = mix(moment_texel(chain, level, i), moment_texel(chain, level, i + vec2i(1, 0)), f.x);
+    let b = mix(moment_texel(chain, level, i + vec2i(0, 1)), moment_texel(chain, level, i + vec2i(1, 1)), f.x);
+    return mix(a, b, f.y);
+}
+
+// Trilinear read at a fractional level in [0, levels − 1].
+fn moment_trilinear(chain: u32, s: vec2f, level: f32) -> vec4f {
+    let top = params.levels - 1u;
+    let l0 = min(u32(floor(level)), top);
+    let l1 = min(l0 + 1u, top);
+    let t = clamp(level - f32(l0), 0.0, 1.0);
+    return mix(moment_bilinear(chain, l0, s), moment_bilinear(chain, l1, s), t);
+}
+
+// Probability mass of the kernel at level l: (4^l/M)·p̄(x, l) = 4^l·w̄(x, l)/W with w̄ the texel
+// average of the weight at that level and W the total weight.
+fn kernel_mass(s: vec2f, level: f32, total: f32) -> f32 {
+    return exp2(2.0 * level) * moment_trilinear(0u, s, level).w / total;
+}
+
+@compute @workgroup_size(WORKGROUP, 1, 1)
+fn main(@builtin(global_invocation_id) gid: vec3u) {
+    let i = gid.x;
+    if (i >= params.count) {
+        return;
+    }
+    let n = f32(params.count);
+    let m = f32(params.rsm_size * params.rsm_size);
+    let top = f32(params.levels - 1u);
+    let total = pyramid[level_offsets[params.levels - 1u]];
+    var out: VsglRaw;
+    if (!(total > 0.0)) {
+        // Nothing lit: every VSGL carries no power.
+        out.diffuse_axis = vec3f(0.0, 0.0, 1.0);
+        out.specular_axis = vec3f(0.0, 0.0, 1.0);
+        vsgls[i] = out;
+        return;
+    }
+    let warped = warp_descend(warp_sample_point(i, params.count, params.stratified == 1u, params.seed), params.rsm_size, params.levels);
+    let s = vec2f(warped.texel) + warped.offset;
+    let w_texel = pyramid[warped.texel.y * params.rsm_size + warped.texel.x];
+    // Density of the centre on the unit square: p = M·w(texel)/W.
+    let p = m * w_texel / total;
+
+    var level: f32;
+    if (params.kernel == 0u) {
+        level = clamp(top - 0.5 * log2(max(n * p, FLT_MIN)), 0.0, top);
+    } else {
+        // [Tok16 Algorithm 1]: the mass grows with l, so bisect on it.
+        let target_mass = params.k / n;
+        var lo = 0.0;
+        var hi = top;
+        for (var k = 0u; k < params.bisection_steps; k++) {
+            let mid = 0.5 * (lo + hi);
+            if (kernel_mass(s, mid, total) < target_mass) {
+                lo = mid;
+            } else {
+                hi = mid;
+            }
+        }
+        level = 0.5 * (lo + hi);
+    }
+
+    let a = moment_trilinear(0u, s, level);
+    let b = moment_trilinear(1u, s, level);
+    let c = moment_trilinear(2u, s, level);
+    let d = moment_trilinear(3u, s, level);
+    let e = moment_trilinear(4u, s, level);
+    // Cluster total of a texel-averaged moment f̄_texel: Eq. 5 gives W·f̄/(N·w̄); Eq. 4 gives
+    // M·f̄/max(N p, 1).
+    var scale: f32;
+    if (params.kernel == 0u) {
+        scale = m / max(n * p, 1.0);
+    } else {
+        scale = select(0.0, total / (n * a.w), a.w > 0.0);
+    }
+    let lobe_d = sg_from_toksvig_mean_direction(c.xyz / max(b.w, FLT_MIN));
+    let lobe_s = sg_from_toksvig_mean_direction(d.xyz / max(c.w, FLT_MIN));
+    let position = vsgl_position_from_moments(a.w, e.xyz, d.w);
+    out.mean = position.mean + params.light_offset;
+    out.variance = position.variance;
+    out.diffuse_axis = lobe_d.axis;
+    out.diffuse_sharpness = lobe_d.sharpness;
+    out.diffuse_power = min(a.rgb * scale, vec3f(FLT_MAX));
+    out.level = level;
+    out.specular_axis = lobe_s.axis;
+    out.specular_sharpness = lobe_s.sharpness;
+    out.specular_power = min(b.rgb * scale, vec3f(FLT_MAX));
+    out.pdf = p;
+    vsgls[i] = out;
+}
