@@ -1,4 +1,4 @@
-// The VSGL as stored between generation and shading (80 bytes; twin `VsglRaw` in
+// The VSGL as stored between generation and shading (96 bytes; twin `VsglRaw` in
 // crates/vsgl-core/src/passes/vsgl_gen.rs, read by `Frame.vsgls()`).
 struct VsglRaw {
     // Positional Gaussian: mean relative to the frame origin (the camera), variance σ².
@@ -16,4 +16,9 @@ struct VsglRaw {
     specular_power: vec3f,
     // Sampling density p(s) of the kernel centre on the unit RSM square (diagnostics).
     pdf: f32,
+    // Kernel centre s in level-0 RSM texel units, and the kernel's probability mass
+    // (4^l/M)·p̄(s, l) at the chosen level (what the integral kernel's bisection solves for).
+    center: vec2f,
+    mass: f32,
+    _pad: f32,
 }

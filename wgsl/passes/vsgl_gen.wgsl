@@ -142,5 +142,7 @@ fn main(@builtin(global_invocation_id) gid: vec3u) {
     out.specular_sharpness = lobe_s.sharpness;
     out.specular_power = min(b.rgb * scale, vec3f(FLT_MAX));
     out.pdf = p;
+    out.center = s;
+    out.mass = kernel_mass(s, level, total);
     vsgls[i] = out;
 }

@@ -281,7 +281,8 @@ impl PyFrame {
     }
     /// The first light's VSGLs (`method="vsgl"`) as a NumPy structured array with fields
     /// mean (relative to the camera), variance, diffuse_axis, diffuse_sharpness, diffuse_power
-    /// (rgb, W), level, specular_axis, specular_sharpness, specular_power, pdf.
+    /// (rgb, W), level, specular_axis, specular_sharpness, specular_power, pdf, center (kernel
+    /// centre in RSM texels), mass (the kernel's probability mass (4^l/M)·p̄), _pad.
     fn vsgls<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyAny>> {
         let Some(data) = &self.inner.vsgls else {
             return Err(PyValueError::new_err("this frame has no VSGLs; render with method=\"vsgl\" and a spot light"));
@@ -434,7 +435,7 @@ impl PyRenderer {
     /// `vpl_clamp` = minimum VPL distance as a fraction of the scene size, 0 = unbiased);
     /// "reference" (every texel of an `rsm_size`² RSM as a VPL, default 1024²).
     /// `capture_rsm=True` keeps the first light's RSM for `Frame.rsm(name)`.
-    #[pyo3(signature = (scene, camera=None, method="direct", *, shadow_size=1024, plan="auto", num_lights=256, rsm_size=None, sampling="stratified", seed=0, vpl_clamp=0.0, visibility="none", capture_rsm=false, kernel="integral", K=1.0, bisection_steps=12, interleave=8, denoise=true, diffuse="papers"))]
+    #[pyo3(signature = (scene, camera=None, method="direct", *, shadow_size=1024, plan="auto", num_lights=256, rsm_size=None, sampling="stratified", seed=0, vpl_clamp=0.0, visibility="none", capture_rsm=false, spp=64, kernel="integral", K=1.0, bisection_steps=12, interleave=8, denoise=true, diffuse="papers"))]
     #[allow(clippy::too_many_arguments)]
     fn render(
         &self,
@@ -451,6 +452,7 @@ impl PyRenderer {
         vpl_clamp: f64,
         visibility: &str,
         capture_rsm: bool,
+        spp: i64,
         kernel: &str,
         #[allow(non_snake_case)] K: f64,
         bisection_steps: i64,
@@ -487,6 +489,7 @@ impl PyRenderer {
             vpl_clamp: finite("vpl_clamp", vpl_clamp)? as f32,
             visibility: visibility.into(),
             capture_rsm,
+            spp: in_u32("spp", spp, 1, 1 << 16)?,
             kernel,
             k: finite("K", K)? as f32,
             bisection_steps: in_u32("bisection_steps", bisection_steps, 1, 32)?,

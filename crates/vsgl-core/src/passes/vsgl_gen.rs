@@ -10,9 +10,9 @@ use wgpu::util::DeviceExt;
 
 const WORKGROUP: u32 = 64;
 
-/// GPU twin of `VsglRaw` in `wgsl/common/vsgl_record.wgsl` (80 bytes = 20 f32).
-pub const VSGL_FLOATS: usize = 20;
-pub const VSGL_BYTES: u64 = 80;
+/// GPU twin of `VsglRaw` in `wgsl/common/vsgl_record.wgsl` (96 bytes = 24 f32).
+pub const VSGL_FLOATS: usize = 24;
+pub const VSGL_BYTES: u64 = 96;
 
 /// Field names and widths of a VSGL record, in order (for `Frame.vsgls()`).
 pub const VSGL_FIELDS: &[(&str, usize)] = &[
@@ -26,7 +26,19 @@ pub const VSGL_FIELDS: &[(&str, usize)] = &[
     ("specular_sharpness", 1),
     ("specular_power", 3),
     ("pdf", 1),
+    ("center", 2),
+    ("mass", 1),
+    ("_pad", 1),
 ];
+const _: () = {
+    let mut total = 0;
+    let mut i = 0;
+    while i < VSGL_FIELDS.len() {
+        total += VSGL_FIELDS[i].1;
+        i += 1;
+    }
+    assert!(total == VSGL_FLOATS);
+};
 
 /// Kernel size rule.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
