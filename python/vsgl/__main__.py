@@ -28,7 +28,14 @@ def _render(args: argparse.Namespace) -> int:
     t0 = time.perf_counter()
     renderer = vsgl.Renderer(width=width, height=height, adapter=args.adapter)
     t1 = time.perf_counter()
-    frame = renderer.render(scene, method=args.method, shadow_size=args.shadow_size, plan=args.plan)
+    options = dict(shadow_size=args.shadow_size, plan=args.plan)
+    if args.method in ("vpl", "vsgl"):
+        options.update(num_lights=args.lights, seed=args.seed)
+    if args.method in ("vpl", "vsgl", "reference") and args.rsm_size:
+        options.update(rsm_size=args.rsm_size)
+    if args.method == "vsgl":
+        options.update(kernel=args.kernel, interleave=args.interleave)
+    frame = renderer.render(scene, method=args.method, **options)
     t2 = time.perf_counter()
     frame.save(args.output, exposure=args.exposure)
     image = frame.image
@@ -46,8 +53,17 @@ def _render(args: argparse.Namespace) -> int:
     print(f"wall      device+pipelines {1e3 * (t1 - t0):.1f} ms, render+readback {1e3 * (t2 - t1):.1f} ms")
     finite = bool(np.isfinite(image).all())
     print(f"image     mean radiance {float(image.mean()):.6g}, max {float(image.max()):.6g}, finite: {finite}")
-    # Error against a reference needs method="reference", which a later milestone adds.
-    print("error     n/a: no reference method in this build yet (see docs/status.md)")
+    if args.method in ("vpl", "vsgl") and not args.no_error:
+        t3 = time.perf_counter()
+        ref = renderer.render(scene, method="reference", rsm_size=args.reference_rsm, shadow_size=args.shadow_size)
+        t4 = time.perf_counter()
+        for aov in ("indirect", "image"):
+            a, b = frame.aov(aov).astype(np.float64), ref.aov(aov).astype(np.float64)
+            rmse = float(np.sqrt(np.mean((a - b) ** 2)))
+            rel = rmse / max(float(np.sqrt(np.mean(b**2))), 1e-30)
+            print(f"error     {aov:<9} RMSE {rmse:.6g} (relative {rel:.4f}) vs reference ({args.reference_rsm}² RSM, {1e3 * (t4 - t3):.0f} ms)")
+    else:
+        print("error     n/a for this method (error is measured for vpl and vsgl against reference)")
     print(f"wrote     {args.output}")
     return 0 if finite else 1
 
@@ -79,8 +95,15 @@ def main(argv: list[str] | None = None) -> int:
     render = sub.add_parser("render", help="render a scene to an image and print timings")
     render.add_argument("scene", nargs="?", default="cornell_box", help="built-in scene name or .gltf/.glb path (default: cornell_box)")
     render.add_argument("-o", "--output", default="out.png", help="output image, .png or .npy (default: out.png)")
-    render.add_argument("--size", type=_size, default=(640, 360), help="WIDTHxHEIGHT (default: 640x360)")
-    render.add_argument("--method", default="direct", help="rendering method (default: direct)")
+    render.add_argument("--size", type=_size, default=(320, 180), help="WIDTHxHEIGHT (default: 320x180)")
+    render.add_argument("--method", default="vsgl", help="direct, vpl, vsgl or reference (default: vsgl)")
+    render.add_argument("--lights", type=int, default=1024, help="VPLs or VSGLs per spot light (default: 1024)")
+    render.add_argument("--rsm-size", type=int, default=None, help="RSM side, power of two (default: 256; reference 1024)")
+    render.add_argument("--kernel", default="integral", choices=["integral", "density"], help="VSGL kernel size rule (default: integral)")
+    render.add_argument("--interleave", type=int, default=8, help="VSGL interleaving tile side (default: 8)")
+    render.add_argument("--seed", type=int, default=0, help="sampling seed (default: 0)")
+    render.add_argument("--reference-rsm", type=int, default=128, help="RSM side of the reference the error is measured against (default: 128; the library default 1024 takes minutes on a CPU adapter)")
+    render.add_argument("--no-error", action="store_true", help="skip rendering the reference and the error report")
     render.add_argument("--shadow-size", type=int, default=1024, help="shadow map side (default: 1024)")
     render.add_argument("--plan", default="auto", choices=["auto", "full"], help="leave out unneeded passes (auto) or run all (full)")
     render.add_argument("--exposure", type=float, default=1.0, help="PNG exposure multiplier (default: 1)")
