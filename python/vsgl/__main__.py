@@ -114,10 +114,22 @@ def main(argv: list[str] | None = None) -> int:
     adapters = sub.add_parser("adapters", help="list the adapters wgpu sees")
     adapters.set_defaults(run=_adapters)
 
-    for name, what in [("bench", "error against run time"), ("stability", "the numerical stability suite")]:
+    # `bench` has its own parser (vsgl.bench.main); it is listed here for --help.
+    sub.add_parser("bench", help="error against run time: sweep methods and settings, write CSV/JSON/plots", add_help=False)
+
+    for name, what in [("stability", "the numerical stability suite")]:
         p = sub.add_parser(name, help=f"{what} (not in this build yet)")
         p.set_defaults(run=lambda _a, n=name: (print(f"`python -m vsgl {n}` is not in this build yet; see docs/status.md", file=sys.stderr), 2)[1])
 
+    argv = sys.argv[1:] if argv is None else argv
+    if argv[:1] == ["bench"]:
+        from vsgl import bench as bench_module
+
+        try:
+            return bench_module.main(argv[1:])
+        except ValueError as e:
+            print(f"error: {e}", file=sys.stderr)
+            return 2
     args = parser.parse_args(argv)
     try:
         return args.run(args)

@@ -1,0 +1,79 @@
+"""The error-against-run-time benchmark and its metrics."""
+
+from __future__ import annotations
+
+import csv
+import json
+import math
+import subprocess
+import sys
+
+import numpy as np
+import pytest
+
+from vsgl import bench, metrics
+
+
+def test_metrics_match_their_definitions():
+    rng = np.random.default_rng(3)
+    ref = rng.random((5, 7, 3))
+    x = ref + rng.normal(0, 0.1, ref.shape)
+    assert metrics.rmse(x, ref) == pytest.approx(math.sqrt(np.sum((x - ref) ** 2) / x.size))
+    eps = 1e-2 * np.mean(ref**2)
+    assert metrics.relmse(x, ref) == pytest.approx(np.mean((x - ref) ** 2 / (ref**2 + eps)))
+    assert metrics.relmse(x, ref, eps=0.5) == pytest.approx(np.mean((x - ref) ** 2 / (ref**2 + 0.5)))
+    assert metrics.rmse(ref, ref) == 0.0
+    # A known case by hand: errors 0, 3, 4 → RMSE sqrt(25/3).
+    assert metrics.rmse(np.array([1.0, 5.0, 6.0]), np.array([1.0, 2.0, 2.0])) == pytest.approx(math.sqrt(25 / 3))
+    with pytest.raises(ValueError, match="shape"):
+        metrics.rmse(np.zeros(3), np.zeros(4))
+
+
+def test_small_sweep_writes_files_and_has_sane_numbers(tmp_path, renderer):
+    report = bench.run(
+        scenes=["cornell_box"],
+        methods=["vpl", "vsgl", "reference"],
+        lights=[8, 512],
+        size=(48, 32),
+        rsm_sizes=[64],
+        seeds=(0, 1, 2, 3),
+        frames=2,
+        reference_rsm=64,
+        out=tmp_path,
+        progress=False,
+    )
+    for name in ("bench.csv", "bench.json", "bench.txt", "error_vs_time.png", "error_vs_lights.png"):
+        assert (tmp_path / name).is_file(), name
+    rows = list(csv.DictReader(open(tmp_path / "bench.csv")))
+    assert len(rows) == len(report.rows) == 5
+    data = json.loads((tmp_path / "bench.json").read_text())
+    assert data["adapter"]["name"] and data["size"] == [48, 32]
+    for r in report.rows:
+        for value in (r.rmse_indirect, r.rmse_image, r.relmse_indirect, r.relmse_image, r.total_ms_median):
+            assert math.isfinite(value) and value >= 0
+        assert r.total_ms_min <= r.total_ms_median <= r.total_ms_max
+    by = {(r.method, r.num_lights): r for r in report.rows}
+    # The reference against itself (same RSM, same view) has zero error.
+    assert by[("reference", None)].rmse_indirect == 0.0
+    # VPL error falls as N grows.
+    assert by[("vpl", 512)].rmse_indirect < by[("vpl", 8)].rmse_indirect
+    text = bench.table(report)
+    assert "llvmpipe" in text or report.adapter["name"] in text
+    if report.adapter["device_type"] == "Cpu":
+        assert "only ratios" in text
+    # The reference is cached on disk and reused.
+    assert list((tmp_path / "cache").glob("reference-*.npz"))
+
+
+def test_cli_help_documents_every_flag():
+    out = subprocess.run([sys.executable, "-m", "vsgl", "bench", "--help"], capture_output=True, text=True, timeout=60)
+    assert out.returncode == 0
+    for flag in ("--scene", "--methods", "--lights", "--size", "--rsm-sizes", "--kernels", "--seeds", "--reference", "--out"):
+        assert flag in out.stdout, flag
+
+
+def test_bad_arguments_are_rejected(tmp_path):
+    with pytest.raises(ValueError, match="methods"):
+        bench.run(methods=["photon"], size=(8, 8), out=None, progress=False)
+    with pytest.raises(ValueError, match="reference"):
+        bench.run(reference="oracle", size=(8, 8), out=None, progress=False)
