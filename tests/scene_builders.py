@@ -61,3 +61,58 @@ def write_quad(
     path = directory / name
     path.write_text(json.dumps(doc))
     return path
+
+
+def write_quads(directory: pathlib.Path, quads: list[dict], *, name: str = "quads.gltf") -> pathlib.Path:
+    """Several one-sided quads, one node, mesh and material each (node names from "name").
+
+    Each quad is a dict with ``corners`` (four (x, y, z) points in order around the quad; the
+    normal is (c1 − c0) × (c3 − c0), normalized) and optional ``base_color``, ``metallic``,
+    ``roughness`` and ``name``.
+    """
+    blob = b""
+    views, accessors, meshes, materials, nodes = [], [], [], [], []
+    for i, q in enumerate(quads):
+        c = [tuple(float(x) for x in p) for p in q["corners"]]
+        e1 = [c[1][k] - c[0][k] for k in range(3)]
+        e2 = [c[3][k] - c[0][k] for k in range(3)]
+        n = [e1[1] * e2[2] - e1[2] * e2[1], e1[2] * e2[0] - e1[0] * e2[2], e1[0] * e2[1] - e1[1] * e2[0]]
+        ln = sum(x * x for x in n) ** 0.5
+        n = [x / ln for x in n]
+        chunks = [
+            (b"".join(struct.pack("<3f", *p) for p in c), 4, "VEC3", 5126),
+            (b"".join(struct.pack("<3f", *n) for _ in c), 4, "VEC3", 5126),
+            (struct.pack("<6I", 0, 1, 2, 0, 2, 3), 6, "SCALAR", 5125),
+        ]
+        first = len(accessors)
+        for k, (data, count, kind, ctype) in enumerate(chunks):
+            views.append({"buffer": 0, "byteOffset": len(blob), "byteLength": len(data)})
+            acc = {"bufferView": len(views) - 1, "componentType": ctype, "count": count, "type": kind}
+            if k == 0:
+                acc["min"] = [min(p[j] for p in c) for j in range(3)]
+                acc["max"] = [max(p[j] for p in c) for j in range(3)]
+            accessors.append(acc)
+            blob += data
+        meshes.append({"primitives": [{"attributes": {"POSITION": first, "NORMAL": first + 1}, "indices": first + 2, "material": i}]})
+        materials.append({
+            "pbrMetallicRoughness": {
+                "baseColorFactor": [*q.get("base_color", (0.8, 0.8, 0.8)), 1.0],
+                "metallicFactor": q.get("metallic", 0.0),
+                "roughnessFactor": q.get("roughness", 1.0),
+            }
+        })
+        nodes.append({"name": q.get("name", f"quad{i}"), "mesh": i})
+    doc = {
+        "asset": {"version": "2.0"},
+        "scene": 0,
+        "scenes": [{"nodes": list(range(len(nodes)))}],
+        "nodes": nodes,
+        "meshes": meshes,
+        "materials": materials,
+        "buffers": [{"byteLength": len(blob), "uri": "data:application/octet-stream;base64," + base64.b64encode(blob).decode()}],
+        "bufferViews": views,
+        "accessors": accessors,
+    }
+    path = directory / name
+    path.write_text(json.dumps(doc))
+    return path

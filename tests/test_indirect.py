@@ -178,3 +178,18 @@ def test_rsm_is_only_kept_on_request(renderer):
     frame = renderer.render(vsgl.scenes.cornell_box(), method="vpl", num_lights=16, rsm_size=32)
     with pytest.raises(ValueError, match="capture_rsm"):
         frame.rsm("weight")
+
+
+def test_long_light_lists_are_not_truncated(make_renderer):
+    """lavapipe ends shader loops after 65536 iterations; the shading passes split long VPL and
+    VSGL lists over dispatches, so 131072 lights and a 512² reference count every light."""
+    r = make_renderer(8, 6)
+    scene = vsgl.scenes.cornell_box()
+    ref256 = r.render(scene, method="reference", rsm_size=256).aov("indirect").mean()
+    ref512 = r.render(scene, method="reference", rsm_size=512).aov("indirect").mean()
+    assert abs(ref512 / ref256 - 1) < 0.01
+    vpl = r.render(scene, method="vpl", rsm_size=512, num_lights=131072).aov("indirect").mean()
+    assert abs(vpl / ref512 - 1) < 0.01
+    few = r.render(scene, method="vsgl", rsm_size=512, num_lights=16384, interleave=1).aov("indirect").mean()
+    many = r.render(scene, method="vsgl", rsm_size=512, num_lights=131072, interleave=1).aov("indirect").mean()
+    assert abs(many / few - 1) < 0.02

@@ -3,6 +3,8 @@
 use std::{env, fs, path::Path};
 
 fn collect(dir: &Path, root: &Path, out: &mut Vec<String>) {
+    // Watching each folder notices files added or removed anywhere under wgsl/.
+    println!("cargo:rerun-if-changed={}", dir.display());
     let mut entries: Vec<_> = fs::read_dir(dir).expect("read wgsl dir").flatten().collect();
     entries.sort_by_key(|e| e.path());
     for e in entries {

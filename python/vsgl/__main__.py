@@ -1,4 +1,4 @@
-"""Command line: ``python -m vsgl render|adapters`` (``bench`` and ``stability`` are planned)."""
+"""Command line: ``python -m vsgl render|bench|stability|adapters``."""
 
 from __future__ import annotations
 
@@ -117,11 +117,14 @@ def main(argv: list[str] | None = None) -> int:
     # `bench` has its own parser (vsgl.bench.main); it is listed here for --help.
     sub.add_parser("bench", help="error against run time: sweep methods and settings, write CSV/JSON/plots", add_help=False)
 
-    for name, what in [("stability", "the numerical stability suite")]:
-        p = sub.add_parser(name, help=f"{what} (not in this build yet)")
-        p.set_defaults(run=lambda _a, n=name: (print(f"`python -m vsgl {n}` is not in this build yet; see docs/status.md", file=sys.stderr), 2)[1])
+    # `stability` has its own parser (vsgl.stability.main); it is listed here for --help.
+    sub.add_parser("stability", help="the numerical stability suite: every WGSL math function in f32 against its f64 oracle", add_help=False)
 
     argv = sys.argv[1:] if argv is None else argv
+    if argv[:1] == ["stability"]:
+        from vsgl import stability as stability_module
+
+        return stability_module.main(argv[1:])
     if argv[:1] == ["bench"]:
         from vsgl import bench as bench_module
 

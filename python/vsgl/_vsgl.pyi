@@ -22,6 +22,7 @@ __all__ = [
     "adapters",
     "builtin_scene",
     "builtin_scene_names",
+    "stability_suite",
 ]
 
 __version__: str
@@ -147,6 +148,7 @@ class Renderer:
         vpl_clamp: float = 0.0,
         visibility: str = "none",
         capture_rsm: bool = False,
+        spp: int = 64,
         kernel: str = "integral",
         K: float = 1.0,
         bisection_steps: int = 12,
@@ -158,3 +160,4 @@ class Renderer:
 def adapters() -> list[dict[str, Any]]: ...
 def builtin_scene_names() -> list[str]: ...
 def builtin_scene(name: str) -> Scene: ...
+def stability_suite(adapter: str | None = None, bound_scale: float = 1.0) -> list[dict[str, Any]]: ...

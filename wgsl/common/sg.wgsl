@@ -48,6 +48,12 @@ const TOKSVIG_SHARPNESS_MAX: f32 = 1.0e5;
 // exp(−(λ/2)‖ω − ξ‖²), i.e. η = λ/2 in ASG terms.
 const ASG_BANDWIDTH_MAX: f32 = 0.5 * SG_SHARPNESS_MAX;
 
+// Below this sin²θo = ‖n × ω_o‖² (θo < 1e-6 rad) ggx_lobe_asg takes the fixed frame around its
+// axis: the GGX lobe is isotropic there to f32 precision (ηy/ηx − 1 = tan²θo < 1e-12), while
+// n × ω_o is rounding noise (~1e-7 per component) whose direction means nothing. A ratio of unit
+// vectors, so no world-unit epsilon.
+const ASG_ISOTROPIC_SIN2_MAX: f32 = 1.0e-12;
+
 const INV_SQRT_TWO: f32 = 0.707106781186548;     // 1/√2
 const INV_SQRT_TWO_PI: f32 = 0.398942280401433;  // 1/√(2π)
 
@@ -273,10 +279,26 @@ fn asg_evaluate(dir: vec3f, asg: Asg) -> f32 {
 // Check: √(ηx·ηy) = λh/(8|ω_o·n|) = λs/2, the isotropic warp of ggx_lobe_sg.
 // Clamp: ηy ≤ ASG_BANDWIDTH_MAX at grazing view (denominator floored, no Inf). At normal
 // incidence n × ω_o = 0 and ηx = ηy, so any frame around ξz is right.
+// Stable frame (both defects below were found by the stability suite, docs/numerics.md):
+//  - n × ω_o carries an absolute rounding error of ~1 ULP per component, so near normal view
+//    (‖n × ω_o‖ = sin θo → 0) its direction is noise of relative size ULP/sin θo, including a
+//    component along z: measured y·z = −2.6e-2 at θo = 3e-7 rad, which for ηy ~ 1e7 moves the
+//    lobe's peak off its own axis. One Gram–Schmidt step against z makes y ⊥ z to rounding; the
+//    remaining error of y within the tangent plane only matters through ηy − ηx = ηx tan²θo,
+//    which vanishes with it. (y − (y·z)z = y exactly in real arithmetic: n × ω_o ⊥ z.)
+//  - at ω_o = n exactly, n × ω_o is 0 only without FMA contraction; on an NVIDIA H100 it is
+//    rounding noise that can point along z, and the projection then leaves noise (measured
+//    y·z = 0.99999996, vsgl_specular 1.9e-22 instead of 1.0). Below ASG_ISOTROPIC_SIN2_MAX the
+//    fixed basis around z is used instead (exact there: the lobe is isotropic).
 fn ggx_lobe_asg(normal: vec3f, w_o: vec3f, alpha: f32) -> Asg {
     let c = max(dot(w_o, normal), 0.0);
     let z = safe_normalize(2.0 * c * normal - w_o, normal);
-    let y = safe_normalize(cross(normal, w_o), orthonormal_basis(z)[1]);
+    let y_raw = cross(normal, w_o);
+    let y_fixed = orthonormal_basis(z)[1];
+    var y = y_fixed;
+    if (dot(y_raw, y_raw) >= ASG_ISOTROPIC_SIN2_MAX) {
+        y = safe_normalize(y_raw - dot(y_raw, z) * z, y_fixed);
+    }
     let x = cross(y, z);
     let sharpness_h = ggx_ndf_sg_sharpness(alpha);
     let eta_x = min(0.125 * sharpness_h, ASG_BANDWIDTH_MAX);

@@ -8,10 +8,11 @@
 #include "common/vpl.wgsl"
 
 struct ShadeParams {
+    // This dispatch shades VPLs first … first + vpl_count − 1.
     vpl_count: u32,
     // Lower bound of the squared VPL distance (0 = unclamped).
     min_distance2: f32,
-    _pad0: u32,
+    first: u32,
     _pad1: u32,
 }
 
@@ -61,7 +62,7 @@ fn main(@builtin(global_invocation_id) gid: vec3u, @builtin(local_invocation_ind
     for (var base_index = 0u; base_index < params.vpl_count; base_index += TILE) {
         let load = base_index + local;
         if (load < params.vpl_count) {
-            tile[local] = vpls[load];
+            tile[local] = vpls[params.first + load];
         }
         workgroupBarrier();
         let n_tile = min(TILE, params.vpl_count - base_index);

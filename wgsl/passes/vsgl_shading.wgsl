@@ -13,11 +13,12 @@
 #include "common/gbuffer.wgsl"
 
 struct ShadeParams {
+    // This dispatch shades VSGLs first … first + count − 1 (first is a multiple of k²).
     count: u32,
     interleave: u32,
     // 0 = the papers' cosine-pulled-out form with A ≈ 2π/λ, 1 = accurate clamped cosine.
     diffuse_mode: u32,
-    _pad: u32,
+    first: u32,
 }
 
 const WORKGROUP: u32 = 8u;
@@ -59,10 +60,11 @@ fn main(@builtin(global_invocation_id) gid: vec3u) {
     let v = -p / max(length(p), FLT_MIN);
     let k = params.interleave;
     let stride = k * k;
-    let first = (gid.y % k) * k + (gid.x % k);
+    let first = params.first + (gid.y % k) * k + (gid.x % k);
+    let end = params.first + params.count;
     var diffuse = vec3f(0.0);
     var specular = vec3f(0.0);
-    for (var j = first; j < params.count; j += stride) {
+    for (var j = first; j < end; j += stride) {
         let light = vsgls[j];
         let position = VsglPosition(light.mean, light.variance);
         // Each lobe: radiance SG per unit power (amplitude 1/A(λ)), times its rgb power.

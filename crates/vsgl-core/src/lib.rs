@@ -1,15 +1,18 @@
 //! vsgl-core: a real-time renderer of one-bounce glossy indirect illumination with virtual
 //! spherical Gaussian lights (Tokuyoshi 2015, 2016) on wgpu. No Python here: `vsgl-py` binds it.
 
+pub mod bvh;
 pub mod error;
 pub mod frame_data;
 pub mod gpu;
+pub mod harness;
 pub mod image_io;
 pub mod oracle;
 pub mod passes;
 pub mod renderer;
 pub mod scene;
 pub mod shader_lib;
+pub mod stability;
 pub mod upload;
 
 pub use error::{Error, Result};

@@ -9,6 +9,7 @@ use crate::passes::vsgl_gen::{GenSettings, Kernel, VsglGenPass, VSGL_BYTES};
 use crate::passes::vsgl_moments::{MomentChains, VsglMomentsPass};
 use crate::passes::vsgl_shading::{DiffuseMode, VsglShadingPass};
 use crate::passes::{denoise::DenoisePass, moment_mips::MomentMipsPass};
+use crate::passes::pathtrace::{PathTraceInputs, PathTracePass};
 use crate::passes::{
     direct::DirectPass, material::GBuffer, material::MaterialPass, pdf_mips::PdfMipsPass, rsm_flux::Rsm,
     rsm_flux::RsmFluxPass, shadow_map::ShadowMapPass, storage_buffer, visibility::VisibilityPass,
@@ -20,9 +21,9 @@ use std::time::Instant;
 use wgpu::util::DeviceExt;
 
 /// Methods that render in this build.
-pub const METHODS: &[&str] = &["direct", "vpl", "vsgl", "reference"];
+pub const METHODS: &[&str] = &["direct", "vpl", "vsgl", "reference", "pathtrace"];
 /// Methods of DESIGN.md that later work adds; asking for one says so.
-pub const PLANNED_METHODS: &[&str] = &["vsgl2", "pathtrace"];
+pub const PLANNED_METHODS: &[&str] = &["vsgl2"];
 
 /// Query pairs one frame may time: the reference's batches are the most numerous.
 const TIMER_CAPACITY: u32 = 2048;
@@ -53,6 +54,8 @@ pub struct RenderOptions {
     pub visibility: String,
     /// Read back the first light's RSM into the frame (for tests and plots).
     pub capture_rsm: bool,
+    /// Samples per pixel of `pathtrace` (1…65536).
+    pub spp: u32,
     /// VSGL kernel size rule (`vsgl`).
     pub kernel: Kernel,
     /// K of the 2016 paper: kernel probability mass K/N (> 0).
@@ -79,6 +82,7 @@ impl Default for RenderOptions {
             vpl_clamp: 0.0,
             visibility: "none".into(),
             capture_rsm: false,
+            spp: 64,
             kernel: Kernel::Integral,
             k: 1.0,
             bisection_steps: 12,
@@ -126,6 +130,9 @@ impl RenderOptions {
         }
         if !(1..=16).contains(&self.interleave) {
             return Err(Error::invalid("interleave", format!("must be in 1..=16, got {}", self.interleave)));
+        }
+        if !(1..=65536).contains(&self.spp) {
+            return Err(Error::invalid("spp", format!("must be in 1..=65536, got {}", self.spp)));
         }
         if self.visibility != "none" {
             return Err(Error::invalid("visibility", format!(
@@ -186,6 +193,7 @@ pub struct Renderer {
     vsgl_gen: VsglGenPass,
     vsgl_shading: VsglShadingPass,
     denoise: DenoisePass,
+    pathtrace: PathTracePass,
 }
 
 fn uniform_buffer(gpu: &Gpu, label: &str, bytes: &[u8]) -> wgpu::Buffer {
@@ -230,6 +238,7 @@ impl Renderer {
                 vsgl_gen: VsglGenPass::new(&gpu)?,
                 vsgl_shading: VsglShadingPass::new(&gpu)?,
                 denoise: DenoisePass::new(&gpu)?,
+                pathtrace: PathTracePass::new(&gpu)?,
             })
         })?;
         Ok(r)
@@ -296,14 +305,15 @@ impl Renderer {
         passes.push("visibility".into());
 
         let shadow_tex = ShadowMapPass::target(gpu, opts.shadow_size, lights.len() as u32);
-        if !lights.is_empty() {
+        if !lights.is_empty() && opts.method != "pathtrace" {
             let vps: Vec<_> = lights.iter().map(|l| l.view_proj).collect();
             self.shadow_map.record(gpu, &mut enc, &mut timer, &shadow_tex, &vps, &gscene.raster_vertices, gscene.raster_vertex_count);
             passes.push("shadow_map".into());
         } else {
             // Clear the one placeholder layer so the binding is defined.
             self.shadow_map.record(gpu, &mut enc, &mut PassTimer::new_disabled(), &shadow_tex, &[], &gscene.raster_vertices, 0);
-            skipped.push(("shadow_map".into(), "the scene has no spot light".into()));
+            let why = if lights.is_empty() { "the scene has no spot light" } else { "method=\"pathtrace\" traces shadow rays" };
+            skipped.push(("shadow_map".into(), why.into()));
         }
 
         let gbuffer = GBuffer::new(gpu, w, h);
@@ -321,8 +331,10 @@ impl Renderer {
             dimension: Some(wgpu::TextureViewDimension::D2Array),
             ..Default::default()
         });
-        self.direct.record(gpu, &mut enc, &mut timer, &frame_buf, &light_buf, &shadow_view, &gbuffer, &direct_out, (w, h));
-        passes.push("direct".into());
+        if opts.method != "pathtrace" {
+            self.direct.record(gpu, &mut enc, &mut timer, &frame_buf, &light_buf, &shadow_view, &gbuffer, &direct_out, (w, h));
+            passes.push("direct".into());
+        }
 
         // Indirect light: one RSM per spot light, then VPLs (sampled, or every texel).
         let indirect = IndirectTargets {
@@ -338,8 +350,18 @@ impl Renderer {
         };
         let mut vsgl_chains: Option<MomentChains> = None;
         let mut first_vsgls: Option<wgpu::Buffer> = None;
+        let mut pathtrace_stderr: Option<wgpu::Buffer> = None;
         if opts.method == "direct" {
             skipped.push(("indirect".into(), "method=\"direct\" computes direct light only".into()));
+        } else if opts.method == "pathtrace" {
+            // Direct light by shadow rays, then `spp` BRDF-sampled bounces per pixel in batches.
+            let input = PathTraceInputs {
+                scene, origin, frame: &frame_buf, lights: &light_buf, gscene: &gscene, gbuffer: &gbuffer, ids: &vis.ids, textured,
+            };
+            let out = self.pathtrace.record(gpu, &mut enc, &new_encoder, &mut timer, &input, &indirect, &direct_out, opts.spp, opts.seed, (w, h))?;
+            passes.extend(out.passes);
+            pathtrace_stderr = Some(out.stderr);
+            skipped.push(("rsm".into(), "method=\"pathtrace\" traces rays instead of virtual lights".into()));
         } else if lights.is_empty() {
             skipped.push(("indirect".into(), "the scene has no spot light".into()));
         } else {
@@ -449,6 +471,10 @@ impl Renderer {
         timer.resolve(&mut enc);
         gpu.queue.submit([enc.finish()]);
         let read = gpu.read_buffers(&[&direct_out, &gbuffer.base_color, &gbuffer.normal, &gbuffer.position, &indirect.diffuse, &indirect.specular])?;
+        let stderr = match &pathtrace_stderr {
+            Some(b) => Some(rgb(bytemuck::cast_slice::<u8, f32>(&gpu.read_buffers(&[b])?[0]))),
+            None => None,
+        };
         let vsgls = match &first_vsgls {
             Some(b) => Some(bytemuck::cast_slice::<u8, f32>(&gpu.read_buffers(&[b])?[0]).to_vec()),
             None => None,
@@ -487,6 +513,9 @@ impl Renderer {
         aovs.push(("albedo".to_string(), 3, albedo));
         aovs.push(("normal".to_string(), 3, normal));
         aovs.push(("depth".to_string(), 1, depth));
+        if let Some(e) = stderr {
+            aovs.push(("stderr".to_string(), 3, e));
+        }
         let mut settings = vec![
             ("method".into(), opts.method.clone()),
             ("width".into(), w.to_string()),
@@ -495,7 +524,10 @@ impl Renderer {
             ("plan".into(), opts.plan.clone()),
             ("adapter".into(), gpu.adapter.name.clone()),
         ];
-        if opts.method != "direct" {
+        if opts.method == "pathtrace" {
+            settings.push(("spp".into(), opts.spp.to_string()));
+            settings.push(("seed".into(), opts.seed.to_string()));
+        } else if opts.method != "direct" {
             settings.push(("rsm_size".into(), opts.rsm_size().to_string()));
             settings.push(("visibility".into(), opts.visibility.clone()));
             settings.push(("vpl_clamp".into(), opts.vpl_clamp.to_string()));

@@ -2,6 +2,7 @@
 //! The Python package `vsgl` (python/vsgl) re-exports these as its public API.
 
 mod errors;
+mod stability;
 
 use errors::to_py;
 use glam::{DMat4, DVec3, Vec3};
@@ -556,6 +557,7 @@ fn _vsgl(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(adapters, m)?)?;
     m.add_function(wrap_pyfunction!(builtin_scene_names, m)?)?;
     m.add_function(wrap_pyfunction!(builtin_scene, m)?)?;
+    m.add_function(wrap_pyfunction!(stability::stability_suite, m)?)?;
     let _ = Vec3::ZERO;
     Ok(())
 }

@@ -121,6 +121,7 @@ mod tests {
             ("common/sg.wgsl", "LAMBERT_LOBE_SG_SHARPNESS", super::sg::LAMBERT_LOBE_SG_SHARPNESS),
             ("common/sg.wgsl", "TOKSVIG_SHARPNESS_MAX", super::sg::TOKSVIG_SHARPNESS_MAX),
             ("common/sg.wgsl", "ASG_BANDWIDTH_MAX", super::sg::ASG_BANDWIDTH_MAX),
+            ("common/sg.wgsl", "ASG_ISOTROPIC_SIN2_MAX", super::sg::ASG_ISOTROPIC_SIN2_MAX),
             (
                 "common/vsgl.wgsl",
                 "VSGL_VARIANCE_MIN_FRACTION",

@@ -23,6 +23,9 @@ pub const LAMBERT_LOBE_SG_SHARPNESS: f64 = 2.2925;
 pub const TOKSVIG_SHARPNESS_MAX: f64 = 1.0e5;
 /// Same as `ASG_BANDWIDTH_MAX` in sg.wgsl (η = λ/2 counterpart of SG_SHARPNESS_MAX).
 pub const ASG_BANDWIDTH_MAX: f64 = 0.5 * SG_SHARPNESS_MAX;
+/// Same as `ASG_ISOTROPIC_SIN2_MAX` in sg.wgsl: below this ‖n × ω_o‖², ggx_lobe_asg uses the fixed
+/// frame around its axis (the lobe is isotropic to f32 precision there).
+pub const ASG_ISOTROPIC_SIN2_MAX: f64 = 1.0e-12;
 
 /// amplitude·G(ω; axis, sharpness).
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -216,11 +219,17 @@ pub fn asg_evaluate(dir: DVec3, asg: Asg) -> f64 {
 }
 
 /// GGX lobe at a shading point as an ASG (warping derived in sg.wgsl): z = reflection of ω_o,
-/// y ∥ n × ω_o, ηx = λh/8, ηy = λh/(8(n·ω_o)²) ≤ ASG_BANDWIDTH_MAX.
+/// y ∥ n × ω_o (the fixed frame around z below ASG_ISOTROPIC_SIN2_MAX, where ηx = ηy),
+/// ηx = λh/8, ηy = λh/(8(n·ω_o)²) ≤ ASG_BANDWIDTH_MAX.
 pub fn ggx_lobe_asg(normal: DVec3, w_o: DVec3, alpha: f64) -> Asg {
     let c = w_o.dot(normal).max(0.0);
     let z = safe_normalize(2.0 * c * normal - w_o, normal);
-    let y = safe_normalize(normal.cross(w_o), orthonormal_basis(z).y_axis);
+    let cross = normal.cross(w_o);
+    let y = if cross.length_squared() < ASG_ISOTROPIC_SIN2_MAX {
+        orthonormal_basis(z).y_axis
+    } else {
+        safe_normalize(cross, orthonormal_basis(z).y_axis)
+    };
     let x = y.cross(z);
     let sharpness_h = ggx_ndf_sg_sharpness(alpha);
     let x_bandwidth = (0.125 * sharpness_h).min(ASG_BANDWIDTH_MAX);

@@ -5,6 +5,7 @@ pub mod denoise;
 pub mod direct;
 pub mod material;
 pub mod moment_mips;
+pub mod pathtrace;
 pub mod pdf_mips;
 pub mod rsm_flux;
 pub mod shadow_map;

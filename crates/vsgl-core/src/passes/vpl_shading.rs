@@ -13,8 +13,14 @@ const WORKGROUP: u32 = 8;
 struct ShadeParamsRaw {
     vpl_count: u32,
     min_distance2: f32,
-    _pad: [u32; 2],
+    first: u32,
+    _pad: u32,
 }
+
+/// Most VPLs one dispatch loops over. lavapipe (Mesa 22.3) silently ends shader loops after
+/// 65536 iterations in all (seen: 131072 VPLs shaded as 65536), so long VPL lists are split
+/// over several dispatches that add into the same targets.
+const VPLS_PER_DISPATCH: u32 = 16384;
 
 /// Diffuse and specular indirect radiance (vec4f per pixel each).
 pub struct IndirectTargets {
@@ -46,31 +52,36 @@ impl VplShadingPass {
         out: &IndirectTargets,
         size: (u32, u32),
     ) {
-        let uniform = gpu.device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
-            label: Some("vpl_shading_params_uniform_buffer"),
-            contents: bytemuck::bytes_of(&ShadeParamsRaw { vpl_count, min_distance2, _pad: [0; 2] }),
-            usage: wgpu::BufferUsages::UNIFORM,
-        });
-        run_compute(
-            gpu,
-            enc,
-            timer,
-            "vpl_shading",
-            &self.pipeline,
-            &[
-                &[frame.as_entire_binding()],
+        let mut first = 0;
+        while first < vpl_count {
+            let count = (vpl_count - first).min(VPLS_PER_DISPATCH);
+            let uniform = gpu.device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
+                label: Some("vpl_shading_params_uniform_buffer"),
+                contents: bytemuck::bytes_of(&ShadeParamsRaw { vpl_count: count, min_distance2, first, _pad: 0 }),
+                usage: wgpu::BufferUsages::UNIFORM,
+            });
+            run_compute(
+                gpu,
+                enc,
+                timer,
+                "vpl_shading",
+                &self.pipeline,
                 &[
-                    uniform.as_entire_binding(),
-                    vpls.as_entire_binding(),
-                    gbuffer.position.as_entire_binding(),
-                    gbuffer.normal.as_entire_binding(),
-                    gbuffer.geo_normal.as_entire_binding(),
-                    gbuffer.base_color.as_entire_binding(),
-                    out.diffuse.as_entire_binding(),
-                    out.specular.as_entire_binding(),
+                    &[frame.as_entire_binding()],
+                    &[
+                        uniform.as_entire_binding(),
+                        vpls.as_entire_binding(),
+                        gbuffer.position.as_entire_binding(),
+                        gbuffer.normal.as_entire_binding(),
+                        gbuffer.geo_normal.as_entire_binding(),
+                        gbuffer.base_color.as_entire_binding(),
+                        out.diffuse.as_entire_binding(),
+                        out.specular.as_entire_binding(),
+                    ],
                 ],
-            ],
-            (groups(size.0, WORKGROUP), groups(size.1, WORKGROUP), 1),
-        );
+                (groups(size.0, WORKGROUP), groups(size.1, WORKGROUP), 1),
+            );
+            first += count;
+        }
     }
 }

@@ -15,8 +15,13 @@ struct ShadeParamsRaw {
     count: u32,
     interleave: u32,
     diffuse_mode: u32,
-    _pad: u32,
+    first: u32,
 }
+
+/// Most loop iterations (VSGLs per pixel) one dispatch runs: lavapipe (Mesa 22.3) silently
+/// ends shader loops after 65536 iterations (seen: 131072 VSGLs at interleave=1 shaded as
+/// 65536), so long lists are split over dispatches that add into the same targets.
+const VSGLS_PER_PIXEL_PER_DISPATCH: u32 = 16384;
 
 /// Diffuse shading form.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -52,32 +57,39 @@ impl VsglShadingPass {
         out: &IndirectTargets,
         size: (u32, u32),
     ) {
-        let params = ShadeParamsRaw { count, interleave, diffuse_mode: (diffuse == DiffuseMode::Accurate) as u32, _pad: 0 };
-        let uniform = gpu.device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
-            label: Some("vsgl_shading_params_uniform_buffer"),
-            contents: bytemuck::bytes_of(&params),
-            usage: wgpu::BufferUsages::UNIFORM,
-        });
-        run_compute(
-            gpu,
-            enc,
-            timer,
-            "vsgl_shading",
-            &self.pipeline,
-            &[
-                &[frame.as_entire_binding()],
+        // Chunks are multiples of k² so the interleaved subsets stay j ≡ t (mod k²).
+        let chunk = VSGLS_PER_PIXEL_PER_DISPATCH * interleave * interleave;
+        let mut first = 0;
+        while first < count {
+            let n = (count - first).min(chunk);
+            let params = ShadeParamsRaw { count: n, interleave, diffuse_mode: (diffuse == DiffuseMode::Accurate) as u32, first };
+            let uniform = gpu.device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
+                label: Some("vsgl_shading_params_uniform_buffer"),
+                contents: bytemuck::bytes_of(&params),
+                usage: wgpu::BufferUsages::UNIFORM,
+            });
+            run_compute(
+                gpu,
+                enc,
+                timer,
+                "vsgl_shading",
+                &self.pipeline,
                 &[
-                    uniform.as_entire_binding(),
-                    vsgls.as_entire_binding(),
-                    gbuffer.position.as_entire_binding(),
-                    gbuffer.normal.as_entire_binding(),
-                    gbuffer.geo_normal.as_entire_binding(),
-                    gbuffer.base_color.as_entire_binding(),
-                    out.diffuse.as_entire_binding(),
-                    out.specular.as_entire_binding(),
+                    &[frame.as_entire_binding()],
+                    &[
+                        uniform.as_entire_binding(),
+                        vsgls.as_entire_binding(),
+                        gbuffer.position.as_entire_binding(),
+                        gbuffer.normal.as_entire_binding(),
+                        gbuffer.geo_normal.as_entire_binding(),
+                        gbuffer.base_color.as_entire_binding(),
+                        out.diffuse.as_entire_binding(),
+                        out.specular.as_entire_binding(),
+                    ],
                 ],
-            ],
-            (groups(size.0, WORKGROUP), groups(size.1, WORKGROUP), 1),
-        );
+                (groups(size.0, WORKGROUP), groups(size.1, WORKGROUP), 1),
+            );
+            first += n;
+        }
     }
 }

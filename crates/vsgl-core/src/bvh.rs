@@ -1,0 +1,533 @@
+//! A bounding volume hierarchy over the scene's triangles, built on the CPU and flattened for
+//! the compute-shader ray tracer of `method="pathtrace"` (`wgsl/common/bvh.wgsl`).
+//!
+//! Builder: top-down binned SAH [Wald 2007, "On fast Construction of SAH-based Bounding Volume
+//! Hierarchies", §3: centroid bins, cost `A_L·N_L + A_R·N_R`], over all three axes, with an
+//! object-median fallback that bounds the depth by [`BVH_MAX_DEPTH`] (the GPU traversal stack).
+//! No BVH crate is used: `bvh` 0.13 needs Rust 1.90 and nalgebra, `obvhs` 0.4 a second glam
+//! (≥ 0.33 beside the workspace's 0.30) and Rust 1.88, both above this workspace's 1.87.
+//!
+//! GPU layout: 32-byte nodes (bounds + two words) and 48-byte triangles stored in leaf order,
+//! each carrying the index of the scene triangle it came from (the `indices` /
+//! `triangle_materials` numbering of [`crate::upload::GpuScene`]).
+//! Bounds are min/max of the very f32 vertices the GPU intersects, so they contain them exactly.
+
+use crate::scene::Scene;
+use glam::DVec3;
+
+/// Marks a leaf in [`BvhNodeRaw::b`]; the low bits are then the triangle count.
+pub const BVH_LEAF: u32 = 0x8000_0000;
+/// Deepest node level (root = 0). The WGSL traversal stack has this many entries; the builder
+/// switches to median splits where SAH splits could exceed it.
+pub const BVH_MAX_DEPTH: usize = 64;
+/// Largest leaf the SAH may choose; larger sets are always split.
+pub const BVH_MAX_LEAF: usize = 4;
+/// Centroid bins per axis (Wald 2007 uses 16–32; 16 is within 1% of the full sweep there).
+const SAH_BINS: usize = 16;
+/// Cost of a box test relative to a triangle test, in the SAH leaf-or-split decision.
+const SAH_TRAVERSAL_COST: f64 = 1.0;
+
+/// One node (32 bytes): inner nodes have `a`, `b` = left, right child index; leaves have
+/// `a` = first triangle (in [`Bvh::triangles`]) and `b` = [`BVH_LEAF`] | count.
+#[repr(C)]
+#[derive(Clone, Copy, Debug, PartialEq, bytemuck::Pod, bytemuck::Zeroable)]
+pub struct BvhNodeRaw {
+    pub min: [f32; 3],
+    pub a: u32,
+    pub max: [f32; 3],
+    pub b: u32,
+}
+const _: () = assert!(std::mem::size_of::<BvhNodeRaw>() == 32);
+
+/// A triangle in leaf order (48 bytes): its vertices and its scene triangle index.
+#[repr(C)]
+#[derive(Clone, Copy, Debug, PartialEq, bytemuck::Pod, bytemuck::Zeroable)]
+pub struct BvhTriangleRaw {
+    pub v0: [f32; 3],
+    pub id: u32,
+    pub v1: [f32; 3],
+    pub _pad0: u32,
+    pub v2: [f32; 3],
+    pub _pad1: u32,
+}
+const _: () = assert!(std::mem::size_of::<BvhTriangleRaw>() == 48);
+
+pub type Triangle = [[f32; 3]; 3];
+
+/// The flattened hierarchy. Node 0 is the root; an empty scene has one leaf with no triangles
+/// (and a zero box, so the GPU sees only finite numbers).
+#[derive(Clone, Debug)]
+pub struct Bvh {
+    pub nodes: Vec<BvhNodeRaw>,
+    pub triangles: Vec<BvhTriangleRaw>,
+    /// Deepest level reached (root = 0).
+    pub depth: usize,
+}
+
+#[derive(Clone, Copy, Debug)]
+struct Aabb {
+    min: [f32; 3],
+    max: [f32; 3],
+}
+
+impl Aabb {
+    const EMPTY: Aabb = Aabb { min: [f32::INFINITY; 3], max: [f32::NEG_INFINITY; 3] };
+    fn grow_point(&mut self, p: [f32; 3]) {
+        self.grow(&Aabb { min: p, max: p });
+    }
+    fn grow(&mut self, o: &Aabb) {
+        for k in 0..3 {
+            self.min[k] = self.min[k].min(o.min[k]);
+            self.max[k] = self.max[k].max(o.max[k]);
+        }
+    }
+    fn is_empty(&self) -> bool {
+        (0..3).any(|k| self.min[k] > self.max[k])
+    }
+    /// Half the surface area (the SAH only needs ratios), in f64.
+    fn half_area(&self) -> f64 {
+        if self.is_empty() {
+            return 0.0;
+        }
+        let d = [0, 1, 2].map(|k| self.max[k] as f64 - self.min[k] as f64);
+        d[0] * d[1] + d[1] * d[2] + d[2] * d[0]
+    }
+}
+
+struct Prim {
+    bounds: Aabb,
+    centroid: [f64; 3],
+    index: u32,
+}
+
+/// Smallest `d` with `2^d >= x` (x ≥ 1).
+fn ceil_log2(x: usize) -> usize {
+    (usize::BITS - (x.max(1) - 1).leading_zeros()) as usize
+}
+
+impl Bvh {
+    /// Builds the hierarchy over `triangles` (indices into the slice become the triangle ids).
+    pub fn build(triangles: &[Triangle]) -> Self {
+        let mut prims: Vec<Prim> = triangles
+            .iter()
+            .enumerate()
+            .map(|(i, t)| {
+                let mut b = Aabb::EMPTY;
+                for v in t {
+                    b.grow_point(*v);
+                }
+                let centroid = [0, 1, 2].map(|k| 0.5 * (b.min[k] as f64 + b.max[k] as f64));
+                Prim { bounds: b, centroid, index: i as u32 }
+            })
+            .collect();
+        let mut nodes: Vec<BvhNodeRaw> = Vec::with_capacity(2 * prims.len().max(1));
+        let empty = BvhNodeRaw { min: [0.0; 3], a: 0, max: [0.0; 3], b: BVH_LEAF };
+        nodes.push(empty);
+        let mut depth = 0;
+        if !prims.is_empty() {
+            // Explicit work list of (node, first prim, prim count, level): no recursion limit.
+            let mut work = vec![(0usize, 0usize, prims.len(), 0usize)];
+            while let Some((node, first, count, level)) = work.pop() {
+                depth = depth.max(level);
+                let slice = &mut prims[first..first + count];
+                let mut bounds = Aabb::EMPTY;
+                for p in slice.iter() {
+                    bounds.grow(&p.bounds);
+                }
+                let split = choose_split(slice, &bounds, level);
+                match split {
+                    None => {
+                        nodes[node] = BvhNodeRaw { min: bounds.min, a: first as u32, max: bounds.max, b: BVH_LEAF | count as u32 };
+                    }
+                    Some(left_count) => {
+                        let l = nodes.len();
+                        nodes.push(empty);
+                        nodes.push(empty);
+                        nodes[node] = BvhNodeRaw { min: bounds.min, a: l as u32, max: bounds.max, b: (l + 1) as u32 };
+                        // Right first so the left subtree is laid out right after its parent.
+                        work.push((l + 1, first + left_count, count - left_count, level + 1));
+                        work.push((l, first, left_count, level + 1));
+                    }
+                }
+            }
+        }
+        let tris = prims
+            .iter()
+            .map(|p| {
+                let t = &triangles[p.index as usize];
+                BvhTriangleRaw { v0: t[0], id: p.index, v1: t[1], _pad0: 0, v2: t[2], _pad1: 0 }
+            })
+            .collect();
+        Self { nodes, triangles: tris, depth }
+    }
+
+    /// The node array as bytes for a storage buffer.
+    pub fn node_bytes(&self) -> &[u8] {
+        bytemuck::cast_slice(&self.nodes)
+    }
+
+    /// The triangles as bytes for a storage buffer (one zero triangle when there are none, as
+    /// wgpu rejects empty bindings; no leaf refers to it).
+    pub fn triangle_bytes(&self) -> Vec<u8> {
+        if self.triangles.is_empty() {
+            vec![0u8; std::mem::size_of::<BvhTriangleRaw>()]
+        } else {
+            bytemuck::cast_slice(&self.triangles).to_vec()
+        }
+    }
+
+    /// Closest hit along `origin + t·dir`, `0 < t < t_max`: (t, triangle id). CPU twin of
+    /// `bvh_closest_hit` for tests (f64 Möller–Trumbore, same node layout and order).
+    pub fn closest_hit(&self, origin: [f64; 3], dir: [f64; 3], t_max: f64) -> Option<(f64, u32)> {
+        let mut best: Option<(f64, u32)> = None;
+        let mut stack = vec![0usize];
+        while let Some(i) = stack.pop() {
+            let n = &self.nodes[i];
+            let limit = best.map_or(t_max, |b| b.0);
+            if !ray_box(origin, dir, n, limit) {
+                continue;
+            }
+            if n.b & BVH_LEAF != 0 {
+                let count = (n.b & !BVH_LEAF) as usize;
+                for t in &self.triangles[n.a as usize..n.a as usize + count] {
+                    if let Some(d) = ray_triangle(origin, dir, [t.v0, t.v1, t.v2]) {
+                        if d < best.map_or(t_max, |b| b.0) {
+                            best = Some((d, t.id));
+                        }
+                    }
+                }
+            } else {
+                stack.push(n.b as usize);
+                stack.push(n.a as usize);
+            }
+        }
+        best
+    }
+}
+
+/// Where to split a node's primitives (count on the left after partitioning in place), or
+/// `None` for a leaf.
+fn choose_split(prims: &mut [Prim], bounds: &Aabb, level: usize) -> Option<usize> {
+    let n = prims.len();
+    if n <= 1 {
+        return None;
+    }
+    // Depth guard: a balanced subtree of the rest needs ceil(log2(n / leaf)) more levels.
+    let must_balance = level + ceil_log2(n.div_ceil(BVH_MAX_LEAF)) + 1 >= BVH_MAX_DEPTH;
+    let mut cbounds = [[f64::INFINITY; 3], [f64::NEG_INFINITY; 3]];
+    for p in prims.iter() {
+        for (k, &c) in p.centroid.iter().enumerate() {
+            cbounds[0][k] = cbounds[0][k].min(c);
+            cbounds[1][k] = cbounds[1][k].max(c);
+        }
+    }
+    let extent = [0, 1, 2].map(|k| cbounds[1][k] - cbounds[0][k]);
+    let widest = (0..3).max_by(|&a, &b| extent[a].total_cmp(&extent[b])).unwrap_or(0);
+    if !must_balance {
+        // (cost, axis, bin boundary): left = bins [0, boundary).
+        let mut best: Option<(f64, usize, usize)> = None;
+        for axis in 0..3 {
+            if extent[axis] <= 0.0 {
+                continue;
+            }
+            let scale = SAH_BINS as f64 / extent[axis];
+            let bin_of = |c: f64| (((c - cbounds[0][axis]) * scale) as usize).min(SAH_BINS - 1);
+            let mut bins = [(Aabb::EMPTY, 0usize); SAH_BINS];
+            for p in prims.iter() {
+                let b = &mut bins[bin_of(p.centroid[axis])];
+                b.0.grow(&p.bounds);
+                b.1 += 1;
+            }
+            // Sweep from the right for suffix areas, then from the left.
+            let mut right_area = [0.0f64; SAH_BINS];
+            let mut right_count = [0usize; SAH_BINS];
+            let mut acc = Aabb::EMPTY;
+            let mut cnt = 0;
+            for i in (1..SAH_BINS).rev() {
+                acc.grow(&bins[i].0);
+                cnt += bins[i].1;
+                right_area[i] = acc.half_area();
+                right_count[i] = cnt;
+            }
+            let mut acc = Aabb::EMPTY;
+            let mut cnt = 0;
+            for i in 1..SAH_BINS {
+                acc.grow(&bins[i - 1].0);
+                cnt += bins[i - 1].1;
+                if cnt == 0 || right_count[i] == 0 {
+                    continue;
+                }
+                let cost = acc.half_area() * cnt as f64 + right_area[i] * right_count[i] as f64;
+                if best.is_none_or(|b| cost < b.0) {
+                    best = Some((cost, axis, i));
+                }
+            }
+        }
+        let parent_area = bounds.half_area();
+        if let Some((cost, axis, boundary)) = best {
+            // SAH: split when C_trav + cost/A ≤ n (relative to one triangle test).
+            let leaf_cost = n as f64;
+            let split_cost = SAH_TRAVERSAL_COST + if parent_area > 0.0 { cost / parent_area } else { n as f64 };
+            if n <= BVH_MAX_LEAF && split_cost >= leaf_cost {
+                return None;
+            }
+            let scale = SAH_BINS as f64 / extent[axis];
+            let lo = cbounds[0][axis];
+            let left = partition(prims, |p| ((((p.centroid[axis] - lo) * scale) as usize).min(SAH_BINS - 1)) < boundary);
+            if left > 0 && left < n {
+                return Some(left);
+            }
+        } else if n <= BVH_MAX_LEAF {
+            return None;
+        }
+    }
+    // Object median along the widest centroid axis (also when every centroid coincides).
+    let mid = n / 2;
+    prims.select_nth_unstable_by(mid, |a, b| a.centroid[widest].total_cmp(&b.centroid[widest]));
+    Some(mid)
+}
+
+/// Stable-enough in-place partition; returns how many satisfy `pred` (moved to the front).
+fn partition(prims: &mut [Prim], pred: impl Fn(&Prim) -> bool) -> usize {
+    let mut i = 0;
+    for j in 0..prims.len() {
+        if pred(&prims[j]) {
+            prims.swap(i, j);
+            i += 1;
+        }
+    }
+    i
+}
+
+/// Slab test [Kay & Kajiya 1986] in f64 for the CPU twin.
+fn ray_box(o: [f64; 3], d: [f64; 3], n: &BvhNodeRaw, t_max: f64) -> bool {
+    let (mut t0, mut t1) = (0.0f64, t_max);
+    for k in 0..3 {
+        let inv = 1.0 / d[k];
+        let mut a = (n.min[k] as f64 - o[k]) * inv;
+        let mut b = (n.max[k] as f64 - o[k]) * inv;
+        if a > b {
+            std::mem::swap(&mut a, &mut b);
+        }
+        // NaN (0·∞ for a ray in a slab plane) leaves the bounds unchanged.
+        if a > t0 {
+            t0 = a;
+        }
+        if b < t1 {
+            t1 = b;
+        }
+    }
+    t0 <= t1
+}
+
+/// Möller & Trumbore 1997 in f64, no culling; `t > 0`.
+pub fn ray_triangle(o: [f64; 3], d: [f64; 3], t: Triangle) -> Option<f64> {
+    let v = |p: [f32; 3]| DVec3::new(p[0] as f64, p[1] as f64, p[2] as f64);
+    let (v0, v1, v2) = (v(t[0]), v(t[1]), v(t[2]));
+    let (o, d) = (DVec3::from(o), DVec3::from(d));
+    let e1 = v1 - v0;
+    let e2 = v2 - v0;
+    let p = d.cross(e2);
+    let det = e1.dot(p);
+    if det.abs() <= 1e-300 {
+        return None;
+    }
+    let inv = 1.0 / det;
+    let s = o - v0;
+    let u = s.dot(p) * inv;
+    if !(0.0..=1.0).contains(&u) {
+        return None;
+    }
+    let q = s.cross(e1);
+    let w = d.dot(q) * inv;
+    if w < 0.0 || u + w > 1.0 {
+        return None;
+    }
+    let dist = e2.dot(q) * inv;
+    (dist > 0.0).then_some(dist)
+}
+
+/// The scene's triangles relative to `origin`, in the order and f32 rounding of
+/// [`crate::upload::GpuScene::upload`] (node, primitive, index triple), so triangle `i` here is
+/// triangle `i` of the GPU scene's `indices` and `triangle_materials`.
+pub fn scene_triangles(scene: &Scene, origin: DVec3) -> Vec<Triangle> {
+    let mut out = Vec::new();
+    for (ni, node) in scene.nodes.iter().enumerate() {
+        let Some(mi) = node.mesh else { continue };
+        let Some(mesh) = scene.meshes.get(mi) else { continue };
+        let world = scene.world_transform(ni);
+        for prim in &mesh.primitives {
+            let verts: Vec<[f32; 3]> = prim
+                .positions
+                .iter()
+                .map(|p| (world.transform_point3(DVec3::new(p[0] as f64, p[1] as f64, p[2] as f64)) - origin).as_vec3().to_array())
+                .collect();
+            for tri in prim.indices.chunks_exact(3) {
+                let get = |i: u32| verts.get(i as usize).copied().unwrap_or([0.0; 3]);
+                out.push([get(tri[0]), get(tri[1]), get(tri[2])]);
+            }
+        }
+    }
+    out
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// xorshift64*: a dependency-free deterministic generator for the tests.
+    struct Rng(u64);
+    impl Rng {
+        fn next(&mut self) -> f64 {
+            self.0 ^= self.0 >> 12;
+            self.0 ^= self.0 << 25;
+            self.0 ^= self.0 >> 27;
+            (self.0.wrapping_mul(0x2545_F491_4F6C_DD1D) >> 11) as f64 / (1u64 << 53) as f64
+        }
+        fn range(&mut self, lo: f64, hi: f64) -> f64 {
+            lo + (hi - lo) * self.next()
+        }
+        fn unit(&mut self) -> [f64; 3] {
+            loop {
+                let v = [self.range(-1.0, 1.0), self.range(-1.0, 1.0), self.range(-1.0, 1.0)];
+                let l2 = v[0] * v[0] + v[1] * v[1] + v[2] * v[2];
+                if l2 > 1e-6 && l2 <= 1.0 {
+                    let l = l2.sqrt();
+                    return v.map(|x| x / l);
+                }
+            }
+        }
+    }
+
+    fn random_soup(rng: &mut Rng, n: usize, scale: f64, offset: f64) -> Vec<Triangle> {
+        (0..n)
+            .map(|_| {
+                let c = [rng.range(-scale, scale) + offset, rng.range(-scale, scale), rng.range(-scale, scale)];
+                let size = scale * 0.3 * rng.next();
+                [0, 1, 2].map(|_| [0, 1, 2].map(|k| (c[k] + rng.range(-size, size)) as f32))
+            })
+            .collect()
+    }
+
+    fn brute_force(tris: &[Triangle], o: [f64; 3], d: [f64; 3]) -> Option<(f64, u32)> {
+        let mut best: Option<(f64, u32)> = None;
+        for (i, t) in tris.iter().enumerate() {
+            if let Some(dist) = ray_triangle(o, d, *t) {
+                if best.is_none_or(|b| dist < b.0) {
+                    best = Some((dist, i as u32));
+                }
+            }
+        }
+        best
+    }
+
+    fn check_structure(bvh: &Bvh, tris: &[Triangle]) {
+        // Every triangle exactly once, every box contains its children / triangles.
+        let mut seen = vec![0u32; tris.len()];
+        for t in &bvh.triangles {
+            seen[t.id as usize] += 1;
+            assert_eq!([t.v0, t.v1, t.v2], tris[t.id as usize]);
+        }
+        assert!(seen.iter().all(|&c| c == 1), "every triangle must be in exactly one leaf");
+        let contains = |outer: &BvhNodeRaw, p: [f32; 3]| (0..3).all(|k| outer.min[k] <= p[k] && p[k] <= outer.max[k]);
+        let mut reached = 0usize;
+        let mut stack = vec![(0usize, 0usize)];
+        while let Some((i, level)) = stack.pop() {
+            assert!(level <= BVH_MAX_DEPTH);
+            let n = bvh.nodes[i];
+            if n.b & BVH_LEAF != 0 {
+                let count = (n.b & !BVH_LEAF) as usize;
+                reached += count;
+                for t in &bvh.triangles[n.a as usize..n.a as usize + count] {
+                    for v in [t.v0, t.v1, t.v2] {
+                        assert!(contains(&n, v), "leaf {i} must contain its triangles");
+                    }
+                }
+            } else {
+                for c in [n.a as usize, n.b as usize] {
+                    let child = bvh.nodes[c];
+                    assert!(contains(&n, child.min) && contains(&n, child.max), "node {i} must contain child {c}");
+                    stack.push((c, level + 1));
+                }
+            }
+        }
+        assert_eq!(reached, tris.len());
+    }
+
+    #[test]
+    fn bvh_closest_hit_matches_brute_force_on_random_rays() {
+        let mut rng = Rng(0x9E37_79B9_7F4A_7C15);
+        // Near the origin and far from it (1e5 m: the f32 spacing there is ~8 mm).
+        for (offset, scale) in [(0.0, 1.0), (1.0e5, 50.0)] {
+            let tris = random_soup(&mut rng, 2000, scale, offset);
+            let bvh = Bvh::build(&tris);
+            check_structure(&bvh, &tris);
+            let mut hits = 0;
+            for _ in 0..3000 {
+                let o = [rng.range(-1.5 * scale, 1.5 * scale) + offset, rng.range(-1.5 * scale, 1.5 * scale), rng.range(-1.5 * scale, 1.5 * scale)];
+                let d = rng.unit();
+                let want = brute_force(&tris, o, d);
+                let got = bvh.closest_hit(o, d, f64::INFINITY);
+                match (want, got) {
+                    (None, None) => {}
+                    (Some(w), Some(g)) => {
+                        hits += 1;
+                        // Equal distances can come from two triangles: compare t, then the id.
+                        assert!((w.0 - g.0).abs() <= 1e-12 * w.0.max(1.0), "t: brute {w:?} bvh {g:?}");
+                        if (w.0 - g.0).abs() > 0.0 {
+                            assert_eq!(w.1, g.1);
+                        }
+                    }
+                    _ => panic!("brute force {want:?} vs bvh {got:?} for o={o:?} d={d:?}"),
+                }
+            }
+            assert!(hits > 300, "the random rays must hit often enough to test something ({hits})");
+        }
+    }
+
+    #[test]
+    fn bvh_respects_t_max() {
+        let tris = vec![[[-1.0, -1.0, 2.0], [1.0, -1.0, 2.0], [0.0, 1.0, 2.0]]];
+        let bvh = Bvh::build(&tris);
+        assert_eq!(bvh.closest_hit([0.0; 3], [0.0, 0.0, 1.0], 3.0).map(|h| h.1), Some(0));
+        assert_eq!(bvh.closest_hit([0.0; 3], [0.0, 0.0, 1.0], 1.5), None);
+        assert_eq!(bvh.closest_hit([0.0; 3], [0.0, 0.0, -1.0], 10.0), None);
+    }
+
+    #[test]
+    fn bvh_degenerate_inputs_stay_within_the_stack_depth() {
+        // Identical triangles (zero centroid extent), a long coplanar strip, and none at all.
+        let same = vec![[[0.0, 0.0, 0.0], [1.0, 0.0, 0.0], [0.0, 1.0, 0.0]]; 1000];
+        let bvh = Bvh::build(&same);
+        check_structure(&bvh, &same);
+        assert!(bvh.depth <= BVH_MAX_DEPTH);
+        assert_eq!(bvh.closest_hit([0.2, 0.2, -1.0], [0.0, 0.0, 1.0], 10.0).map(|h| h.0), Some(1.0));
+        // Exponentially spaced triangles: SAH alone would build a deep, list-like tree.
+        let strip: Vec<Triangle> = (0..3000)
+            .map(|i| {
+                let x = 1.01f32.powi(i);
+                [[x, 0.0, 0.0], [x * 1.001, 0.0, 0.0], [x, 1.0, 0.0]]
+            })
+            .collect();
+        let bvh = Bvh::build(&strip);
+        check_structure(&bvh, &strip);
+        assert!(bvh.depth <= BVH_MAX_DEPTH, "depth {}", bvh.depth);
+        let empty = Bvh::build(&[]);
+        assert_eq!(empty.nodes.len(), 1);
+        assert_eq!(empty.closest_hit([0.0; 3], [0.0, 0.0, 1.0], 1e30), None);
+        assert_eq!(empty.triangle_bytes().len(), 48);
+    }
+
+    #[test]
+    fn scene_triangles_follow_the_upload_order() {
+        let mut scene = crate::scene::builtin::cornell_box();
+        let origin = DVec3::new(0.25, 1.0, 3.0);
+        let tris = scene_triangles(&scene, origin);
+        assert_eq!(tris.len(), scene.stats().triangles);
+        // Moving the origin moves every vertex by the same f64 offset before rounding.
+        let shifted = scene_triangles(&scene, origin + DVec3::X);
+        assert!((tris[0][0][0] - shifted[0][0][0] - 1.0).abs() < 1e-5);
+        scene.lights.clear();
+        assert_eq!(scene_triangles(&scene, origin).len(), tris.len());
+    }
+}
