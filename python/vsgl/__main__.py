@@ -31,7 +31,7 @@ def _render(args: argparse.Namespace) -> int:
     options = dict(shadow_size=args.shadow_size, plan=args.plan)
     if args.method in ("vpl", "vsgl"):
         options.update(num_lights=args.lights, seed=args.seed)
-    if args.method in ("vpl", "vsgl", "reference") and args.rsm_size:
+    if args.method in ("vpl", "vsgl", "vsgl2", "reference") and args.rsm_size:
         options.update(rsm_size=args.rsm_size)
     if args.method == "vsgl":
         options.update(kernel=args.kernel, interleave=args.interleave)
@@ -53,7 +53,7 @@ def _render(args: argparse.Namespace) -> int:
     print(f"wall      device+pipelines {1e3 * (t1 - t0):.1f} ms, render+readback {1e3 * (t2 - t1):.1f} ms")
     finite = bool(np.isfinite(image).all())
     print(f"image     mean radiance {float(image.mean()):.6g}, max {float(image.max()):.6g}, finite: {finite}")
-    if args.method in ("vpl", "vsgl") and not args.no_error:
+    if args.method in ("vpl", "vsgl", "vsgl2") and not args.no_error:
         t3 = time.perf_counter()
         ref = renderer.render(scene, method="reference", rsm_size=args.reference_rsm, shadow_size=args.shadow_size)
         t4 = time.perf_counter()
@@ -63,7 +63,7 @@ def _render(args: argparse.Namespace) -> int:
             rel = rmse / max(float(np.sqrt(np.mean(b**2))), 1e-30)
             print(f"error     {aov:<9} RMSE {rmse:.6g} (relative {rel:.4f}) vs reference ({args.reference_rsm}² RSM, {1e3 * (t4 - t3):.0f} ms)")
     else:
-        print("error     n/a for this method (error is measured for vpl and vsgl against reference)")
+        print("error     n/a for this method (error is measured for vpl, vsgl and vsgl2 against reference)")
     print(f"wrote     {args.output}")
     return 0 if finite else 1
 
@@ -96,9 +96,9 @@ def main(argv: list[str] | None = None) -> int:
     render.add_argument("scene", nargs="?", default="cornell_box", help="built-in scene name or .gltf/.glb path (default: cornell_box)")
     render.add_argument("-o", "--output", default="out.png", help="output image, .png or .npy (default: out.png)")
     render.add_argument("--size", type=_size, default=(320, 180), help="WIDTHxHEIGHT (default: 320x180)")
-    render.add_argument("--method", default="vsgl", help="direct, vpl, vsgl or reference (default: vsgl)")
+    render.add_argument("--method", default="vsgl", help="direct, vpl, vsgl, vsgl2 or reference (default: vsgl)")
     render.add_argument("--lights", type=int, default=1024, help="VPLs or VSGLs per spot light (default: 1024)")
-    render.add_argument("--rsm-size", type=int, default=None, help="RSM side, power of two (default: 256; reference 1024)")
+    render.add_argument("--rsm-size", type=int, default=None, help="RSM side, power of two; any 32..4096 for vsgl2 (default: 256; reference 1024)")
     render.add_argument("--kernel", default="integral", choices=["integral", "density"], help="VSGL kernel size rule (default: integral)")
     render.add_argument("--interleave", type=int, default=8, help="VSGL interleaving tile side (default: 8)")
     render.add_argument("--seed", type=int, default=0, help="sampling seed (default: 0)")

@@ -152,9 +152,9 @@ def run(
         raise ValueError(f"frames: must be >= 1, got {frames}")
     if reference not in ("reference", "pathtrace"):
         raise ValueError(f"reference: must be \"reference\" or \"pathtrace\", got {reference!r}")
-    unknown = [m for m in methods if m not in ("vpl", "vsgl", "reference", "direct")]
+    unknown = [m for m in methods if m not in ("vpl", "vsgl", "vsgl2", "reference", "direct")]
     if unknown:
-        raise ValueError(f"methods: unknown {unknown}; valid: vpl, vsgl, reference, direct")
+        raise ValueError(f"methods: unknown {unknown}; valid: vpl, vsgl, vsgl2, reference, direct")
     w, h = size
     renderer = vsgl.Renderer(width=w, height=h, adapter=adapter)
     ref_settings: dict[str, Any] = {"rsm_size": reference_rsm} if reference == "reference" else {"spp": reference_spp}
@@ -178,7 +178,8 @@ def run(
                 for r in rsm_sizes:
                     for k in (kernels if m == "vsgl" else (None,)):
                         configs.append((m, n, r, k))
-        elif m == "reference":
+        elif m in ("reference", "vsgl2"):
+            # Deterministic and without a light count: one configuration per RSM size.
             for r in rsm_sizes:
                 configs.append((m, None, r, None))
         else:
@@ -334,7 +335,7 @@ def _strs(text: str) -> list[str]:
 def main(argv: list[str] | None = None) -> int:
     p = argparse.ArgumentParser(prog="python -m vsgl bench", description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     p.add_argument("--scene", type=_strs, default=["cornell_box"], help="comma-separated built-in names or .gltf/.glb paths (default: cornell_box)")
-    p.add_argument("--methods", type=_strs, default=["vpl", "vsgl"], help="comma-separated: vpl, vsgl, reference, direct (default: vpl,vsgl)")
+    p.add_argument("--methods", type=_strs, default=["vpl", "vsgl"], help="comma-separated: vpl, vsgl, vsgl2, reference, direct (default: vpl,vsgl)")
     p.add_argument("--lights", type=_ints, default=[16, 64, 256], help="comma-separated VPL/VSGL counts (default: 16,64,256)")
     p.add_argument("--size", default="256x256", help="WIDTHxHEIGHT (default: 256x256)")
     p.add_argument("--rsm-sizes", type=_ints, default=[256], help="comma-separated RSM sides (default: 256)")

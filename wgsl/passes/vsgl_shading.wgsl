@@ -16,7 +16,8 @@ struct ShadeParams {
     // This dispatch shades VSGLs first … first + count − 1 (first is a multiple of k²).
     count: u32,
     interleave: u32,
-    // 0 = the papers' cosine-pulled-out form with A ≈ 2π/λ, 1 = accurate clamped cosine.
+    // 0 = the papers' cosine-pulled-out form with A ≈ 2π/λ, 1 = accurate clamped cosine,
+    // 2 = SG product integral with the Lambert SG (the 2015 two-VSGL poster).
     diffuse_mode: u32,
     first: u32,
 }
@@ -36,6 +37,9 @@ const WORKGROUP: u32 = 8u;
 fn diffuse_over_rd(radiance: Sg, n: vec3f) -> f32 {
     if (params.diffuse_mode == 1u) {
         return vsgl_diffuse_accurate(radiance, n);
+    }
+    if (params.diffuse_mode == 2u) {
+        return vsgl_diffuse_sg_product(radiance, n);
     }
     return vsgl_diffuse_approx(radiance, n);
 }
@@ -67,13 +71,21 @@ fn main(@builtin(global_invocation_id) gid: vec3u) {
     for (var j = first; j < end; j += stride) {
         let light = vsgls[j];
         let position = VsglPosition(light.mean, light.variance);
-        // Each lobe: radiance SG per unit power (amplitude 1/A(λ)), times its rgb power.
-        let lobe_d = Sg(light.diffuse_axis, light.diffuse_sharpness, 1.0 / sg_integral(light.diffuse_sharpness));
-        let in_d = vsgl_incoming_radiance(lobe_d, position, p);
-        let lobe_s = Sg(light.specular_axis, light.specular_sharpness, 1.0 / sg_integral(light.specular_sharpness));
-        let in_s = vsgl_incoming_radiance(lobe_s, position, p);
-        diffuse += light.diffuse_power * diffuse_over_rd(in_d, n) + light.specular_power * diffuse_over_rd(in_s, n);
-        specular += light.diffuse_power * vsgl_specular(in_d, n, v, alpha) + light.specular_power * vsgl_specular(in_s, n, v, alpha);
+        // Each lobe: radiance SG per unit power (amplitude 1/A(λ)), times its rgb power. A lobe
+        // without power (vsgl2's records carry one lobe each; metal clusters have no diffuse
+        // lobe) is skipped: it would add exactly 0. The test is uniform over the dispatch.
+        if (any(light.diffuse_power > vec3f(0.0))) {
+            let lobe_d = Sg(light.diffuse_axis, light.diffuse_sharpness, 1.0 / sg_integral(light.diffuse_sharpness));
+            let in_d = vsgl_incoming_radiance(lobe_d, position, p);
+            diffuse += light.diffuse_power * diffuse_over_rd(in_d, n);
+            specular += light.diffuse_power * vsgl_specular(in_d, n, v, alpha);
+        }
+        if (any(light.specular_power > vec3f(0.0))) {
+            let lobe_s = Sg(light.specular_axis, light.specular_sharpness, 1.0 / sg_integral(light.specular_sharpness));
+            let in_s = vsgl_incoming_radiance(lobe_s, position, p);
+            diffuse += light.specular_power * diffuse_over_rd(in_s, n);
+            specular += light.specular_power * vsgl_specular(in_s, n, v, alpha);
+        }
     }
     let scale = f32(stride);
     indirect_diffuse[index] += vec4f(min(rd * diffuse * scale, vec3f(FLT_MAX)), 0.0);

@@ -8,6 +8,7 @@ use crate::passes::vpl_shading::{IndirectTargets, VplShadingPass};
 use crate::passes::vsgl_gen::{GenSettings, Kernel, VsglGenPass, VSGL_BYTES};
 use crate::passes::vsgl_moments::{MomentChains, VsglMomentsPass};
 use crate::passes::vsgl_shading::{DiffuseMode, VsglShadingPass};
+use crate::passes::vsgl2_reduce::{Vsgl2Reduce, VSGL2_COUNT};
 use crate::passes::{denoise::DenoisePass, moment_mips::MomentMipsPass};
 use crate::passes::pathtrace::{PathTraceInputs, PathTracePass};
 use crate::passes::{
@@ -21,9 +22,9 @@ use std::time::Instant;
 use wgpu::util::DeviceExt;
 
 /// Methods that render in this build.
-pub const METHODS: &[&str] = &["direct", "vpl", "vsgl", "reference", "pathtrace"];
+pub const METHODS: &[&str] = &["direct", "vpl", "vsgl", "vsgl2", "reference", "pathtrace"];
 /// Methods of DESIGN.md that later work adds; asking for one says so.
-pub const PLANNED_METHODS: &[&str] = &["vsgl2"];
+pub const PLANNED_METHODS: &[&str] = &[];
 
 /// Query pairs one frame may time: the reference's batches are the most numerous.
 const TIMER_CAPACITY: u32 = 2048;
@@ -43,7 +44,8 @@ pub struct RenderOptions {
     pub plan: String,
     /// VPL count per spot light (`vpl`).
     pub num_lights: u32,
-    /// RSM side (power of two, 32…4096); `None`: 256 for `vpl`, 1024 for `reference`.
+    /// RSM side (32…4096; a power of two except for `vsgl2`, which needs no pyramid);
+    /// `None`: 1024 for `reference`, 256 otherwise.
     pub rsm_size: Option<u32>,
     pub sampling: Sampling,
     pub seed: u32,
@@ -115,7 +117,12 @@ impl RenderOptions {
             return Err(Error::invalid("num_lights", format!("must be in 1..=1048576, got {}", self.num_lights)));
         }
         if let Some(s) = self.rsm_size {
-            if !(32..=4096).contains(&s) || !s.is_power_of_two() {
+            if self.method == "vsgl2" {
+                // The parallel sum tiles any side; only the mip-based methods need 2^k.
+                if !(32..=4096).contains(&s) {
+                    return Err(Error::invalid("rsm_size", format!("must be in 32..=4096 for method=\"vsgl2\", got {s}")));
+                }
+            } else if !(32..=4096).contains(&s) || !s.is_power_of_two() {
                 return Err(Error::invalid("rsm_size", format!("must be a power of two in 32..=4096, got {s}")));
             }
         }
@@ -192,6 +199,7 @@ pub struct Renderer {
     moment_mips: MomentMipsPass,
     vsgl_gen: VsglGenPass,
     vsgl_shading: VsglShadingPass,
+    vsgl2_reduce: Vsgl2Reduce,
     denoise: DenoisePass,
     pathtrace: PathTracePass,
 }
@@ -237,6 +245,7 @@ impl Renderer {
                 moment_mips: MomentMipsPass::new(&gpu)?,
                 vsgl_gen: VsglGenPass::new(&gpu)?,
                 vsgl_shading: VsglShadingPass::new(&gpu)?,
+                vsgl2_reduce: Vsgl2Reduce::new(&gpu)?,
                 denoise: DenoisePass::new(&gpu)?,
                 pathtrace: PathTracePass::new(&gpu)?,
             })
@@ -424,6 +433,14 @@ impl Renderer {
                     if i == 0 {
                         first_vsgls = Some(buf);
                     }
+                } else if opts.method == "vsgl2" {
+                    // The poster: the whole RSM summed to one diffuse and one specular VSGL.
+                    let buf = storage_buffer(gpu, "vsgl2_buffer", VSGL2_COUNT as u64 * VSGL_BYTES);
+                    self.vsgl2_reduce.record(gpu, &mut enc, &mut timer, &rsm, lights[i].position, &buf);
+                    self.vsgl_shading.record(gpu, &mut enc, &mut timer, &frame_buf, &buf, VSGL2_COUNT, 1, opts.diffuse, &gbuffer, &indirect, (w, h));
+                    if i == 0 {
+                        first_vsgls = Some(buf);
+                    }
                 } else {
                     self.pdf_mips.record(gpu, &mut enc, &mut timer, &rsm);
                     self.vpl_sample.record_importance(gpu, &mut enc, &mut timer, light_one.as_entire_binding(), &rsm, opts.num_lights, opts.sampling, opts.seed, &vpls);
@@ -459,6 +476,13 @@ impl Renderer {
                 } else {
                     skipped.push(("denoise".into(), "denoise=False".into()));
                 }
+            } else if opts.method == "vsgl2" {
+                passes.extend(["vsgl2_reduce", "vsgl_shading"].map(String::from));
+                let why = "method=\"vsgl2\": two VSGLs from a parallel sum over the whole RSM";
+                skipped.push(("pdf_mips".into(), format!("{why}, no importance sampling")));
+                skipped.push(("moment_mips".into(), format!("{why}, no mipmapped moments")));
+                skipped.push(("vsgl_sampling".into(), format!("{why}, no kernels to place")));
+                skipped.push(("denoise".into(), format!("{why}: every pixel evaluates both VSGLs (no interleaving)")));
             } else if reference {
                 passes.extend(["vpl_sample[every_texel]", "vpl_shading"].map(String::from));
                 skipped.push(("pdf_mips".into(), "the reference uses every RSM texel, no importance sampling".into()));
@@ -538,7 +562,11 @@ impl Renderer {
             settings.push(("bisection_steps".into(), opts.bisection_steps.to_string()));
             settings.push(("interleave".into(), opts.interleave.to_string()));
             settings.push(("denoise".into(), opts.denoise.to_string()));
-            settings.push(("diffuse".into(), match opts.diffuse { DiffuseMode::Papers => "papers", DiffuseMode::Accurate => "accurate" }.into()));
+            settings.push(("diffuse".into(), opts.diffuse.name().into()));
+        }
+        if opts.method == "vsgl2" {
+            settings.push(("diffuse".into(), opts.diffuse.name().into()));
+            settings.push(("vsgl2_temporary_bytes".into(), Vsgl2Reduce::temporary_bytes(opts.rsm_size()).to_string()));
         }
         if opts.method == "vpl" || opts.method == "vsgl" {
             settings.push(("num_lights".into(), opts.num_lights.to_string()));

@@ -280,13 +280,14 @@ impl PyFrame {
     fn aovs(&self) -> Vec<String> {
         self.inner.aov_names()
     }
-    /// The first light's VSGLs (`method="vsgl"`) as a NumPy structured array with fields
+    /// The first light's VSGLs (`method="vsgl"`; `"vsgl2"`: record 0 diffuse, 1 specular) as a
+    /// NumPy structured array with fields
     /// mean (relative to the camera), variance, diffuse_axis, diffuse_sharpness, diffuse_power
     /// (rgb, W), level, specular_axis, specular_sharpness, specular_power, pdf, center (kernel
     /// centre in RSM texels), mass (the kernel's probability mass (4^l/M)·p̄), _pad.
     fn vsgls<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyAny>> {
         let Some(data) = &self.inner.vsgls else {
-            return Err(PyValueError::new_err("this frame has no VSGLs; render with method=\"vsgl\" and a spot light"));
+            return Err(PyValueError::new_err("this frame has no VSGLs; render with method=\"vsgl\" or \"vsgl2\" and a spot light"));
         };
         let np = py.import("numpy")?;
         let fields = pyo3::types::PyList::empty(py);
@@ -477,7 +478,8 @@ impl PyRenderer {
         let diffuse = match diffuse {
             "papers" => DiffuseMode::Papers,
             "accurate" => DiffuseMode::Accurate,
-            other => return Err(PyValueError::new_err(format!("diffuse: must be \"papers\" or \"accurate\", got {other:?}"))),
+            "sg_product" => DiffuseMode::SgProduct,
+            other => return Err(PyValueError::new_err(format!("diffuse: must be \"papers\", \"accurate\" or \"sg_product\", got {other:?}"))),
         };
         let opts = RenderOptions {
             method: method.into(),

@@ -12,6 +12,7 @@ pub mod shadow_map;
 pub mod visibility;
 pub mod vpl_sample;
 pub mod vpl_shading;
+pub mod vsgl2_reduce;
 pub mod vsgl_gen;
 pub mod vsgl_moments;
 pub mod vsgl_shading;

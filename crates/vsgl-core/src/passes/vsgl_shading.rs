@@ -30,6 +30,29 @@ pub enum DiffuseMode {
     Papers,
     /// The clamped cosine kept inside the integral (no light from below the horizon).
     Accurate,
+    /// The SG product integral with the Lambert lobe as an SG (the 2015 poster, cheap for a few
+    /// VSGLs; leaks light from lobes below the horizon).
+    SgProduct,
+}
+
+impl DiffuseMode {
+    /// The `diffuse=` name.
+    pub fn name(self) -> &'static str {
+        match self {
+            DiffuseMode::Papers => "papers",
+            DiffuseMode::Accurate => "accurate",
+            DiffuseMode::SgProduct => "sg_product",
+        }
+    }
+
+    /// `ShadeParams.diffuse_mode` of the shader.
+    fn shader_code(self) -> u32 {
+        match self {
+            DiffuseMode::Papers => 0,
+            DiffuseMode::Accurate => 1,
+            DiffuseMode::SgProduct => 2,
+        }
+    }
 }
 
 pub struct VsglShadingPass {
@@ -62,7 +85,7 @@ impl VsglShadingPass {
         let mut first = 0;
         while first < count {
             let n = (count - first).min(chunk);
-            let params = ShadeParamsRaw { count: n, interleave, diffuse_mode: (diffuse == DiffuseMode::Accurate) as u32, first };
+            let params = ShadeParamsRaw { count: n, interleave, diffuse_mode: diffuse.shader_code(), first };
             let uniform = gpu.device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
                 label: Some("vsgl_shading_params_uniform_buffer"),
                 contents: bytemuck::bytes_of(&params),

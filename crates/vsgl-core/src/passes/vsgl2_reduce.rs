@@ -1,0 +1,120 @@
+//! Two VSGLs by parallel summation (compute, `method="vsgl2"`, the 2015 poster): the per-texel
+//! VSGL moments of the whole RSM summed in shared memory to one diffuse and one specular VSGL,
+//! written as two `VsglRaw` records (record 0 diffuse, record 1 specular).
+//!
+//! Dispatches (all timed as `vsgl2_reduce`): `tiles` (one 8×8 workgroup per RSM tile, any RSM
+//! side) writes ⌈n/8⌉² partials; `merge` (64 threads, 256 partials per workgroup) runs until
+//! one workgroup is left, whose dispatch also writes the VSGLs. Temporary memory: two partial
+//! buffers of 96 bytes per partial, ⌈n/8⌉² and ⌈⌈n/8⌉²/256⌉ partials (see [`Vsgl2Reduce::temporary_bytes`]).
+
+use super::{run_compute, storage_buffer};
+use crate::error::Result;
+use crate::gpu::{groups, storage_binding, uniform_binding, Gpu, PassTimer};
+use crate::passes::rsm_flux::Rsm;
+use wgpu::util::DeviceExt;
+
+/// Side of an RSM tile summed by one `tiles` workgroup.
+const TILE: u32 = 8;
+/// Partials one `merge` workgroup sums.
+const MERGE_SPAN: u32 = 256;
+/// Bytes of one partial: six vec4 (`Moments2` in the shader).
+pub const PARTIAL_BYTES: u64 = 96;
+/// Records written: diffuse, specular.
+pub const VSGL2_COUNT: u32 = 2;
+
+#[repr(C)]
+#[derive(Clone, Copy, bytemuck::Pod, bytemuck::Zeroable)]
+struct ReduceParamsRaw {
+    rsm_size: u32,
+    count: u32,
+    finish: u32,
+    _pad0: u32,
+    light_offset: [f32; 3],
+    _pad1: f32,
+}
+
+pub struct Vsgl2Reduce {
+    tiles: wgpu::ComputePipeline,
+    merge: wgpu::ComputePipeline,
+}
+
+/// Partials after the tile pass for an RSM of side `rsm_size`.
+fn tile_partials(rsm_size: u32) -> u64 {
+    let t = groups(rsm_size, TILE) as u64;
+    t * t
+}
+
+impl Vsgl2Reduce {
+    pub fn new(gpu: &Gpu) -> Result<Self> {
+        let module = gpu.shader("passes/vsgl2_reduce.wgsl")?;
+        let ro = storage_binding(true);
+        let rw = storage_binding(false);
+        let bindings = [uniform_binding(), ro, ro, ro, ro, ro, rw, rw];
+        Ok(Self {
+            tiles: gpu.compute_pipeline_explicit("vsgl2_reduce_tiles_pipeline", &module, "tiles", &bindings),
+            merge: gpu.compute_pipeline_explicit("vsgl2_reduce_merge_pipeline", &module, "merge", &bindings),
+        })
+    }
+
+    /// Temporary bytes the reduction allocates for an RSM of side `rsm_size` (both partial
+    /// buffers; the two 96-byte VSGL records are the output, not counted).
+    pub fn temporary_bytes(rsm_size: u32) -> u64 {
+        let p = tile_partials(rsm_size);
+        (p * PARTIAL_BYTES).max(16) + (p.div_ceil(MERGE_SPAN as u64) * PARTIAL_BYTES).max(16)
+    }
+
+    /// Records the reduction of `rsm` into `out` (two VSGL records, means relative to the
+    /// frame origin: `light_offset` is the light's position relative to it).
+    pub fn record(&self, gpu: &Gpu, enc: &mut wgpu::CommandEncoder, timer: &mut PassTimer, rsm: &Rsm, light_offset: [f32; 3], out: &wgpu::Buffer) {
+        let n = rsm.size;
+        let p = tile_partials(n);
+        let a = storage_buffer(gpu, "vsgl2_partial_a_buffer", p * PARTIAL_BYTES);
+        let b = storage_buffer(gpu, "vsgl2_partial_b_buffer", p.div_ceil(MERGE_SPAN as u64) * PARTIAL_BYTES);
+        let params = |count: u64, finish: bool| {
+            let raw = ReduceParamsRaw { rsm_size: n, count: count as u32, finish: finish as u32, _pad0: 0, light_offset, _pad1: 0.0 };
+            gpu.device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
+                label: Some("vsgl2_reduce_params_uniform_buffer"),
+                contents: bytemuck::bytes_of(&raw),
+                usage: wgpu::BufferUsages::UNIFORM,
+            })
+        };
+        let dispatch = |u: &wgpu::Buffer, input: &wgpu::Buffer, output: &wgpu::Buffer, pipeline: &wgpu::ComputePipeline, enc: &mut wgpu::CommandEncoder, timer: &mut PassTimer, workgroups: (u32, u32, u32)| {
+            run_compute(
+                gpu,
+                enc,
+                timer,
+                "vsgl2_reduce",
+                pipeline,
+                &[&[
+                    u.as_entire_binding(),
+                    rsm.gbuffer.position.as_entire_binding(),
+                    rsm.gbuffer.normal.as_entire_binding(),
+                    rsm.flux_diffuse.as_entire_binding(),
+                    rsm.flux_specular.as_entire_binding(),
+                    input.as_entire_binding(),
+                    output.as_entire_binding(),
+                    out.as_entire_binding(),
+                ]],
+                workgroups,
+            );
+        };
+        let u = params(0, false);
+        let t = groups(n, TILE);
+        dispatch(&u, &b, &a, &self.tiles, enc, timer, (t, t, 1));
+        // Ping-pong: each merge reads `count` partials from one buffer and writes
+        // ⌈count/256⌉ to the other (the first buffer is the larger, so both always fit).
+        let (mut input, mut output) = (&a, &b);
+        let mut count = p;
+        loop {
+            let wgs = count.div_ceil(MERGE_SPAN as u64);
+            let finish = wgs == 1;
+            let u = params(count, finish);
+            dispatch(&u, input, output, &self.merge, enc, timer, (wgs as u32, 1, 1));
+            if finish {
+                break;
+            }
+            count = wgs;
+            std::mem::swap(&mut input, &mut output);
+        }
+    }
+}
