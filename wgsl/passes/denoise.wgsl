@@ -1,17 +1,21 @@
 // Geometry-aware denoising of interleaved indirect light (compute) [Tok15 §5: 17×17 filter for
-// 8×8 interleaving; Laine et al. 2007]: a (2k)² window (offsets −k … k−1, k = the interleave
-// factor), so every interleaved subset of VSGLs appears exactly 4 times. (A symmetric 17×17
-// window counts one residue 3 times per axis and the others twice, which leaves a period-k
-// pattern on flat walls; the even window is half a pixel off-centre instead.) Taps are weighted
-// by plane distance and normal similarity so light does not bleed across edges. Diffuse light is demodulated by R_d (filtered as
-// irradiance, then multiplied back) so texture detail is kept.
+// 8×8 interleaving; Laine et al. 2007], as two separable cross-bilateral passes: along x, then
+// along y, each over offsets −k … k−1 (k = the interleave factor). The x pass averages the k
+// column residues of the interleaving pattern and the y pass the k row residues, so every
+// interleaved subset of VSGLs enters with equal weight on a flat surface — like the (2k)² window
+// it replaces, at 4k instead of 4k² taps. (An odd 17-tap window counts one residue 3 times and
+// the others twice, leaving a period-k pattern on flat walls.) Taps are weighted by the distance
+// to the centre pixel's tangent plane and by normal similarity so light does not bleed across
+// edges. Diffuse light is demodulated by R_d in the x pass and remodulated in the y pass, so
+// texture detail is kept.
 #include "common/constants.wgsl"
 #include "common/frame.wgsl"
 #include "common/gbuffer.wgsl"
 
 struct DenoiseParams {
     radius: i32,
-    _pad0: u32,
+    // 0: along x, input modulated, output demodulated; 1: along y, demodulated → modulated.
+    direction: u32,
     _pad1: u32,
     _pad2: u32,
 }
@@ -32,8 +36,8 @@ const ALBEDO_FLOOR: f32 = 1.0e-4;
 @group(1) @binding(2) var<storage, read> gbuf_normal: array<vec4f>;
 @group(1) @binding(3) var<storage, read> gbuf_geo_normal: array<vec4f>;
 @group(1) @binding(4) var<storage, read> gbuf_base_color: array<vec4f>;
-@group(1) @binding(5) var<storage, read> noisy_diffuse: array<vec4f>;
-@group(1) @binding(6) var<storage, read> noisy_specular: array<vec4f>;
+@group(1) @binding(5) var<storage, read> in_diffuse: array<vec4f>;
+@group(1) @binding(6) var<storage, read> in_specular: array<vec4f>;
 @group(1) @binding(7) var<storage, read_write> out_diffuse: array<vec4f>;
 @group(1) @binding(8) var<storage, read_write> out_specular: array<vec4f>;
 
@@ -57,30 +61,38 @@ fn main(@builtin(global_invocation_id) gid: vec3u) {
     }
     let depth = pos.w;
     let n = gbuf_normal[index].xyz;
+    let step = select(vec2i(0, 1), vec2i(1, 0), params.direction == 0u);
+    let demodulate_input = params.direction == 0u;
     var sum_d = vec3f(0.0);
     var sum_s = vec3f(0.0);
     var sum_w = 0.0;
     let r = params.radius;
-    for (var dy = -r; dy < r; dy++) {
-        for (var dx = -r; dx < r; dx++) {
-            let q = xy + vec2i(dx, dy);
-            if (q.x < 0 || q.y < 0 || q.x >= size.x || q.y >= size.y) {
-                continue;
-            }
-            let j = u32(q.y * size.x + q.x);
-            let qp = gbuf_position[j];
-            if (qp.w == GBUFFER_BACKGROUND) {
-                continue;
-            }
-            let dz = dot(n, qp.xyz - pos.xyz) / (PLANE_SIGMA * depth);
-            let cos_n = max(dot(n, gbuf_normal[j].xyz), 0.0);
-            let w = exp(-dz * dz) * pow(cos_n, NORMAL_POWER);
-            sum_d += w * noisy_diffuse[j].rgb / rd_at(j);
-            sum_s += w * noisy_specular[j].rgb;
-            sum_w += w;
+    for (var t = -r; t < r; t++) {
+        let q = xy + t * step;
+        if (q.x < 0 || q.y < 0 || q.x >= size.x || q.y >= size.y) {
+            continue;
         }
+        let j = u32(q.y * size.x + q.x);
+        let qp = gbuf_position[j];
+        if (qp.w == GBUFFER_BACKGROUND) {
+            continue;
+        }
+        let dz = dot(n, qp.xyz - pos.xyz) / (PLANE_SIGMA * depth);
+        let cos_n = max(dot(n, gbuf_normal[j].xyz), 0.0);
+        let w = exp(-dz * dz) * pow(cos_n, NORMAL_POWER);
+        var d = in_diffuse[j].rgb;
+        if (demodulate_input) {
+            d = d / rd_at(j);
+        }
+        sum_d += w * d;
+        sum_s += w * in_specular[j].rgb;
+        sum_w += w;
     }
     // The centre tap (offset 0 is inside −k … k−1) always has weight 1, so sum_w ≥ 1.
-    out_diffuse[index] = vec4f(sum_d / sum_w * rd_at(index), 0.0);
+    var out_d = sum_d / sum_w;
+    if (!demodulate_input) {
+        out_d = out_d * rd_at(index);
+    }
+    out_diffuse[index] = vec4f(out_d, 0.0);
     out_specular[index] = vec4f(sum_s / sum_w, 0.0);
 }

@@ -1,6 +1,7 @@
-//! Geometry-aware denoising of interleaved indirect light (compute), (2k)² window.
+//! Geometry-aware denoising of interleaved indirect light (compute): two separable
+//! cross-bilateral passes (x, then y) over 2k taps each (see `wgsl/passes/denoise.wgsl`).
 
-use super::run_compute;
+use super::{run_compute, storage_buffer};
 use crate::error::Result;
 use crate::gpu::{groups, Gpu, PassTimer};
 use crate::passes::material::GBuffer;
@@ -13,7 +14,8 @@ const WORKGROUP: u32 = 8;
 #[derive(Clone, Copy, bytemuck::Pod, bytemuck::Zeroable)]
 struct DenoiseParamsRaw {
     radius: i32,
-    _pad: [u32; 3],
+    direction: u32,
+    _pad: [u32; 2],
 }
 
 pub struct DenoisePass {
@@ -26,34 +28,42 @@ impl DenoisePass {
         Ok(Self { pipeline: gpu.compute_pipeline("denoise_pipeline", &module, "main") })
     }
 
+    /// Filters `noisy` into `out` through an intermediate (demodulated, x-filtered) pair.
     #[allow(clippy::too_many_arguments)]
     pub fn record(&self, gpu: &Gpu, enc: &mut wgpu::CommandEncoder, timer: &mut PassTimer, frame: &wgpu::Buffer, radius: u32, gbuffer: &GBuffer, noisy: &IndirectTargets, out: &IndirectTargets, size: (u32, u32)) {
-        let uniform = gpu.device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
-            label: Some("denoise_params_uniform_buffer"),
-            contents: bytemuck::bytes_of(&DenoiseParamsRaw { radius: radius as i32, _pad: [0; 3] }),
-            usage: wgpu::BufferUsages::UNIFORM,
-        });
-        run_compute(
-            gpu,
-            enc,
-            timer,
-            "denoise",
-            &self.pipeline,
-            &[
-                &[frame.as_entire_binding()],
+        let bytes = size.0 as u64 * size.1 as u64 * 16;
+        let across = IndirectTargets {
+            diffuse: storage_buffer(gpu, "denoise_x_diffuse_buffer", bytes),
+            specular: storage_buffer(gpu, "denoise_x_specular_buffer", bytes),
+        };
+        for (direction, input, output) in [(0u32, noisy, &across), (1u32, &across, out)] {
+            let uniform = gpu.device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
+                label: Some("denoise_params_uniform_buffer"),
+                contents: bytemuck::bytes_of(&DenoiseParamsRaw { radius: radius as i32, direction, _pad: [0; 2] }),
+                usage: wgpu::BufferUsages::UNIFORM,
+            });
+            run_compute(
+                gpu,
+                enc,
+                timer,
+                "denoise",
+                &self.pipeline,
                 &[
-                    uniform.as_entire_binding(),
-                    gbuffer.position.as_entire_binding(),
-                    gbuffer.normal.as_entire_binding(),
-                    gbuffer.geo_normal.as_entire_binding(),
-                    gbuffer.base_color.as_entire_binding(),
-                    noisy.diffuse.as_entire_binding(),
-                    noisy.specular.as_entire_binding(),
-                    out.diffuse.as_entire_binding(),
-                    out.specular.as_entire_binding(),
+                    &[frame.as_entire_binding()],
+                    &[
+                        uniform.as_entire_binding(),
+                        gbuffer.position.as_entire_binding(),
+                        gbuffer.normal.as_entire_binding(),
+                        gbuffer.geo_normal.as_entire_binding(),
+                        gbuffer.base_color.as_entire_binding(),
+                        input.diffuse.as_entire_binding(),
+                        input.specular.as_entire_binding(),
+                        output.diffuse.as_entire_binding(),
+                        output.specular.as_entire_binding(),
+                    ],
                 ],
-            ],
-            (groups(size.0, WORKGROUP), groups(size.1, WORKGROUP), 1),
-        );
+                (groups(size.0, WORKGROUP), groups(size.1, WORKGROUP), 1),
+            );
+        }
     }
 }
