@@ -137,10 +137,11 @@ impl GpuScene {
         let mut data_layers: Vec<usize> = Vec::new();
         let mut layer = |tex: Option<usize>, want: TextureUsage| -> i32 {
             let Some(t) = tex else { return -1 };
-            let Some(texture) = scene.textures.get(t) else { return -1 };
+            if t >= scene.textures.len() {
+                return -1;
+            }
             // The array a texture goes to follows its role in the material, so an image used
             // both as colour and as data gets one layer in each.
-            let _ = texture;
             let list = if want == TextureUsage::Color { &mut color_layers } else { &mut data_layers };
             match list.iter().position(|&x| x == t) {
                 Some(i) => i as i32,

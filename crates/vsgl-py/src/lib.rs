@@ -5,7 +5,7 @@ mod errors;
 mod stability;
 
 use errors::to_py;
-use glam::{DMat4, DVec3, Vec3};
+use glam::{DMat4, DVec3};
 use numpy::{PyArray1, PyArrayMethods};
 use pyo3::exceptions::PyValueError;
 use pyo3::prelude::*;
@@ -560,6 +560,5 @@ fn _vsgl(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(builtin_scene_names, m)?)?;
     m.add_function(wrap_pyfunction!(builtin_scene, m)?)?;
     m.add_function(wrap_pyfunction!(stability::stability_suite, m)?)?;
-    let _ = Vec3::ZERO;
     Ok(())
 }

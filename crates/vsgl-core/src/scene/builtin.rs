@@ -159,7 +159,7 @@ const GREEN: [f32; 3] = [0.14, 0.45, 0.091];
 
 /// Walls of a 2 m Cornell box (x, z ∈ [−1, 1], y ∈ [0, 2]), open towards +z.
 fn cornell_walls(scene: &mut Scene, floor: Material) {
-    let (lo, hi) = (DVec3::new(-1.0, 0.0, -1.0), DVec3::new(1.0, 2.0, 1.0));
+    let lo = DVec3::new(-1.0, 0.0, -1.0);
     add(scene, "floor", floor, |b| b.quad(DVec3::new(-1.0, 0.0, 1.0), DVec3::X * 2.0, DVec3::NEG_Z * 2.0));
     add(scene, "ceiling", Material::dielectric("white", WHITE, 1.0), |b| {
         b.quad(DVec3::new(-1.0, 2.0, -1.0), DVec3::X * 2.0, DVec3::Z * 2.0)
@@ -173,7 +173,6 @@ fn cornell_walls(scene: &mut Scene, floor: Material) {
     add(scene, "right_wall", Material::dielectric("green", GREEN, 1.0), |b| {
         b.quad(DVec3::new(1.0, 0.0, -1.0), DVec3::Z * 2.0, DVec3::Y * 2.0)
     });
-    let _ = hi;
     scene.lights.push(spot(DVec3::new(0.0, 1.95, 0.0), DVec3::new(0.0, 0.0, 0.0), 6.0, 40.0, 55.0));
     scene.cameras.push(camera(DVec3::new(0.0, 1.0, 3.9), DVec3::new(0.0, 1.0, 0.0), 40.0));
 }
