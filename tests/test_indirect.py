@@ -149,11 +149,15 @@ def test_seeds_differ_and_repeat(renderer):
 
 
 def test_vpl_clamp_bounds_spikes_and_is_off_by_default(renderer):
-    scene = vsgl.scenes.glossy_cornell()
+    # On the diffuse box the VPL spikes come from the 1/d² singularity near walls and corners,
+    # which is exactly what the clamp bounds (measured: peak 0.97 → 0.23 at vpl_clamp=0.05).
+    scene = vsgl.scenes.cornell_box()
     free = renderer.render(scene, method="vpl", num_lights=64, rsm_size=64, seed=3)
-    clamped = renderer.render(scene, method="vpl", num_lights=64, rsm_size=64, seed=3, vpl_clamp=0.1)
+    clamped = renderer.render(scene, method="vpl", num_lights=64, rsm_size=64, seed=3, vpl_clamp=0.05)
     assert free.settings["vpl_clamp"] == "0"
-    assert clamped.aov("indirect").max() <= free.aov("indirect").max()
+    assert clamped.aov("indirect").max() < 0.5 * free.aov("indirect").max()
+    # Clamping only removes energy (it is biased low), never adds it.
+    assert clamped.aov("indirect").mean() <= free.aov("indirect").mean()
     assert np.isfinite(clamped.image).all()
 
 

@@ -13,7 +13,7 @@ use crate::passes::{denoise::DenoisePass, moment_mips::MomentMipsPass};
 use crate::passes::pathtrace::{PathTraceInputs, PathTracePass};
 use crate::passes::{
     direct::DirectPass, material::GBuffer, material::MaterialPass, pdf_mips::PdfMipsPass, rsm_flux::Rsm,
-    rsm_flux::RsmFluxPass, shadow_map::ShadowMapPass, storage_buffer, visibility::VisibilityPass,
+    rsm_flux::RsmFluxPass, shadow_map::ShadowMapPass, storage_buffer, uniform_buffer, visibility::VisibilityPass,
 };
 use crate::scene::{Camera, Scene};
 use crate::upload::GpuScene;
@@ -204,10 +204,6 @@ pub struct Renderer {
     pathtrace: PathTracePass,
 }
 
-fn uniform_buffer(gpu: &Gpu, label: &str, bytes: &[u8]) -> wgpu::Buffer {
-    gpu.device.create_buffer_init(&wgpu::util::BufferInitDescriptor { label: Some(label), contents: bytes, usage: wgpu::BufferUsages::UNIFORM })
-}
-
 fn light_storage(gpu: &Gpu, light: &SpotLightRaw) -> wgpu::Buffer {
     gpu.device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
         label: Some("spot_light_storage_buffer"),
@@ -297,7 +293,7 @@ impl Renderer {
             .map(|(i, l)| spot_light_raw(l, origin, extent, i as u32, opts.shadow_size))
             .collect();
         let uniforms = frame_uniforms(camera, w, h, lights.len() as u32, gscene.texture_layer_size, extent, opts.shadow_size);
-        let frame_buf = uniform_buffer(gpu, "frame_uniform_buffer", bytemuck::bytes_of(&uniforms));
+        let frame_buf = uniform_buffer(gpu, "frame_uniform_buffer", &uniforms);
         let light_bytes: Vec<u8> = if lights.is_empty() { vec![0; 128] } else { bytemuck::cast_slice(&lights).to_vec() };
         let light_buf = gpu.device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
             label: Some("spot_light_buffer"),
@@ -387,7 +383,7 @@ impl Renderer {
             let vpls = storage_buffer(gpu, "vpl_buffer", vpl_capacity * VPL_BYTES);
             for (i, light) in scene.lights.iter().enumerate() {
                 let view = light_view_uniforms(light, origin, extent, n, gscene.texture_layer_size);
-                let view_buf = uniform_buffer(gpu, "rsm_view_uniform_buffer", bytemuck::bytes_of(&view));
+                let view_buf = uniform_buffer(gpu, "rsm_view_uniform_buffer", &view);
                 let light_one = light_storage(gpu, &lights[i]);
                 self.visibility.record(gpu, &mut enc, &mut timer, "rsm_visibility", &view_buf, &gscene.raster_vertices, gscene.raster_vertex_count, &rsm_vis);
                 self.material.record(gpu, &mut enc, &mut timer, "rsm_material", &view_buf, &rsm_vis.ids, &gscene, textured, &rsm.gbuffer, (n, n));

@@ -1,12 +1,11 @@
 //! Geometry-aware denoising of interleaved indirect light (compute): two separable
 //! cross-bilateral passes (x, then y) over 2k taps each (see `wgsl/passes/denoise.wgsl`).
 
-use super::{run_compute, storage_buffer};
+use super::{run_compute, storage_buffer, uniform_buffer};
 use crate::error::Result;
 use crate::gpu::{groups, Gpu, PassTimer};
 use crate::passes::material::GBuffer;
 use crate::passes::vpl_shading::IndirectTargets;
-use wgpu::util::DeviceExt;
 
 const WORKGROUP: u32 = 8;
 
@@ -37,11 +36,7 @@ impl DenoisePass {
             specular: storage_buffer(gpu, "denoise_x_specular_buffer", bytes),
         };
         for (direction, input, output) in [(0u32, noisy, &across), (1u32, &across, out)] {
-            let uniform = gpu.device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
-                label: Some("denoise_params_uniform_buffer"),
-                contents: bytemuck::bytes_of(&DenoiseParamsRaw { radius: radius as i32, direction, _pad: [0; 2] }),
-                usage: wgpu::BufferUsages::UNIFORM,
-            });
+            let uniform = uniform_buffer(gpu, "denoise_params_uniform_buffer", &DenoiseParamsRaw { radius: radius as i32, direction, _pad: [0; 2] });
             run_compute(
                 gpu,
                 enc,

@@ -61,6 +61,14 @@ pub fn run_compute(
     }
 }
 
+/// A uniform buffer holding `value` (a `#[repr(C)]` twin of a WGSL struct).
+pub fn uniform_buffer<T: bytemuck::Pod>(gpu: &Gpu, label: &str, value: &T) -> wgpu::Buffer {
+    wgpu::util::DeviceExt::create_buffer_init(
+        &gpu.device,
+        &wgpu::util::BufferInitDescriptor { label: Some(label), contents: bytemuck::bytes_of(value), usage: wgpu::BufferUsages::UNIFORM },
+    )
+}
+
 /// A storage buffer of `size` bytes (at least 16, as wgpu rejects empty bindings).
 pub fn storage_buffer(gpu: &Gpu, label: &str, size: u64) -> wgpu::Buffer {
     gpu.device.create_buffer(&wgpu::BufferDescriptor {

@@ -1,10 +1,9 @@
 //! Mip levels of the VSGL moment chains (compute): 2×2 averages, level by level.
 
-use super::run_compute;
+use super::{run_compute, uniform_buffer};
 use crate::error::Result;
 use crate::gpu::{groups, Gpu, PassTimer};
 use crate::passes::vsgl_moments::MomentChains;
-use wgpu::util::DeviceExt;
 
 const WORKGROUP: u32 = 8;
 
@@ -31,11 +30,7 @@ impl MomentMipsPass {
         let (offsets, _) = super::pdf_mips::pyramid_layout(rsm_size);
         for level in 1..offsets.len() {
             let dst_size = rsm_size >> level;
-            let uniform = gpu.device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
-                label: Some("moment_mips_level_uniform_buffer"),
-                contents: bytemuck::bytes_of(&LevelRaw { src_offset: offsets[level - 1], dst_offset: offsets[level], dst_size, chain_len: chains.chain_len }),
-                usage: wgpu::BufferUsages::UNIFORM,
-            });
+            let uniform = uniform_buffer(gpu, "moment_mips_level_uniform_buffer", &LevelRaw { src_offset: offsets[level - 1], dst_offset: offsets[level], dst_size, chain_len: chains.chain_len });
             run_compute(
                 gpu,
                 enc,

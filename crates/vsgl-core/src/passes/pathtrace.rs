@@ -3,7 +3,7 @@
 //! bounce point, a ray-traced direct pass, and the per-pixel standard error. The estimator is
 //! documented in `wgsl/passes/pathtrace.wgsl`.
 
-use super::entries;
+use super::{entries, uniform_buffer};
 use crate::bvh::{scene_triangles, Bvh};
 use crate::error::{Error, Result};
 use crate::gpu::{groups, storage_binding, uniform_binding, Gpu, PassTimer};
@@ -197,11 +197,7 @@ impl PathTracePass {
         let workgroups = (groups(w, WORKGROUP), groups(h, WORKGROUP), 1);
 
         let dispatch = |enc: &mut wgpu::CommandEncoder, timer: &mut PassTimer, label: &str, pipeline: &wgpu::ComputePipeline, params: PathParamsRaw| {
-            let uniform = gpu.device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
-                label: Some("pathtrace_params_uniform_buffer"),
-                contents: bytemuck::bytes_of(&params),
-                usage: wgpu::BufferUsages::UNIFORM,
-            });
+            let uniform = uniform_buffer(gpu, "pathtrace_params_uniform_buffer", &params);
             let resources = [
                 input.frame.as_entire_binding(),
                 uniform.as_entire_binding(),

@@ -2,11 +2,10 @@
 //! and hierarchical sample warping can descend it. wgpu has no GenerateMips, and sums (not
 //! averages) keep the probabilities exact.
 
-use super::run_compute;
+use super::{run_compute, uniform_buffer};
 use crate::error::Result;
 use crate::gpu::{groups, Gpu, PassTimer};
 use crate::passes::rsm_flux::Rsm;
-use wgpu::util::DeviceExt;
 
 const WORKGROUP: u32 = 8;
 
@@ -50,11 +49,7 @@ impl PdfMipsPass {
         let (offsets, _) = pyramid_layout(rsm.size);
         for level in 1..offsets.len() {
             let dst_size = rsm.size >> level;
-            let uniform = gpu.device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
-                label: Some("pdf_mips_level_uniform_buffer"),
-                contents: bytemuck::bytes_of(&LevelRaw { src_offset: offsets[level - 1], dst_offset: offsets[level], dst_size, _pad: 0 }),
-                usage: wgpu::BufferUsages::UNIFORM,
-            });
+            let uniform = uniform_buffer(gpu, "pdf_mips_level_uniform_buffer", &LevelRaw { src_offset: offsets[level - 1], dst_offset: offsets[level], dst_size, _pad: 0 });
             run_compute(
                 gpu,
                 enc,

@@ -1,8 +1,8 @@
 //! Spot-light shadow maps: depth only, one array layer per light, reverse-Z.
 
+use super::uniform_buffer;
 use crate::error::Result;
 use crate::gpu::{Gpu, PassTimer};
-use wgpu::util::DeviceExt;
 
 pub const FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Depth32Float;
 
@@ -94,11 +94,7 @@ impl ShadowMapPass {
             if vertex_count == 0 {
                 continue;
             }
-            let uniform = gpu.device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
-                label: Some("shadow_map_view_uniform_buffer"),
-                contents: bytemuck::cast_slice(vp),
-                usage: wgpu::BufferUsages::UNIFORM,
-            });
+            let uniform = uniform_buffer(gpu, "shadow_map_view_uniform_buffer", vp);
             let bind = gpu.device.create_bind_group(&wgpu::BindGroupDescriptor {
                 label: Some("shadow_map_bind_group"),
                 layout: &self.pipeline.get_bind_group_layout(0),

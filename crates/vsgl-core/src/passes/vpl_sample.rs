@@ -1,11 +1,10 @@
 //! VPL sampling (compute): importance sampling of the RSM by hierarchical sample warping, or
 //! every texel as a VPL (the reference).
 
-use super::run_compute;
+use super::{run_compute, uniform_buffer};
 use crate::error::Result;
 use crate::gpu::{groups, storage_binding, uniform_binding, Gpu, PassTimer};
 use crate::passes::rsm_flux::Rsm;
-use wgpu::util::DeviceExt;
 
 const WORKGROUP: u32 = 64;
 
@@ -68,11 +67,7 @@ impl VplSamplePass {
 
     #[allow(clippy::too_many_arguments)]
     fn dispatch(&self, gpu: &Gpu, enc: &mut wgpu::CommandEncoder, timer: &mut PassTimer, pipeline: &wgpu::ComputePipeline, params: SampleParamsRaw, light: wgpu::BindingResource<'_>, rsm: &Rsm, out: &wgpu::Buffer) {
-        let uniform = gpu.device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
-            label: Some("vpl_sample_params_uniform_buffer"),
-            contents: bytemuck::bytes_of(&params),
-            usage: wgpu::BufferUsages::UNIFORM,
-        });
+        let uniform = uniform_buffer(gpu, "vpl_sample_params_uniform_buffer", &params);
         run_compute(
             gpu,
             enc,

@@ -1,10 +1,9 @@
 //! VPL shading (compute): adds the radiance of a batch of VPLs to the indirect buffers.
 
-use super::run_compute;
+use super::{run_compute, uniform_buffer};
 use crate::error::Result;
 use crate::gpu::{groups, Gpu, PassTimer};
 use crate::passes::material::GBuffer;
-use wgpu::util::DeviceExt;
 
 const WORKGROUP: u32 = 8;
 
@@ -55,11 +54,7 @@ impl VplShadingPass {
         let mut first = 0;
         while first < vpl_count {
             let count = (vpl_count - first).min(VPLS_PER_DISPATCH);
-            let uniform = gpu.device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
-                label: Some("vpl_shading_params_uniform_buffer"),
-                contents: bytemuck::bytes_of(&ShadeParamsRaw { vpl_count: count, min_distance2, first, _pad: 0 }),
-                usage: wgpu::BufferUsages::UNIFORM,
-            });
+            let uniform = uniform_buffer(gpu, "vpl_shading_params_uniform_buffer", &ShadeParamsRaw { vpl_count: count, min_distance2, first, _pad: 0 });
             run_compute(
                 gpu,
                 enc,

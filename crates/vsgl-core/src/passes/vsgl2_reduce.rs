@@ -7,11 +7,10 @@
 //! one workgroup is left, whose dispatch also writes the VSGLs. Temporary memory: two partial
 //! buffers of 96 bytes per partial, ⌈n/8⌉² and ⌈⌈n/8⌉²/256⌉ partials (see [`Vsgl2Reduce::temporary_bytes`]).
 
-use super::{run_compute, storage_buffer};
+use super::{run_compute, storage_buffer, uniform_buffer};
 use crate::error::Result;
 use crate::gpu::{groups, storage_binding, uniform_binding, Gpu, PassTimer};
 use crate::passes::rsm_flux::Rsm;
-use wgpu::util::DeviceExt;
 
 /// Side of an RSM tile summed by one `tiles` workgroup.
 const TILE: u32 = 8;
@@ -72,11 +71,7 @@ impl Vsgl2Reduce {
         let b = storage_buffer(gpu, "vsgl2_partial_b_buffer", p.div_ceil(MERGE_SPAN as u64) * PARTIAL_BYTES);
         let params = |count: u64, finish: bool| {
             let raw = ReduceParamsRaw { rsm_size: n, count: count as u32, finish: finish as u32, _pad0: 0, light_offset, _pad1: 0.0 };
-            gpu.device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
-                label: Some("vsgl2_reduce_params_uniform_buffer"),
-                contents: bytemuck::bytes_of(&raw),
-                usage: wgpu::BufferUsages::UNIFORM,
-            })
+            uniform_buffer(gpu, "vsgl2_reduce_params_uniform_buffer", &raw)
         };
         let dispatch = |u: &wgpu::Buffer, input: &wgpu::Buffer, output: &wgpu::Buffer, pipeline: &wgpu::ComputePipeline, enc: &mut wgpu::CommandEncoder, timer: &mut PassTimer, workgroups: (u32, u32, u32)| {
             run_compute(

@@ -1,12 +1,11 @@
 //! VSGL generation (compute): filtered importance sampling of the mipmapped RSM, with the
 //! 2015 density kernel or the 2016 bisection ("integral") kernel.
 
-use super::run_compute;
+use super::{run_compute, uniform_buffer};
 use crate::error::Result;
 use crate::gpu::{groups, Gpu, PassTimer};
 use crate::passes::rsm_flux::Rsm;
 use crate::passes::vsgl_moments::MomentChains;
-use wgpu::util::DeviceExt;
 
 const WORKGROUP: u32 = 64;
 
@@ -100,11 +99,7 @@ impl VsglGenPass {
             light_offset: s.light_offset,
             k: s.k,
         };
-        let uniform = gpu.device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
-            label: Some("vsgl_gen_params_uniform_buffer"),
-            contents: bytemuck::bytes_of(&params),
-            usage: wgpu::BufferUsages::UNIFORM,
-        });
+        let uniform = uniform_buffer(gpu, "vsgl_gen_params_uniform_buffer", &params);
         run_compute(
             gpu,
             enc,

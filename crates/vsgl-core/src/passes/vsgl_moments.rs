@@ -1,11 +1,10 @@
 //! The papers' additional RSM buffers (compute): per-texel VSGL moments, level 0 of five mip
 //! chains (layout in `wgsl/passes/vsgl_moments.wgsl`).
 
-use super::{run_compute, storage_buffer};
+use super::{run_compute, storage_buffer, uniform_buffer};
 use crate::error::Result;
 use crate::gpu::{groups, Gpu, PassTimer};
 use crate::passes::rsm_flux::Rsm;
-use wgpu::util::DeviceExt;
 
 const WORKGROUP: u32 = 8;
 /// A, B, C, D, E of the shader.
@@ -48,11 +47,7 @@ impl VsglMomentsPass {
     }
 
     pub fn record(&self, gpu: &Gpu, enc: &mut wgpu::CommandEncoder, timer: &mut PassTimer, rsm: &Rsm, chains: &MomentChains) {
-        let uniform = gpu.device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
-            label: Some("vsgl_moments_params_uniform_buffer"),
-            contents: bytemuck::bytes_of(&MomentParamsRaw { rsm_size: rsm.size, chain_len: chains.chain_len, _pad: [0; 2] }),
-            usage: wgpu::BufferUsages::UNIFORM,
-        });
+        let uniform = uniform_buffer(gpu, "vsgl_moments_params_uniform_buffer", &MomentParamsRaw { rsm_size: rsm.size, chain_len: chains.chain_len, _pad: [0; 2] });
         run_compute(
             gpu,
             enc,

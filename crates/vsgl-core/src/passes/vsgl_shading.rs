@@ -1,11 +1,10 @@
 //! VSGL shading (compute): SG incoming radiance, diffuse and SG–ASG specular, interleaved.
 
-use super::run_compute;
+use super::{run_compute, uniform_buffer};
 use crate::error::Result;
 use crate::gpu::{groups, Gpu, PassTimer};
 use crate::passes::material::GBuffer;
 use crate::passes::vpl_shading::IndirectTargets;
-use wgpu::util::DeviceExt;
 
 const WORKGROUP: u32 = 8;
 
@@ -86,11 +85,7 @@ impl VsglShadingPass {
         while first < count {
             let n = (count - first).min(chunk);
             let params = ShadeParamsRaw { count: n, interleave, diffuse_mode: diffuse.shader_code(), first };
-            let uniform = gpu.device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
-                label: Some("vsgl_shading_params_uniform_buffer"),
-                contents: bytemuck::bytes_of(&params),
-                usage: wgpu::BufferUsages::UNIFORM,
-            });
+            let uniform = uniform_buffer(gpu, "vsgl_shading_params_uniform_buffer", &params);
             run_compute(
                 gpu,
                 enc,
