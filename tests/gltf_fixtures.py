@@ -192,7 +192,7 @@ def write_data_uri(dirpath) -> pathlib.Path:
     return _write_json(pathlib.Path(dirpath) / "data_uri.gltf", root)
 
 
-def _textured(dirpath, *, with_uvs=True, missing_image=False, huge_image=False) -> pathlib.Path:
+def _textured(dirpath, *, with_uvs=True, missing_image=False, huge_image=False, normal_map=True) -> pathlib.Path:
     d = pathlib.Path(dirpath)
     (d / "tex").mkdir(exist_ok=True)
     (d / "base color.png").write_bytes(_png(4, 2, (255, 0, 0, 255)))
@@ -222,7 +222,7 @@ def _textured(dirpath, *, with_uvs=True, missing_image=False, huge_image=False) 
                 "roughnessFactor": 0.75,
                 "metallicRoughnessTexture": {"index": 1},
             },
-            "normalTexture": {"index": 2, "scale": 0.5},
+            **({"normalTexture": {"index": 2, "scale": 0.5}} if normal_map else {}),
         }],
         meshes=[{"primitives": [{"attributes": attributes, "indices": idx, "material": 0}]}],
         nodes=[{"mesh": 0}],
@@ -235,6 +235,11 @@ def write_textured(dirpath) -> pathlib.Path:
     """Quad with UVs, no NORMAL/TANGENT; baseColor + metallicRoughness + normal PNG textures.
     The loader generates normals (+z) and tangents (+x, w = +1)."""
     return _textured(dirpath)
+
+
+def write_textured_without_normal_map(dirpath) -> pathlib.Path:
+    """As `write_textured`, without the normal map (textures, but no tangent frames needed)."""
+    return _textured(dirpath, normal_map=False)
 
 
 def write_hierarchy(dirpath) -> pathlib.Path:

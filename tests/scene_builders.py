@@ -16,9 +16,11 @@ def write_quad(
     base_color=(0.8, 0.8, 0.8),
     metallic: float = 0.0,
     roughness: float = 1.0,
+    specular: float | None = None,
     name: str = "quad.gltf",
 ) -> pathlib.Path:
-    """A square in the y = 0 plane, normal +y, centred at the origin, node name "quad"."""
+    """A square in the y = 0 plane, normal +y, centred at the origin, node name "quad".
+    ``specular``: a KHR_materials_specular ``specularFactor`` (omitted when None)."""
     s = half_size
     positions = [(-s, 0.0, -s), (s, 0.0, -s), (s, 0.0, s), (-s, 0.0, s)]
     normals = [(0.0, 1.0, 0.0)] * 4
@@ -58,6 +60,9 @@ def write_quad(
             {"bufferView": 2, "componentType": 5125, "count": 6, "type": "SCALAR"},
         ],
     }
+    if specular is not None:
+        doc["extensionsUsed"] = ["KHR_materials_specular"]
+        doc["materials"][0]["extensions"] = {"KHR_materials_specular": {"specularFactor": specular}}
     path = directory / name
     path.write_text(json.dumps(doc))
     return path

@@ -68,7 +68,7 @@ def test_small_sweep_writes_files_and_has_sane_numbers(tmp_path, renderer):
 def test_cli_help_documents_every_flag():
     out = subprocess.run([sys.executable, "-m", "vsgl", "bench", "--help"], capture_output=True, text=True, timeout=60)
     assert out.returncode == 0
-    for flag in ("--scene", "--methods", "--lights", "--size", "--rsm-sizes", "--kernels", "--seeds", "--reference", "--out"):
+    for flag in ("--scene", "--methods", "--lights", "--size", "--rsm-sizes", "--kernels", "--seeds", "--reference", "--plans", "--out"):
         assert flag in out.stdout, flag
 
 
@@ -77,3 +77,21 @@ def test_bad_arguments_are_rejected(tmp_path):
         bench.run(methods=["photon"], size=(8, 8), out=None, progress=False)
     with pytest.raises(ValueError, match="reference"):
         bench.run(reference="oracle", size=(8, 8), out=None, progress=False)
+
+
+def test_pruned_and_full_plans_are_timed_side_by_side_with_equal_error(tmp_path, renderer):
+    """The leave-out benchmark (issue 8): on the diffuse-only box the pruned plan's image error
+    equals the full plan's (pruning is output-neutral), and the ratio of their times is reported."""
+    report = bench.run(
+        scenes=["diffuse_cornell"], methods=["vsgl", "vpl"], lights=[32], size=(32, 24), rsm_sizes=[32],
+        seeds=(0,), frames=2, warmup=1, reference_rsm=32, plans=("auto", "full"), out=tmp_path, progress=False,
+    )
+    assert [r.plan for r in report.rows] == ["auto", "full", "auto", "full"]
+    assert len(report.plan_ratios) == 2
+    for p in report.plan_ratios:
+        assert p["rmse_image_auto"] == pytest.approx(p["rmse_image_full"], rel=1e-5, abs=1e-9)
+        assert math.isfinite(p["ratio"]) and p["ratio"] > 0
+    assert "pruned/full time" in bench.table(report)
+    assert json.loads((tmp_path / "bench.json").read_text())["plan_ratios"]
+    with pytest.raises(ValueError, match="plans"):
+        bench.run(plans=("some",), size=(8, 8), out=None, progress=False)

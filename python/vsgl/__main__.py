@@ -46,6 +46,10 @@ def _render(args: argparse.Namespace) -> int:
         print("passes    " + ", ".join(frame.passes))
         for name, why in frame.skipped.items():
             print(f"skipped   {name}: {why}")
+        features = ", ".join(scene.stats["features"]) or "none"
+        print(f"features  {features}")
+        mib = sum(frame.memory_bytes.values()) / 2**20
+        print(f"memory    {mib:.2f} MiB in frame buffers and targets (scene upload excluded)")
     clock = frame.timings_clock
     print(f"timings   ({clock}{'; CPU adapter: compare only ratios' if renderer.adapter['device_type'] == 'Cpu' else ''})")
     for name, ms in frame.timings_ms.items():

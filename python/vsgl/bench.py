@@ -7,6 +7,10 @@ image against the scene's reference (``reference`` by default, computed once per
 and settings, and cached on disk), as the mean and spread over seeds for stochastic methods.
 Writes a terminal table, ``bench.csv``, ``bench.json`` and, with matplotlib, ``error_vs_time.png``
 and ``error_vs_lights.png``. On a CPU adapter only ratios inside one report mean anything.
+
+With ``--plans auto,full`` every configuration also runs with the pass plan forced to
+``"full"`` (nothing left out), and the report gives the pruned/full time ratio per configuration
+(``plan_ratios``) next to both errors, which must agree: pruning never changes the image.
 """
 
 from __future__ import annotations
@@ -49,6 +53,7 @@ class Row:
     relmse_indirect: float
     relmse_image: float
     flip_image: float | None
+    plan: str = "auto"
 
 
 @dataclass
@@ -62,6 +67,8 @@ class Report:
     warmup: int
     rows: list[Row] = field(default_factory=list)
     note: str = ""
+    # Per configuration run with both plans: pruned ("auto") over "full" median total time.
+    plan_ratios: list[dict[str, Any]] = field(default_factory=list)
 
     def to_json(self) -> dict[str, Any]:
         d = asdict(self)
@@ -142,6 +149,7 @@ def run(
     reference_rsm=1024,
     reference_spp=256,
     interleave=8,
+    plans=("auto",),
     adapter=None,
     out=None,
     cache_dir=None,
@@ -155,6 +163,9 @@ def run(
     unknown = [m for m in methods if m not in ("vpl", "vsgl", "vsgl2", "reference", "direct")]
     if unknown:
         raise ValueError(f"methods: unknown {unknown}; valid: vpl, vsgl, vsgl2, reference, direct")
+    bad_plans = [p for p in plans if p not in ("auto", "full")]
+    if bad_plans or not plans:
+        raise ValueError(f"plans: expected a non-empty list of \"auto\" and \"full\", got {list(plans)}")
     w, h = size
     renderer = vsgl.Renderer(width=w, height=h, adapter=adapter)
     ref_settings: dict[str, Any] = {"rsm_size": reference_rsm} if reference == "reference" else {"spp": reference_spp}
@@ -184,14 +195,16 @@ def run(
                 configs.append((m, None, r, None))
         else:
             configs.append((m, None, None, None))
+    # Plans alternate inside one configuration so both see the same machine state.
+    configs = [(*c, plan) for c in configs for plan in plans]
     bar = _progress(len(configs) * len(scenes), progress)
     for scene_name in scenes:
         scene = _scene(scene_name)
         t = time.perf_counter()
         ref_image, ref_indirect, ref_timings = _reference(renderer, scene, (w, h), reference, ref_settings, cache_dir)
         report.reference_ms[scene_name] = ref_timings.get("total", 1e3 * (time.perf_counter() - t))
-        for method, n, rsm, kernel in configs:
-            settings: dict[str, Any] = {}
+        for method, n, rsm, kernel, plan in configs:
+            settings: dict[str, Any] = {"plan": plan}
             if n is not None:
                 settings["num_lights"] = n
             if rsm is not None:
@@ -240,13 +253,32 @@ def run(
                     relmse_indirect=float(np.mean(errs["relmse_indirect"])),
                     relmse_image=float(np.mean(errs["relmse_image"])),
                     flip_image=float(np.mean(errs["flip"])) if errs["flip"] else None,
+                    plan=plan,
                 )
             )
             bar.update(1)
     bar.close()
+    report.plan_ratios = _plan_ratios(report.rows)
     if out is not None:
         write(report, out)
     return report
+
+
+def _plan_ratios(rows: list[Row]) -> list[dict[str, Any]]:
+    """Pairs each "auto" row with the "full" row of the same configuration."""
+    key = lambda r: (r.scene, r.method, r.num_lights, r.rsm_size, r.kernel)  # noqa: E731
+    full = {key(r): r for r in rows if r.plan == "full"}
+    out = []
+    for r in rows:
+        f = full.get(key(r)) if r.plan == "auto" else None
+        if f is not None:
+            out.append({
+                "scene": r.scene, "method": r.method, "num_lights": r.num_lights, "rsm_size": r.rsm_size, "kernel": r.kernel,
+                "auto_ms": r.total_ms_median, "full_ms": f.total_ms_median, "ratio": r.total_ms_median / f.total_ms_median,
+                "passes_ratio": {k: r.passes_ms[k] / f.passes_ms[k] for k in r.passes_ms if f.passes_ms.get(k, 0) > 0},
+                "rmse_image_auto": r.rmse_image, "rmse_image_full": f.rmse_image,
+            })
+    return out
 
 
 def table(report: Report) -> str:
@@ -258,13 +290,18 @@ def table(report: Report) -> str:
     ]
     if report.note:
         lines.append(f"note      {report.note}")
-    head = f"{'scene':<16}{'method':<10}{'N':>6}{'rsm':>6}{'kernel':>10}{'total ms':>11}{'[min,max]':>20}{'RMSE ind.':>12}{'± seeds':>10}{'RMSE img':>11}{'relMSE':>10}"
+    head = f"{'scene':<16}{'plan':<6}{'method':<10}{'N':>6}{'rsm':>6}{'kernel':>10}{'total ms':>11}{'[min,max]':>20}{'RMSE ind.':>12}{'± seeds':>10}{'RMSE img':>11}{'relMSE':>10}"
     lines += [head, "-" * len(head)]
     for r in report.rows:
         lines.append(
-            f"{r.scene:<16}{r.method:<10}{r.num_lights or '-':>6}{r.rsm_size or '-':>6}{r.kernel or '-':>10}"
+            f"{r.scene:<16}{r.plan:<6}{r.method:<10}{r.num_lights or '-':>6}{r.rsm_size or '-':>6}{r.kernel or '-':>10}"
             f"{r.total_ms_median:>11.3f}{f'[{r.total_ms_min:.3f},{r.total_ms_max:.3f}]':>20}"
             f"{r.rmse_indirect:>12.5g}{r.rmse_indirect_std:>10.2g}{r.rmse_image:>11.5g}{r.relmse_indirect:>10.4g}"
+        )
+    for p in report.plan_ratios:
+        lines.append(
+            f"plan      {p['scene']} {p['method']} N={p['num_lights'] or '-'} rsm={p['rsm_size'] or '-'}: pruned/full time "
+            f"{p['ratio']:.3f} ({p['auto_ms']:.3f} / {p['full_ms']:.3f} ms), image RMSE {p['rmse_image_auto']:.5g} vs {p['rmse_image_full']:.5g}"
         )
     return "\n".join(lines)
 
@@ -275,10 +312,10 @@ def write(report: Report, out) -> None:
     (out / "bench.json").write_text(json.dumps(report.to_json(), indent=1))
     with open(out / "bench.csv", "w", newline="") as fh:
         writer = csv.writer(fh)
-        writer.writerow(["scene", "method", "num_lights", "rsm_size", "kernel", "seeds", "total_ms_median", "total_ms_min", "total_ms_max",
+        writer.writerow(["scene", "plan", "method", "num_lights", "rsm_size", "kernel", "seeds", "total_ms_median", "total_ms_min", "total_ms_max",
                          "rmse_indirect", "rmse_indirect_std", "rmse_image", "relmse_indirect", "relmse_image", "flip_image", "passes_ms"])
         for r in report.rows:
-            writer.writerow([r.scene, r.method, r.num_lights, r.rsm_size, r.kernel, r.seeds, r.total_ms_median, r.total_ms_min, r.total_ms_max,
+            writer.writerow([r.scene, r.plan, r.method, r.num_lights, r.rsm_size, r.kernel, r.seeds, r.total_ms_median, r.total_ms_min, r.total_ms_max,
                              r.rmse_indirect, r.rmse_indirect_std, r.rmse_image, r.relmse_indirect, r.relmse_image, r.flip_image, json.dumps(r.passes_ms)])
     (out / "bench.txt").write_text(table(report) + "\n")
     _plots(report, out)
@@ -347,6 +384,7 @@ def main(argv: list[str] | None = None) -> int:
     p.add_argument("--reference", default="reference", choices=["reference", "pathtrace"], help="what errors are measured against (default: reference)")
     p.add_argument("--reference-rsm", type=int, default=1024, help="RSM side of the reference (default: 1024)")
     p.add_argument("--reference-spp", type=int, default=256, help="samples per pixel of a pathtrace reference (default: 256)")
+    p.add_argument("--plans", type=_strs, default=["auto"], help="pass plans to time: auto, full (default: auto; auto,full reports the pruned/full ratio)")
     p.add_argument("--adapter", default=None, help="adapter name substring")
     p.add_argument("--out", default="bench-out", help="output folder for CSV, JSON, plots and the reference cache (default: bench-out)")
     p.add_argument("--no-progress", action="store_true", help="no progress bar")
@@ -358,7 +396,7 @@ def main(argv: list[str] | None = None) -> int:
     report = run(
         scenes=a.scene, methods=a.methods, lights=a.lights, size=(w, h), rsm_sizes=a.rsm_sizes, kernels=a.kernels,
         seeds=tuple(range(a.seeds)), frames=a.frames, warmup=a.warmup, reference=a.reference, reference_rsm=a.reference_rsm,
-        reference_spp=a.reference_spp, interleave=a.interleave, adapter=a.adapter, out=a.out, progress=not a.no_progress,
+        reference_spp=a.reference_spp, interleave=a.interleave, plans=tuple(a.plans), adapter=a.adapter, out=a.out, progress=not a.no_progress,
     )
     print(table(report))
     print(f"wrote     {os.path.join(a.out, 'bench.csv')}, bench.json, bench.txt and plots (with matplotlib)")

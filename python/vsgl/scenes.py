@@ -4,6 +4,8 @@
 - ``glossy_cornell``: the box with GGX objects of roughness 0.05–0.3.
 - ``caustics_ring``: a polished metal ring (roughness 0.02) on a diffuse floor.
 - ``cave_flashlight``: an enclosed room lit only by a narrow spot light, glossy floor.
+- ``diffuse_cornell``: the Cornell box with purely Lambertian materials (no specular
+  reflectance at all, ``KHR_materials_specular`` factor 0): a frame leaves out every specular lobe.
 """
 
 from __future__ import annotations
@@ -35,3 +37,7 @@ def caustics_ring() -> Scene:
 
 def cave_flashlight() -> Scene:
     return builtin_scene("cave_flashlight")
+
+
+def diffuse_cornell() -> Scene:
+    return builtin_scene("diffuse_cornell")

@@ -53,7 +53,8 @@ struct MaterialRaw {
     metallic: f32,
     roughness: f32,
     normal_scale: f32,
-    _pad0: f32,
+    // KHR_materials_specular factor: dielectric R_s = 0.04·specular_factor.
+    specular_factor: f32,
     base_color_layer: i32,
     metallic_roughness_layer: i32,
     normal_layer: i32,

@@ -4,6 +4,7 @@
 // split into a Lambert part (Φ R_d / π) and a GGX part (Φ R_s · D G / (4 cos cos)).
 #include "common/constants.wgsl"
 #include "common/ggx.wgsl"
+#include "common/plan.wgsl"
 
 // 80 bytes; the twin is `VplRaw` in crates/vsgl-core/src/passes/vpl.rs.
 struct Vpl {
@@ -49,9 +50,15 @@ fn vpl_radiance(vpl: Vpl, p: vec3f, n: vec3f, v: vec3f, rd: vec3f, rs: vec3f, al
     }
     let alpha_vpl = ggx_alpha_from_roughness(vpl.roughness);
     // Radiant intensity of the VPL towards the receiver, per unit Φ·R: Lambert and GGX lobes.
-    let intensity = (vpl.flux_diffuse * INV_PI + vpl.flux_specular * ggx_brdf_over_rs(vpl.normal, vpl.to_light, -w, alpha_vpl)) * cos_vpl;
+    // HAS_SPECULAR = false: R_s = 0 at every VPL and receiver, both GGX terms are exactly 0.
+    var intensity = vpl.flux_diffuse * INV_PI * cos_vpl;
+    if (HAS_SPECULAR) {
+        intensity += vpl.flux_specular * ggx_brdf_over_rs(vpl.normal, vpl.to_light, -w, alpha_vpl) * cos_vpl;
+    }
     let e = intensity * (cos_receiver / max(dist2, min_distance2));
     out.diffuse = rd * INV_PI * e;
-    out.specular = rs * ggx_brdf_over_rs(n, w, v, alpha) * e;
+    if (HAS_SPECULAR) {
+        out.specular = rs * ggx_brdf_over_rs(n, w, v, alpha) * e;
+    }
     return out;
 }

@@ -11,6 +11,7 @@
 #include "common/constants.wgsl"
 #include "common/frame.wgsl"
 #include "common/gbuffer.wgsl"
+#include "common/plan.wgsl"
 
 struct DenoiseParams {
     radius: i32,
@@ -56,7 +57,9 @@ fn main(@builtin(global_invocation_id) gid: vec3u) {
     let pos = gbuf_position[index];
     if (pos.w == GBUFFER_BACKGROUND) {
         out_diffuse[index] = vec4f(0.0);
-        out_specular[index] = vec4f(0.0);
+        if (HAS_SPECULAR) {
+            out_specular[index] = vec4f(0.0);
+        }
         return;
     }
     let depth = pos.w;
@@ -85,7 +88,9 @@ fn main(@builtin(global_invocation_id) gid: vec3u) {
             d = d / rd_at(j);
         }
         sum_d += w * d;
-        sum_s += w * in_specular[j].rgb;
+        if (HAS_SPECULAR) {
+            sum_s += w * in_specular[j].rgb;
+        }
         sum_w += w;
     }
     // The centre tap (offset 0 is inside −k … k−1) always has weight 1, so sum_w ≥ 1.
@@ -94,5 +99,7 @@ fn main(@builtin(global_invocation_id) gid: vec3u) {
         out_d = out_d * rd_at(index);
     }
     out_diffuse[index] = vec4f(out_d, 0.0);
-    out_specular[index] = vec4f(sum_s / sum_w, 0.0);
+    if (HAS_SPECULAR) {
+        out_specular[index] = vec4f(sum_s / sum_w, 0.0);
+    }
 }

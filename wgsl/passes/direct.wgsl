@@ -3,6 +3,7 @@
 #include "common/constants.wgsl"
 #include "common/frame.wgsl"
 #include "common/gbuffer.wgsl"
+#include "common/plan.wgsl"
 #include "common/ggx.wgsl"
 
 override SHADOWS: bool = true;
@@ -64,7 +65,7 @@ fn main(@builtin(global_invocation_id) gid: vec3u) {
     let metallic = gbuf_geo_normal[index].w;
     let base = gbuf_base_color[index].rgb;
     let rd = gbuffer_diffuse_reflectance(base, metallic);
-    let rs = gbuffer_specular_reflectance(base, metallic);
+    let rs = gbuffer_specular_reflectance(base, metallic, gbuf_base_color[index].w);
     let alpha = ggx_alpha_from_roughness(roughness);
     let v = -p / max(length(p), FLT_MIN);
 
@@ -92,7 +93,10 @@ fn main(@builtin(global_invocation_id) gid: vec3u) {
         }
         // Irradiance-scaled intensity: I·color·cone/d² (candela → W/m² per unit solid angle).
         let e = light.intensity * light.color * (cone * visibility / dist2);
-        let brdf = rd * lambert_brdf_over_rd(n, l) + rs * ggx_brdf_over_rs(n, l, v, alpha);
+        var brdf = rd * lambert_brdf_over_rd(n, l);
+        if (HAS_SPECULAR) {
+            brdf += rs * ggx_brdf_over_rs(n, l, v, alpha);
+        }
         radiance += brdf * e * n_dot_l;
     }
     direct_out[index] = vec4f(min(radiance, vec3f(FLT_MAX)), 1.0);

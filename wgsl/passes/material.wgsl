@@ -10,6 +10,7 @@
 
 // Leave-out: the untextured variant compiles every texture fetch out.
 override HAS_TEXTURES: bool = true;
+override HAS_NORMAL_MAPS: bool = true;
 const WORKGROUP: u32 = 8u;
 
 @group(0) @binding(0) var<uniform> frame: FrameUniforms;
@@ -124,7 +125,8 @@ fn main(@builtin(global_invocation_id) gid: vec3u) {
             roughness *= mr.g;
             metallic *= mr.b;
         }
-        if (material.normal_layer >= 0) {
+        // HAS_NORMAL_MAPS = false compiles the tangent frame out (no material has a normal map).
+        if (HAS_NORMAL_MAPS && material.normal_layer >= 0) {
             let tn = textureSampleLevel(data_textures, texture_sampler, uv, material.normal_layer, lod).xyz * 2.0 - 1.0;
             let t_interp = a.tangent.xyz + w.x * (b.tangent.xyz - a.tangent.xyz) + w.y * (c.tangent.xyz - a.tangent.xyz);
             let t_orth = t_interp - ns * dot(ns, t_interp);
@@ -150,5 +152,5 @@ fn main(@builtin(global_invocation_id) gid: vec3u) {
     gbuf_position[index] = vec4f(position, max(view_depth, FLT_MIN));
     gbuf_normal[index] = vec4f(ns, clamp(roughness, 0.0, 1.0));
     gbuf_geo_normal[index] = vec4f(ng, clamp(metallic, 0.0, 1.0));
-    gbuf_base_color[index] = vec4f(max(base, vec3f(0.0)), 1.0);
+    gbuf_base_color[index] = vec4f(max(base, vec3f(0.0)), material.specular_factor);
 }

@@ -186,7 +186,7 @@ fn hit_surface(dir: vec3f, hit: RayHit) -> Surface {
     metallic = clamp(metallic, 0.0, 1.0);
     base = max(base, vec3f(0.0));
     return Surface(position, ng, ns, gbuffer_diffuse_reflectance(base, metallic),
-                   gbuffer_specular_reflectance(base, metallic),
+                   gbuffer_specular_reflectance(base, metallic, material.specular_factor),
                    ggx_alpha_from_roughness(clamp(roughness, 0.0, 1.0)), tri);
 }
 
@@ -198,7 +198,7 @@ fn pixel_surface(pixel: vec2u, index: u32) -> Surface {
     let base = gbuf_base_color[index].rgb;
     let tri = textureLoad(visibility, vec2i(pixel), 0).r - 1u;
     return Surface(pos.xyz, gm.xyz, nr.xyz, gbuffer_diffuse_reflectance(base, gm.w),
-                   gbuffer_specular_reflectance(base, gm.w), ggx_alpha_from_roughness(nr.w), tri);
+                   gbuffer_specular_reflectance(base, gm.w, gbuf_base_color[index].w), ggx_alpha_from_roughness(nr.w), tri);
 }
 
 // Radiance arriving at `s` from direction l: the direct light reflected by the first surface

@@ -8,6 +8,11 @@
 #include "common/constants.wgsl"
 #include "common/frame.wgsl"
 #include "common/gbuffer.wgsl"
+#include "common/plan.wgsl"
+
+// SAMPLING_WEIGHTS = false: the method samples nothing from the RSM (`vsgl2` sums it, the
+// reference takes every texel), so no level 0 of the weight pyramid is written.
+override SAMPLING_WEIGHTS: bool = true;
 
 const WORKGROUP: u32 = 8u;
 
@@ -33,8 +38,12 @@ fn main(@builtin(global_invocation_id) gid: vec3u) {
     let pos = rsm_position[index];
     if (pos.w == GBUFFER_BACKGROUND) {
         rsm_flux_diffuse[index] = vec4f(0.0);
-        rsm_flux_specular[index] = vec4f(0.0);
-        pdf_level0[index] = 0.0;
+        if (HAS_SPECULAR) {
+            rsm_flux_specular[index] = vec4f(0.0);
+        }
+        if (SAMPLING_WEIGHTS) {
+            pdf_level0[index] = 0.0;
+        }
         return;
     }
     // The texel's ray, unnormalised: forward + ndc.x·right·t + ndc.y·up·t; cosθ = 1/‖ray‖.
@@ -51,9 +60,14 @@ fn main(@builtin(global_invocation_id) gid: vec3u) {
     let base = rsm_base_color[index].rgb;
     let metallic = rsm_geo_normal[index].w;
     let fd = flux * gbuffer_diffuse_reflectance(base, metallic);
-    let fs = flux * gbuffer_specular_reflectance(base, metallic);
+    var fs = vec3f(0.0);
+    if (HAS_SPECULAR) {
+        fs = flux * gbuffer_specular_reflectance(base, metallic, rsm_base_color[index].w);
+        rsm_flux_specular[index] = vec4f(fs, 0.0);
+    }
     let weight = fd.r + fd.g + fd.b + fs.r + fs.g + fs.b;
     rsm_flux_diffuse[index] = vec4f(fd, weight);
-    rsm_flux_specular[index] = vec4f(fs, 0.0);
-    pdf_level0[index] = weight;
+    if (SAMPLING_WEIGHTS) {
+        pdf_level0[index] = weight;
+    }
 }

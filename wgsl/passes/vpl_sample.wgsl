@@ -46,7 +46,10 @@ fn write_vpl(out_index: u32, texel: u32, scale: f32) {
     v.roughness = n.w;
     v.normal = n.xyz;
     v.flux_diffuse = rsm_flux_diffuse[texel].rgb * scale;
-    v.flux_specular = rsm_flux_specular[texel].rgb * scale;
+    v.flux_specular = vec3f(0.0);
+    if (HAS_SPECULAR) {
+        v.flux_specular = rsm_flux_specular[texel].rgb * scale;
+    }
     let len = length(pos);
     v.to_light = select(vec3f(0.0, 1.0, 0.0), -pos / len, len > 0.0);
     vpls[out_index] = v;

@@ -52,7 +52,7 @@ fn main(@builtin(global_invocation_id) gid: vec3u, @builtin(local_invocation_ind
             let metallic = gbuf_geo_normal[index].w;
             let base = gbuf_base_color[index].rgb;
             rd = gbuffer_diffuse_reflectance(base, metallic);
-            rs = gbuffer_specular_reflectance(base, metallic);
+            rs = gbuffer_specular_reflectance(base, metallic, gbuf_base_color[index].w);
             v = -p / max(length(p), FLT_MIN);
         }
     }
@@ -77,6 +77,8 @@ fn main(@builtin(global_invocation_id) gid: vec3u, @builtin(local_invocation_ind
     }
     if (inside) {
         indirect_diffuse[index] += vec4f(min(diffuse, vec3f(FLT_MAX)), 0.0);
-        indirect_specular[index] += vec4f(min(specular, vec3f(FLT_MAX)), 0.0);
+        if (HAS_SPECULAR) {
+            indirect_specular[index] += vec4f(min(specular, vec3f(FLT_MAX)), 0.0);
+        }
     }
 }

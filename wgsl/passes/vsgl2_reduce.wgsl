@@ -26,6 +26,7 @@
 #include "common/ggx.wgsl"
 #include "common/vsgl.wgsl"
 #include "common/vsgl_record.wgsl"
+#include "common/plan.wgsl"
 
 struct ReduceParams {
     rsm_size: u32,
@@ -88,7 +89,10 @@ fn texel_moments(xy: vec2u) -> Moments2 {
     }
     let i = xy.y * n + xy.x;
     let fd = rsm_flux_diffuse[i].rgb;
-    let fs = rsm_flux_specular[i].rgb;
+    var fs = vec3f(0.0);
+    if (HAS_SPECULAR) {
+        fs = rsm_flux_specular[i].rgb;
+    }
     let wd = fd.r + fd.g + fd.b;
     let ws = fs.r + fs.g + fs.b;
     if (!(wd + ws > 0.0)) {

@@ -13,6 +13,7 @@
 #include "common/sg.wgsl"
 #include "common/ggx.wgsl"
 #include "common/gbuffer.wgsl"
+#include "common/plan.wgsl"
 
 struct MomentParams {
     rsm_size: u32,
@@ -39,7 +40,10 @@ fn main(@builtin(global_invocation_id) gid: vec3u) {
     let i = gid.y * n + gid.x;
     let stride = params.chain_len;
     let fd = rsm_flux_diffuse[i];
-    let fs = rsm_flux_specular[i].rgb;
+    var fs = vec3f(0.0);
+    if (HAS_SPECULAR) {
+        fs = rsm_flux_specular[i].rgb;
+    }
     let wd = fd.r + fd.g + fd.b;
     let ws = fs.r + fs.g + fs.b;
     let w = wd + ws;
@@ -54,9 +58,13 @@ fn main(@builtin(global_invocation_id) gid: vec3u) {
     let alpha = ggx_alpha_from_roughness(rsm_normal[i].w);
     let to_light = safe_normalize(-y, normal);
     let lobe_d = lambert_lobe_sg(normal);
-    let lobe_s = ggx_lobe_sg(normal, to_light, alpha);
     let mean_d = sg_toksvig_mean_direction(lobe_d.axis, lobe_d.sharpness);
-    let mean_s = sg_toksvig_mean_direction(lobe_s.axis, lobe_s.sharpness);
+    // Without specular materials w_s = 0: the GGX lobe fit would be multiplied by 0.
+    var mean_s = vec3f(0.0);
+    if (HAS_SPECULAR) {
+        let lobe_s = ggx_lobe_sg(normal, to_light, alpha);
+        mean_s = sg_toksvig_mean_direction(lobe_s.axis, lobe_s.sharpness);
+    }
     moments[i] = vec4f(fd.rgb, w);
     moments[stride + i] = vec4f(fs, wd);
     moments[2u * stride + i] = vec4f(wd * mean_d, ws);

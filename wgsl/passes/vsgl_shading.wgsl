@@ -11,6 +11,7 @@
 #include "common/vsgl_record.wgsl"
 #include "common/frame.wgsl"
 #include "common/gbuffer.wgsl"
+#include "common/plan.wgsl"
 
 struct ShadeParams {
     // This dispatch shades VSGLs first … first + count − 1 (first is a multiple of k²).
@@ -60,7 +61,7 @@ fn main(@builtin(global_invocation_id) gid: vec3u) {
     let metallic = gbuf_geo_normal[index].w;
     let base = gbuf_base_color[index].rgb;
     let rd = gbuffer_diffuse_reflectance(base, metallic);
-    let rs = gbuffer_specular_reflectance(base, metallic);
+    let rs = gbuffer_specular_reflectance(base, metallic, gbuf_base_color[index].w);
     let v = -p / max(length(p), FLT_MIN);
     let k = params.interleave;
     let stride = k * k;
@@ -78,9 +79,12 @@ fn main(@builtin(global_invocation_id) gid: vec3u) {
             let lobe_d = Sg(light.diffuse_axis, light.diffuse_sharpness, 1.0 / sg_integral(light.diffuse_sharpness));
             let in_d = vsgl_incoming_radiance(lobe_d, position, p);
             diffuse += light.diffuse_power * diffuse_over_rd(in_d, n);
-            specular += light.diffuse_power * vsgl_specular(in_d, n, v, alpha);
+            if (HAS_SPECULAR) {
+                specular += light.diffuse_power * vsgl_specular(in_d, n, v, alpha);
+            }
         }
-        if (any(light.specular_power > vec3f(0.0))) {
+        // Without specular materials no record has specular power (and R_s = 0 here).
+        if (HAS_SPECULAR && any(light.specular_power > vec3f(0.0))) {
             let lobe_s = Sg(light.specular_axis, light.specular_sharpness, 1.0 / sg_integral(light.specular_sharpness));
             let in_s = vsgl_incoming_radiance(lobe_s, position, p);
             diffuse += light.specular_power * diffuse_over_rd(in_s, n);
@@ -89,5 +93,7 @@ fn main(@builtin(global_invocation_id) gid: vec3u) {
     }
     let scale = f32(stride);
     indirect_diffuse[index] += vec4f(min(rd * diffuse * scale, vec3f(FLT_MAX)), 0.0);
-    indirect_specular[index] += vec4f(min(rs * specular * scale, vec3f(FLT_MAX)), 0.0);
+    if (HAS_SPECULAR) {
+        indirect_specular[index] += vec4f(min(rs * specular * scale, vec3f(FLT_MAX)), 0.0);
+    }
 }

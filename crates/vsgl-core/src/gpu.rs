@@ -69,6 +69,8 @@ pub struct Gpu {
     /// Whether passes can carry timestamp writes.
     pub timestamps: bool,
     pub limits: wgpu::Limits,
+    /// Pipelines compiled by [`PipelineVariants`] so far (each variant once).
+    pub variants_compiled: std::sync::atomic::AtomicUsize,
 }
 
 impl Gpu {
@@ -114,7 +116,7 @@ impl Gpu {
         // Errors are caught by scopes around each frame; anything that escapes is logged, never
         // a panic across the Python boundary.
         device.on_uncaptured_error(Arc::new(|e: wgpu::Error| log::error!("uncaptured wgpu error: {e}")));
-        Ok(Arc::new(Self { device, queue, timestamps: summary.timestamps, adapter: summary, limits }))
+        Ok(Arc::new(Self { device, queue, timestamps: summary.timestamps, adapter: summary, limits, variants_compiled: Default::default() }))
     }
 
     /// Compiles a composed WGSL shader, turning compilation errors into `Error::ShaderCompile`.
@@ -152,6 +154,11 @@ impl Gpu {
     /// for modules whose entry points use different subsets of the same bindings (an automatic
     /// layout would differ per entry point).
     pub fn compute_pipeline_explicit(&self, label: &str, module: &wgpu::ShaderModule, entry: &str, bindings: &[wgpu::BindingType]) -> wgpu::ComputePipeline {
+        self.compute_pipeline_explicit_with(label, module, entry, bindings, &[])
+    }
+
+    /// [`Gpu::compute_pipeline_explicit`] with override constants.
+    pub fn compute_pipeline_explicit_with(&self, label: &str, module: &wgpu::ShaderModule, entry: &str, bindings: &[wgpu::BindingType], constants: &[(&str, f64)]) -> wgpu::ComputePipeline {
         let entries: Vec<wgpu::BindGroupLayoutEntry> = bindings
             .iter()
             .enumerate()
@@ -168,7 +175,21 @@ impl Gpu {
             layout: Some(&layout),
             module,
             entry_point: Some(entry),
-            compilation_options: Default::default(),
+            compilation_options: wgpu::PipelineCompilationOptions { constants, ..Default::default() },
+            cache: None,
+        })
+    }
+
+    /// A compute pipeline with an automatic layout and override constants (`WGSL override`).
+    /// wgpu derives the automatic layout before the constants apply, so every variant of an
+    /// entry point has the same bind group layouts and takes the same bind groups.
+    pub fn compute_pipeline_with(&self, label: &str, module: &wgpu::ShaderModule, entry: &str, constants: &[(&str, f64)]) -> wgpu::ComputePipeline {
+        self.device.create_compute_pipeline(&wgpu::ComputePipelineDescriptor {
+            label: Some(label),
+            layout: None,
+            module,
+            entry_point: Some(entry),
+            compilation_options: wgpu::PipelineCompilationOptions { constants, ..Default::default() },
             cache: None,
         })
     }
@@ -335,5 +356,48 @@ impl PassTimer {
             }
         }
         Ok(out)
+    }
+}
+
+/// The override-constant variants of one compute entry point, each compiled on first use and
+/// kept: a frame's plan picks a variant (e.g. `HAS_SPECULAR = false` for a diffuse-only scene),
+/// so a renderer never compiles a variant no scene of its asked for, and never twice.
+pub struct PipelineVariants {
+    label: String,
+    module: wgpu::ShaderModule,
+    entry: String,
+    /// `Some`: one explicit bind group 0 of these bindings (see `compute_pipeline_explicit`).
+    bindings: Option<Vec<wgpu::BindingType>>,
+    compiled: std::sync::Mutex<Vec<(Vec<(&'static str, bool)>, wgpu::ComputePipeline)>>,
+}
+
+impl PipelineVariants {
+    /// Variants with automatic layouts.
+    pub fn new(gpu: &Gpu, path: &str, entry: &str) -> Result<Self> {
+        Ok(Self::from_module(gpu.shader(path)?, path, entry, None))
+    }
+
+    /// Variants of `module`'s `entry`, with an explicit bind group 0 of `bindings` when given.
+    pub fn from_module(module: wgpu::ShaderModule, path: &str, entry: &str, bindings: Option<Vec<wgpu::BindingType>>) -> Self {
+        let label = format!("{}_{entry}", path.trim_start_matches("passes/").trim_end_matches(".wgsl"));
+        Self { label, module, entry: entry.into(), bindings, compiled: Default::default() }
+    }
+
+    /// The pipeline with these boolean override constants (compiled now if it is the first use).
+    pub fn get(&self, gpu: &Gpu, flags: &[(&'static str, bool)]) -> wgpu::ComputePipeline {
+        let mut compiled = self.compiled.lock().unwrap_or_else(|e| e.into_inner());
+        if let Some((_, p)) = compiled.iter().find(|(k, _)| k.as_slice() == flags) {
+            return p.clone();
+        }
+        let constants: Vec<(&str, f64)> = flags.iter().map(|&(n, v)| (n, if v { 1.0 } else { 0.0 })).collect();
+        let names: Vec<String> = flags.iter().map(|(n, v)| format!("{n}={}", *v as u8)).collect();
+        let label = format!("{}_pipeline[{}]", self.label, names.join(","));
+        let p = match &self.bindings {
+            Some(b) => gpu.compute_pipeline_explicit_with(&label, &self.module, &self.entry, b, &constants),
+            None => gpu.compute_pipeline_with(&label, &self.module, &self.entry, &constants),
+        };
+        compiled.push((flags.to_vec(), p.clone()));
+        gpu.variants_compiled.fetch_add(1, std::sync::atomic::Ordering::Relaxed);
+        p
     }
 }

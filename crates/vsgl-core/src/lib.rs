@@ -9,6 +9,7 @@ pub mod harness;
 pub mod image_io;
 pub mod oracle;
 pub mod passes;
+pub mod plan;
 pub mod renderer;
 pub mod scene;
 pub mod shader_lib;

@@ -15,6 +15,7 @@ use crate::passes::{
     direct::DirectPass, material::GBuffer, material::MaterialPass, pdf_mips::PdfMipsPass, rsm_flux::Rsm,
     rsm_flux::RsmFluxPass, shadow_map::ShadowMapPass, storage_buffer, uniform_buffer, visibility::VisibilityPass,
 };
+use crate::plan::Plan;
 use crate::scene::{Camera, Scene};
 use crate::upload::GpuScene;
 use std::sync::Arc;
@@ -172,6 +173,9 @@ pub struct Frame {
     pub rsm: Option<(u32, Vec<(String, usize, Vec<f32>)>)>,
     /// The first light's VSGLs (`vsgl`): VSGL_FLOATS floats each, fields in VSGL_FIELDS order.
     pub vsgls: Option<Vec<f32>>,
+    /// GPU buffers and render targets the frame allocated: (label, bytes), summed per label.
+    /// The scene's own upload (geometry, textures) is not included.
+    pub memory_bytes: Vec<(String, u64)>,
 }
 
 impl Frame {
@@ -271,17 +275,18 @@ impl Renderer {
             Some(c) => *c,
             None => default_camera(scene)?,
         };
-        self.gpu.scoped("render", || self.render_inner(scene, &camera, opts))
+        let (frame, memory) = crate::passes::log_allocations(|| self.gpu.scoped("render", || self.render_inner(scene, &camera, opts)));
+        frame.map(|f| Frame { memory_bytes: memory, ..f })
     }
 
     fn render_inner(&self, scene: &Scene, camera: &Camera, opts: &RenderOptions) -> Result<Frame> {
         let gpu = &*self.gpu;
         let (w, h) = (self.width, self.height);
         let wall = Instant::now();
-        let stats = scene.stats();
-        let full = opts.plan == "full";
+        let plan = Plan::new(scene, opts.plan == "full");
+        let feat = plan.features;
         let mut passes: Vec<String> = Vec::new();
-        let mut skipped: Vec<(String, String)> = Vec::new();
+        let mut skipped: Vec<(String, String)> = plan.skipped.clone();
 
         let origin = camera.eye;
         let gscene = GpuScene::upload(gpu, scene, origin)?;
@@ -309,8 +314,10 @@ impl Renderer {
         self.visibility.record(gpu, &mut enc, &mut timer, "visibility", &frame_buf, &gscene.raster_vertices, gscene.raster_vertex_count, &vis);
         passes.push("visibility".into());
 
-        let shadow_tex = ShadowMapPass::target(gpu, opts.shadow_size, lights.len() as u32);
-        if !lights.is_empty() && opts.method != "pathtrace" {
+        let shadow_needed = !lights.is_empty() && opts.method != "pathtrace";
+        // Unneeded: the smallest placeholder layer, so the binding exists.
+        let shadow_tex = ShadowMapPass::target(gpu, if shadow_needed { opts.shadow_size } else { 16 }, lights.len() as u32);
+        if shadow_needed {
             let vps: Vec<_> = lights.iter().map(|l| l.view_proj).collect();
             self.shadow_map.record(gpu, &mut enc, &mut timer, &shadow_tex, &vps, &gscene.raster_vertices, gscene.raster_vertex_count);
             passes.push("shadow_map".into());
@@ -322,13 +329,8 @@ impl Renderer {
         }
 
         let gbuffer = GBuffer::new(gpu, w, h);
-        let textured = full || stats.has_textures;
-        let material_name = if textured { "material" } else { "material[untextured]" };
-        self.material.record(gpu, &mut enc, &mut timer, "material", &frame_buf, &vis.ids, &gscene, textured, &gbuffer, (w, h));
-        passes.push(material_name.into());
-        if !textured {
-            skipped.push(("material_texture_fetch".into(), "no material in the scene uses a texture".into()));
-        }
+        self.material.record(gpu, &mut enc, &mut timer, "material", &frame_buf, &vis.ids, &gscene, feat, &gbuffer, (w, h));
+        passes.push(feat.pass_name("material"));
 
         let direct_out = storage_buffer(gpu, "direct_radiance_buffer", w as u64 * h as u64 * 16);
         let shadow_view = shadow_tex.create_view(&wgpu::TextureViewDescriptor {
@@ -337,21 +339,25 @@ impl Renderer {
             ..Default::default()
         });
         if opts.method != "pathtrace" {
-            self.direct.record(gpu, &mut enc, &mut timer, &frame_buf, &light_buf, &shadow_view, &gbuffer, &direct_out, (w, h));
-            passes.push("direct".into());
+            self.direct.record(gpu, &mut enc, &mut timer, &frame_buf, &light_buf, &shadow_view, &gbuffer, &direct_out, feat, (w, h));
+            passes.push(feat.pass_name("direct"));
         }
 
         // Indirect light: one RSM per spot light, then VPLs (sampled, or every texel).
+        let pixel_bytes = w as u64 * h as u64 * 16;
+        // Without specular materials the specular targets are never bound for writing: a
+        // 16-byte placeholder keeps the bind group layouts of the full variants.
+        let specular_bytes = if feat.specular { pixel_bytes } else { 16 };
         let indirect = IndirectTargets {
-            diffuse: storage_buffer(gpu, "indirect_diffuse_buffer", w as u64 * h as u64 * 16),
-            specular: storage_buffer(gpu, "indirect_specular_buffer", w as u64 * h as u64 * 16),
+            diffuse: storage_buffer(gpu, "indirect_diffuse_buffer", pixel_bytes),
+            specular: storage_buffer(gpu, "indirect_specular_buffer", specular_bytes),
         };
         let mut captured_rsm: Option<(u32, Vec<(String, usize, Vec<f32>)>)> = None;
         // VSGLs with interleaving are shaded into `noisy` and filtered into `indirect`.
         let filter = opts.method == "vsgl" && opts.interleave > 1 && opts.denoise;
         let noisy = IndirectTargets {
-            diffuse: storage_buffer(gpu, "indirect_noisy_diffuse_buffer", if filter { w as u64 * h as u64 * 16 } else { 16 }),
-            specular: storage_buffer(gpu, "indirect_noisy_specular_buffer", if filter { w as u64 * h as u64 * 16 } else { 16 }),
+            diffuse: storage_buffer(gpu, "indirect_noisy_diffuse_buffer", if filter { pixel_bytes } else { 16 }),
+            specular: storage_buffer(gpu, "indirect_noisy_specular_buffer", if filter { specular_bytes } else { 16 }),
         };
         let mut vsgl_chains: Option<MomentChains> = None;
         let mut first_vsgls: Option<wgpu::Buffer> = None;
@@ -361,7 +367,7 @@ impl Renderer {
         } else if opts.method == "pathtrace" {
             // Direct light by shadow rays, then `spp` BRDF-sampled bounces per pixel in batches.
             let input = PathTraceInputs {
-                scene, origin, frame: &frame_buf, lights: &light_buf, gscene: &gscene, gbuffer: &gbuffer, ids: &vis.ids, textured,
+                scene, origin, frame: &frame_buf, lights: &light_buf, gscene: &gscene, gbuffer: &gbuffer, ids: &vis.ids, textured: feat.textures,
             };
             let out = self.pathtrace.record(gpu, &mut enc, &new_encoder, &mut timer, &input, &indirect, &direct_out, opts.spp, opts.seed, (w, h))?;
             passes.extend(out.passes);
@@ -371,7 +377,8 @@ impl Renderer {
             skipped.push(("indirect".into(), "the scene has no spot light".into()));
         } else {
             let n = opts.rsm_size();
-            let rsm = Rsm::new(gpu, n);
+            let sampling = matches!(opts.method.as_str(), "vpl" | "vsgl");
+            let rsm = Rsm::new(gpu, n, feat.specular, sampling);
             let rsm_vis = VisibilityPass::targets(gpu, n, n);
             let min_distance2 = (opts.vpl_clamp as f64 * extent).powi(2) as f32;
             let reference = opts.method == "reference";
@@ -386,8 +393,8 @@ impl Renderer {
                 let view_buf = uniform_buffer(gpu, "rsm_view_uniform_buffer", &view);
                 let light_one = light_storage(gpu, &lights[i]);
                 self.visibility.record(gpu, &mut enc, &mut timer, "rsm_visibility", &view_buf, &gscene.raster_vertices, gscene.raster_vertex_count, &rsm_vis);
-                self.material.record(gpu, &mut enc, &mut timer, "rsm_material", &view_buf, &rsm_vis.ids, &gscene, textured, &rsm.gbuffer, (n, n));
-                self.rsm_flux.record(gpu, &mut enc, &mut timer, &view_buf, light_one.as_entire_binding(), &rsm);
+                self.material.record(gpu, &mut enc, &mut timer, "rsm_material", &view_buf, &rsm_vis.ids, &gscene, feat, &rsm.gbuffer, (n, n));
+                self.rsm_flux.record(gpu, &mut enc, &mut timer, &view_buf, light_one.as_entire_binding(), &rsm, feat);
                 if reference {
                     // Every texel is a VPL, in batches bounded by the evaluation budget.
                     let texels = n as u64 * n as u64;
@@ -398,8 +405,8 @@ impl Renderer {
                     let mut first = 0u64;
                     while first < texels {
                         let count = per_batch.min(texels - first);
-                        self.vpl_sample.record_every_texel(gpu, &mut enc, &mut timer, light_one.as_entire_binding(), &rsm, first as u32, count as u32, &vpls);
-                        self.vpl_shading.record(gpu, &mut enc, &mut timer, &frame_buf, &vpls, count as u32, min_distance2, &gbuffer, &indirect, (w, h));
+                        self.vpl_sample.record_every_texel(gpu, &mut enc, &mut timer, light_one.as_entire_binding(), &rsm, first as u32, count as u32, &vpls, feat);
+                        self.vpl_shading.record(gpu, &mut enc, &mut timer, &frame_buf, &vpls, count as u32, min_distance2, &gbuffer, &indirect, feat, (w, h));
                         first += count;
                         if first < texels && count * pixels >= REFERENCE_BATCH_EVALUATIONS / 2 {
                             // Submit this batch on its own so no submission runs for long.
@@ -411,7 +418,7 @@ impl Renderer {
                 } else if opts.method == "vsgl" {
                     let chains = vsgl_chains.get_or_insert_with(|| MomentChains::new(gpu, n));
                     self.pdf_mips.record(gpu, &mut enc, &mut timer, &rsm);
-                    self.vsgl_moments.record(gpu, &mut enc, &mut timer, &rsm, chains);
+                    self.vsgl_moments.record(gpu, &mut enc, &mut timer, &rsm, chains, feat);
                     self.moment_mips.record(gpu, &mut enc, &mut timer, n, chains);
                     let buf = storage_buffer(gpu, "vsgl_buffer", opts.num_lights as u64 * VSGL_BYTES);
                     let gen = GenSettings {
@@ -425,22 +432,22 @@ impl Renderer {
                     };
                     self.vsgl_gen.record(gpu, &mut enc, &mut timer, &rsm, chains, &gen, &buf);
                     let target = if filter { &noisy } else { &indirect };
-                    self.vsgl_shading.record(gpu, &mut enc, &mut timer, &frame_buf, &buf, opts.num_lights, opts.interleave, opts.diffuse, &gbuffer, target, (w, h));
+                    self.vsgl_shading.record(gpu, &mut enc, &mut timer, &frame_buf, &buf, opts.num_lights, opts.interleave, opts.diffuse, &gbuffer, target, feat, (w, h));
                     if i == 0 {
                         first_vsgls = Some(buf);
                     }
                 } else if opts.method == "vsgl2" {
                     // The poster: the whole RSM summed to one diffuse and one specular VSGL.
                     let buf = storage_buffer(gpu, "vsgl2_buffer", VSGL2_COUNT as u64 * VSGL_BYTES);
-                    self.vsgl2_reduce.record(gpu, &mut enc, &mut timer, &rsm, lights[i].position, &buf);
-                    self.vsgl_shading.record(gpu, &mut enc, &mut timer, &frame_buf, &buf, VSGL2_COUNT, 1, opts.diffuse, &gbuffer, &indirect, (w, h));
+                    self.vsgl2_reduce.record(gpu, &mut enc, &mut timer, &rsm, lights[i].position, &buf, feat);
+                    self.vsgl_shading.record(gpu, &mut enc, &mut timer, &frame_buf, &buf, VSGL2_COUNT, 1, opts.diffuse, &gbuffer, &indirect, feat, (w, h));
                     if i == 0 {
                         first_vsgls = Some(buf);
                     }
                 } else {
                     self.pdf_mips.record(gpu, &mut enc, &mut timer, &rsm);
-                    self.vpl_sample.record_importance(gpu, &mut enc, &mut timer, light_one.as_entire_binding(), &rsm, opts.num_lights, opts.sampling, opts.seed, &vpls);
-                    self.vpl_shading.record(gpu, &mut enc, &mut timer, &frame_buf, &vpls, opts.num_lights, min_distance2, &gbuffer, &indirect, (w, h));
+                    self.vpl_sample.record_importance(gpu, &mut enc, &mut timer, light_one.as_entire_binding(), &rsm, opts.num_lights, opts.sampling, opts.seed, &vpls, feat);
+                    self.vpl_shading.record(gpu, &mut enc, &mut timer, &frame_buf, &vpls, opts.num_lights, min_distance2, &gbuffer, &indirect, feat, (w, h));
                 }
                 if i == 0 && opts.capture_rsm {
                     // Read back before the next light overwrites the shared RSM buffers.
@@ -448,7 +455,9 @@ impl Renderer {
                     gpu.queue.submit([done.finish()]);
                     let b = gpu.read_buffers(&[&rsm.gbuffer.position, &rsm.gbuffer.normal, &rsm.flux_diffuse, &rsm.flux_specular])?;
                     let f = |x: &Vec<u8>| -> Vec<f32> { bytemuck::cast_slice::<u8, f32>(x).to_vec() };
-                    let (pos, nrm, fd, fs) = (f(&b[0]), f(&b[1]), f(&b[2]), f(&b[3]));
+                    let texels = n as usize * n as usize;
+                    let fs = if feat.specular { f(&b[3]) } else { vec![0.0; texels * 4] };
+                    let (pos, nrm, fd) = (f(&b[0]), f(&b[1]), f(&b[2]));
                     let roughness: Vec<f32> = nrm.chunks_exact(4).map(|p| p[3]).collect();
                     let weight: Vec<f32> = fd.chunks_exact(4).map(|p| p[3]).collect();
                     captured_rsm = Some((n, vec![
@@ -461,30 +470,31 @@ impl Renderer {
                     ]));
                 }
             }
-            passes.extend(["rsm_visibility", "rsm_material", "rsm_flux"].map(String::from));
+            let mut ran: Vec<&str> = vec!["rsm_visibility", "rsm_material", "rsm_flux"];
             if opts.method == "vsgl" {
-                passes.extend(["pdf_mips", "vsgl_moments", "moment_mips", "vsgl_gen", "vsgl_shading"].map(String::from));
+                ran.extend(["pdf_mips", "vsgl_moments", "moment_mips", "vsgl_gen", "vsgl_shading"]);
                 if filter {
-                    self.denoise.record(gpu, &mut enc, &mut timer, &frame_buf, opts.interleave, &gbuffer, &noisy, &indirect, (w, h));
-                    passes.push("denoise".into());
+                    self.denoise.record(gpu, &mut enc, &mut timer, &frame_buf, opts.interleave, &gbuffer, &noisy, &indirect, feat, (w, h));
+                    ran.push("denoise");
                 } else if opts.interleave == 1 {
                     skipped.push(("denoise".into(), "interleave=1: every pixel evaluates every VSGL".into()));
                 } else {
                     skipped.push(("denoise".into(), "denoise=False".into()));
                 }
             } else if opts.method == "vsgl2" {
-                passes.extend(["vsgl2_reduce", "vsgl_shading"].map(String::from));
+                ran.extend(["vsgl2_reduce", "vsgl_shading"]);
                 let why = "method=\"vsgl2\": two VSGLs from a parallel sum over the whole RSM";
                 skipped.push(("pdf_mips".into(), format!("{why}, no importance sampling")));
                 skipped.push(("moment_mips".into(), format!("{why}, no mipmapped moments")));
                 skipped.push(("vsgl_sampling".into(), format!("{why}, no kernels to place")));
                 skipped.push(("denoise".into(), format!("{why}: every pixel evaluates both VSGLs (no interleaving)")));
             } else if reference {
-                passes.extend(["vpl_sample[every_texel]", "vpl_shading"].map(String::from));
+                ran.extend(["vpl_sample[every_texel]", "vpl_shading"]);
                 skipped.push(("pdf_mips".into(), "the reference uses every RSM texel, no importance sampling".into()));
             } else {
-                passes.extend(["pdf_mips", "vpl_sample", "vpl_shading"].map(String::from));
+                ran.extend(["pdf_mips", "vpl_sample", "vpl_shading"]);
             }
+            passes.extend(ran.iter().map(|p| feat.pass_name(p)));
             skipped.push(("vpl_shadow_maps".into(), "visibility=\"none\": virtual lights are unshadowed".into()));
         }
 
@@ -521,7 +531,7 @@ impl Renderer {
             aovs.push(("image".to_string(), 3, direct.clone()));
         } else {
             let ind_d = rgb(&f(&read[4]));
-            let ind_s = rgb(&f(&read[5]));
+            let ind_s = if feat.specular { rgb(&f(&read[5])) } else { vec![0.0; w as usize * h as usize * 3] };
             let indirect: Vec<f32> = ind_d.iter().zip(&ind_s).map(|(a, b)| a + b).collect();
             let image: Vec<f32> = direct.iter().zip(&indirect).map(|(a, b)| a + b).collect();
             aovs.push(("image".to_string(), 3, image));
@@ -569,7 +579,7 @@ impl Renderer {
             settings.push(("sampling".into(), match opts.sampling { Sampling::Stratified => "stratified", Sampling::Random => "random" }.into()));
             settings.push(("seed".into(), opts.seed.to_string()));
         }
-        Ok(Frame { width: w, height: h, aovs, timings_ms: timings, timings_clock: clock.into(), passes, skipped, settings, rsm: captured_rsm, vsgls })
+        Ok(Frame { width: w, height: h, aovs, timings_ms: timings, timings_clock: clock.into(), passes, skipped, settings, rsm: captured_rsm, vsgls, memory_bytes: Vec::new() })
     }
 }
 

@@ -183,6 +183,7 @@ impl PyScene {
         if s.has_textures { features.push("textures"); }
         if s.has_normal_maps { features.push("normal_maps"); }
         if s.has_metallic { features.push("metallic"); }
+        if s.has_specular { features.push("specular"); }
         if s.has_diffuse { features.push("diffuse"); }
         d.set_item("features", features)?;
         Ok(d)
@@ -341,6 +342,16 @@ impl PyFrame {
     #[getter]
     fn passes(&self) -> Vec<String> {
         self.inner.passes.clone()
+    }
+    /// GPU buffers and render targets this frame allocated, label → bytes (the scene upload
+    /// excluded): what a pruned plan does not allocate is absent or a 16-byte placeholder.
+    #[getter]
+    fn memory_bytes<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyDict>> {
+        let d = PyDict::new(py);
+        for (k, v) in &self.inner.memory_bytes {
+            d.set_item(k, v)?;
+        }
+        Ok(d)
     }
     /// Left-out passes or variants mapped to the reason, in words.
     #[getter]

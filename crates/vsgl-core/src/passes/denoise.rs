@@ -3,7 +3,8 @@
 
 use super::{run_compute, storage_buffer, uniform_buffer};
 use crate::error::Result;
-use crate::gpu::{groups, Gpu, PassTimer};
+use crate::gpu::{groups, Gpu, PassTimer, PipelineVariants};
+use crate::plan::ShaderFeatures;
 use crate::passes::material::GBuffer;
 use crate::passes::vpl_shading::IndirectTargets;
 
@@ -18,18 +19,18 @@ struct DenoiseParamsRaw {
 }
 
 pub struct DenoisePass {
-    pipeline: wgpu::ComputePipeline,
+    pipelines: PipelineVariants,
 }
 
 impl DenoisePass {
     pub fn new(gpu: &Gpu) -> Result<Self> {
-        let module = gpu.shader("passes/denoise.wgsl")?;
-        Ok(Self { pipeline: gpu.compute_pipeline("denoise_pipeline", &module, "main") })
+        Ok(Self { pipelines: PipelineVariants::new(gpu, "passes/denoise.wgsl", "main")? })
     }
 
     /// Filters `noisy` into `out` through an intermediate (demodulated, x-filtered) pair.
     #[allow(clippy::too_many_arguments)]
-    pub fn record(&self, gpu: &Gpu, enc: &mut wgpu::CommandEncoder, timer: &mut PassTimer, frame: &wgpu::Buffer, radius: u32, gbuffer: &GBuffer, noisy: &IndirectTargets, out: &IndirectTargets, size: (u32, u32)) {
+    pub fn record(&self, gpu: &Gpu, enc: &mut wgpu::CommandEncoder, timer: &mut PassTimer, frame: &wgpu::Buffer, radius: u32, gbuffer: &GBuffer, noisy: &IndirectTargets, out: &IndirectTargets, features: ShaderFeatures, size: (u32, u32)) {
+        let pipeline = self.pipelines.get(gpu, &features.specular_flags());
         let bytes = size.0 as u64 * size.1 as u64 * 16;
         let across = IndirectTargets {
             diffuse: storage_buffer(gpu, "denoise_x_diffuse_buffer", bytes),
@@ -42,7 +43,7 @@ impl DenoisePass {
                 enc,
                 timer,
                 "denoise",
-                &self.pipeline,
+                &pipeline,
                 &[
                     &[frame.as_entire_binding()],
                     &[

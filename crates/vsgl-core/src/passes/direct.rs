@@ -2,20 +2,20 @@
 
 use super::entries;
 use crate::error::Result;
-use crate::gpu::{groups, Gpu, PassTimer};
+use crate::gpu::{groups, Gpu, PassTimer, PipelineVariants};
+use crate::plan::ShaderFeatures;
 use crate::passes::material::GBuffer;
 
 const WORKGROUP: u32 = 8;
 
 pub struct DirectPass {
-    pipeline: wgpu::ComputePipeline,
+    pipelines: PipelineVariants,
     sampler: wgpu::Sampler,
 }
 
 impl DirectPass {
     pub fn new(gpu: &Gpu) -> Result<Self> {
-        let module = gpu.shader("passes/direct.wgsl")?;
-        let pipeline = gpu.compute_pipeline("direct_pipeline", &module, "main");
+        let pipelines = PipelineVariants::new(gpu, "passes/direct.wgsl", "main")?;
         let sampler = gpu.device.create_sampler(&wgpu::SamplerDescriptor {
             label: Some("direct_shadow_sampler"),
             address_mode_u: wgpu::AddressMode::ClampToEdge,
@@ -26,7 +26,7 @@ impl DirectPass {
             compare: Some(wgpu::CompareFunction::GreaterEqual),
             ..Default::default()
         });
-        Ok(Self { pipeline, sampler })
+        Ok(Self { pipelines, sampler })
     }
 
     #[allow(clippy::too_many_arguments)]
@@ -40,16 +40,18 @@ impl DirectPass {
         shadow_maps: &wgpu::TextureView,
         gbuffer: &GBuffer,
         out: &wgpu::Buffer,
+        features: ShaderFeatures,
         size: (u32, u32),
     ) {
+        let pipeline = &self.pipelines.get(gpu, &features.specular_flags());
         let frame_bind = gpu.device.create_bind_group(&wgpu::BindGroupDescriptor {
             label: Some("direct_frame_bind_group"),
-            layout: &self.pipeline.get_bind_group_layout(0),
+            layout: &pipeline.get_bind_group_layout(0),
             entries: &[wgpu::BindGroupEntry { binding: 0, resource: frame_uniforms.as_entire_binding() }],
         });
         let pass_bind = gpu.device.create_bind_group(&wgpu::BindGroupDescriptor {
             label: Some("direct_pass_bind_group"),
-            layout: &self.pipeline.get_bind_group_layout(1),
+            layout: &pipeline.get_bind_group_layout(1),
             entries: &entries(&[
                 lights.as_entire_binding(),
                 wgpu::BindingResource::TextureView(shadow_maps),
@@ -66,7 +68,7 @@ impl DirectPass {
             label: Some("direct_pass"),
             timestamp_writes: timer.compute_writes(q),
         });
-        pass.set_pipeline(&self.pipeline);
+        pass.set_pipeline(pipeline);
         pass.set_bind_group(0, &frame_bind, &[]);
         pass.set_bind_group(1, &pass_bind, &[]);
         pass.dispatch_workgroups(groups(size.0, WORKGROUP), groups(size.1, WORKGROUP), 1);

@@ -1,9 +1,11 @@
-//! Material pass (compute): visibility buffer → G-buffer. Two variants: textured, and
-//! untextured with every texture fetch compiled out (`HAS_TEXTURES = false`).
+//! Material pass (compute): visibility buffer → G-buffer. Variants by the frame's plan:
+//! untextured with every texture fetch compiled out (`HAS_TEXTURES = false`), and without
+//! normal maps with the tangent frame compiled out (`HAS_NORMAL_MAPS = false`).
 
 use super::entries;
 use crate::error::Result;
-use crate::gpu::{groups, Gpu, PassTimer};
+use crate::gpu::{groups, Gpu, PassTimer, PipelineVariants};
+use crate::plan::ShaderFeatures;
 use crate::upload::GpuScene;
 
 const WORKGROUP: u32 = 8;
@@ -19,6 +21,7 @@ pub struct GBuffer {
 impl GBuffer {
     pub fn new(gpu: &Gpu, width: u32, height: u32) -> Self {
         let make = |label| {
+            super::note_allocation(label, width as u64 * height as u64 * 16);
             gpu.device.create_buffer(&wgpu::BufferDescriptor {
                 label: Some(label),
                 size: width as u64 * height as u64 * 16,
@@ -36,27 +39,12 @@ impl GBuffer {
 }
 
 pub struct MaterialPass {
-    textured: wgpu::ComputePipeline,
-    untextured: wgpu::ComputePipeline,
+    pipelines: PipelineVariants,
     sampler: wgpu::Sampler,
 }
 
 impl MaterialPass {
     pub fn new(gpu: &Gpu) -> Result<Self> {
-        let module = gpu.shader("passes/material.wgsl")?;
-        let variant = |label, has_textures: bool| {
-            gpu.device.create_compute_pipeline(&wgpu::ComputePipelineDescriptor {
-                label: Some(label),
-                layout: None,
-                module: &module,
-                entry_point: Some("main"),
-                compilation_options: wgpu::PipelineCompilationOptions {
-                    constants: &[("HAS_TEXTURES", if has_textures { 1.0 } else { 0.0 })],
-                    ..Default::default()
-                },
-                cache: None,
-            })
-        };
         let sampler = gpu.device.create_sampler(&wgpu::SamplerDescriptor {
             label: Some("material_texture_sampler"),
             address_mode_u: wgpu::AddressMode::Repeat,
@@ -66,11 +54,7 @@ impl MaterialPass {
             mipmap_filter: wgpu::MipmapFilterMode::Linear,
             ..Default::default()
         });
-        Ok(Self {
-            textured: variant("material_textured_pipeline", true),
-            untextured: variant("material_untextured_pipeline", false),
-            sampler,
-        })
+        Ok(Self { pipelines: PipelineVariants::new(gpu, "passes/material.wgsl", "main")?, sampler })
     }
 
     #[allow(clippy::too_many_arguments)]
@@ -83,17 +67,17 @@ impl MaterialPass {
         frame_uniforms: &wgpu::Buffer,
         ids: &wgpu::TextureView,
         scene: &GpuScene,
-        textured: bool,
+        features: ShaderFeatures,
         gbuffer: &GBuffer,
         size: (u32, u32),
     ) {
-        let pipeline = if textured { &self.textured } else { &self.untextured };
+        let pipeline = &self.pipelines.get(gpu, &[("HAS_TEXTURES", features.textures), ("HAS_NORMAL_MAPS", features.normal_maps)]);
         let frame_bind = gpu.device.create_bind_group(&wgpu::BindGroupDescriptor {
             label: Some("material_frame_bind_group"),
             layout: &pipeline.get_bind_group_layout(0),
             entries: &[wgpu::BindGroupEntry { binding: 0, resource: frame_uniforms.as_entire_binding() }],
         });
-        // Both variants bind the same resources: the auto layout is derived before override
+        // Every variant binds the same resources: the auto layout is derived before override
         // constants are applied, so the untextured one still declares bindings 5–7.
         let resources = vec![
             wgpu::BindingResource::TextureView(ids),

@@ -18,6 +18,33 @@ pub mod vsgl_moments;
 pub mod vsgl_shading;
 
 use crate::gpu::{Gpu, PassTimer};
+use std::cell::RefCell;
+
+thread_local! {
+    /// The frame being recorded on this thread logs its allocations here (`frame.memory_bytes`).
+    static ALLOCATION_LOG: RefCell<Option<Vec<(String, u64)>>> = const { RefCell::new(None) };
+}
+
+/// Notes that the frame allocated `bytes` for `label` (a no-op outside [`log_allocations`]).
+pub fn note_allocation(label: &str, bytes: u64) {
+    ALLOCATION_LOG.with(|log| {
+        if let Some(log) = log.borrow_mut().as_mut() {
+            match log.iter_mut().find(|(l, _)| l == label) {
+                Some((_, b)) => *b += bytes,
+                None => log.push((label.to_string(), bytes)),
+            }
+        }
+    });
+}
+
+/// Runs `f` and returns what it allocated through [`storage_buffer`] and the other noted
+/// targets: (label, bytes summed over allocations with that label), in first-use order.
+pub fn log_allocations<T>(f: impl FnOnce() -> T) -> (T, Vec<(String, u64)>) {
+    let outer = ALLOCATION_LOG.with(|log| log.borrow_mut().replace(Vec::new()));
+    let value = f();
+    let logged = ALLOCATION_LOG.with(|log| std::mem::replace(&mut *log.borrow_mut(), outer)).unwrap_or_default();
+    (value, logged)
+}
 
 /// Bind group entries for buffers/views in binding order 0, 1, 2, …
 pub fn entries<'a>(resources: &[wgpu::BindingResource<'a>]) -> Vec<wgpu::BindGroupEntry<'a>> {
@@ -71,6 +98,7 @@ pub fn uniform_buffer<T: bytemuck::Pod>(gpu: &Gpu, label: &str, value: &T) -> wg
 
 /// A storage buffer of `size` bytes (at least 16, as wgpu rejects empty bindings).
 pub fn storage_buffer(gpu: &Gpu, label: &str, size: u64) -> wgpu::Buffer {
+    note_allocation(label, size.max(16));
     gpu.device.create_buffer(&wgpu::BufferDescriptor {
         label: Some(label),
         size: size.max(16),

@@ -3,7 +3,8 @@
 
 use super::{run_compute, storage_buffer};
 use crate::error::Result;
-use crate::gpu::{groups, Gpu, PassTimer};
+use crate::gpu::{groups, Gpu, PassTimer, PipelineVariants};
+use crate::plan::ShaderFeatures;
 use crate::passes::material::GBuffer;
 
 const WORKGROUP: u32 = 8;
@@ -18,51 +19,60 @@ pub struct Rsm {
     pub pyramid: wgpu::Buffer,
     pub level_offsets: wgpu::Buffer,
     pub levels: u32,
+    /// Whether the weight pyramid exists (the method samples texels by weight).
+    pub sampling: bool,
 }
 
 impl Rsm {
-    pub fn new(gpu: &Gpu, size: u32) -> Self {
+    /// `specular = false` (no specular material): the specular flux is never written or read,
+    /// so it gets a 16-byte placeholder; `sampling = false` (nothing is sampled from the RSM):
+    /// neither is the weight pyramid.
+    pub fn new(gpu: &Gpu, size: u32, specular: bool, sampling: bool) -> Self {
         let texels = size as u64 * size as u64;
         let (offsets, total) = super::pdf_mips::pyramid_layout(size);
         Self {
             size,
             gbuffer: GBuffer::new(gpu, size, size),
             flux_diffuse: storage_buffer(gpu, "rsm_flux_diffuse_buffer", texels * 16),
-            flux_specular: storage_buffer(gpu, "rsm_flux_specular_buffer", texels * 16),
-            pyramid: storage_buffer(gpu, "rsm_weight_pyramid_buffer", total as u64 * 4),
+            flux_specular: storage_buffer(gpu, "rsm_flux_specular_buffer", if specular { texels * 16 } else { 16 }),
+            pyramid: storage_buffer(gpu, "rsm_weight_pyramid_buffer", if sampling { total as u64 * 4 } else { 16 }),
             level_offsets: wgpu::util::DeviceExt::create_buffer_init(&gpu.device, &wgpu::util::BufferInitDescriptor {
                 label: Some("rsm_level_offset_buffer"),
                 contents: bytemuck::cast_slice(&offsets),
                 usage: wgpu::BufferUsages::STORAGE,
             }),
             levels: offsets.len() as u32,
+            sampling,
         }
     }
 }
 
 pub struct RsmFluxPass {
-    pipeline: wgpu::ComputePipeline,
+    pipelines: PipelineVariants,
 }
 
 impl RsmFluxPass {
     pub fn new(gpu: &Gpu) -> Result<Self> {
-        let module = gpu.shader("passes/rsm_flux.wgsl")?;
-        Ok(Self { pipeline: gpu.compute_pipeline("rsm_flux_pipeline", &module, "main") })
+        Ok(Self { pipelines: PipelineVariants::new(gpu, "passes/rsm_flux.wgsl", "main")? })
     }
 
-    pub fn record(&self, gpu: &Gpu, enc: &mut wgpu::CommandEncoder, timer: &mut PassTimer, view: &wgpu::Buffer, light: wgpu::BindingResource<'_>, rsm: &Rsm) {
-        // The pyramid's level 0 is its first `size²` floats.
-        let level0 = wgpu::BindingResource::Buffer(wgpu::BufferBinding {
-            buffer: &rsm.pyramid,
-            offset: 0,
-            size: std::num::NonZeroU64::new(rsm.size as u64 * rsm.size as u64 * 4),
-        });
+    pub fn record(&self, gpu: &Gpu, enc: &mut wgpu::CommandEncoder, timer: &mut PassTimer, view: &wgpu::Buffer, light: wgpu::BindingResource<'_>, rsm: &Rsm, features: ShaderFeatures) {
+        let pipeline = self.pipelines.get(gpu, &[("HAS_SPECULAR", features.specular), ("SAMPLING_WEIGHTS", rsm.sampling)]);
+        // The pyramid's level 0 is its first `size²` floats (the whole placeholder without one).
+        let level0 = match rsm.sampling {
+            true => wgpu::BindingResource::Buffer(wgpu::BufferBinding {
+                buffer: &rsm.pyramid,
+                offset: 0,
+                size: std::num::NonZeroU64::new(rsm.size as u64 * rsm.size as u64 * 4),
+            }),
+            false => rsm.pyramid.as_entire_binding(),
+        };
         run_compute(
             gpu,
             enc,
             timer,
             "rsm_flux",
-            &self.pipeline,
+            &pipeline,
             &[
                 &[view.as_entire_binding()],
                 &[

@@ -54,6 +54,8 @@ impl VisibilityPass {
 
     pub fn targets(gpu: &Gpu, width: u32, height: u32) -> VisibilityTargets {
         let make = |label, format, usage| {
+            // Both formats are 4 bytes a texel (r32uint ids, depth32float).
+            super::note_allocation(label, width as u64 * height as u64 * 4);
             gpu.device
                 .create_texture(&wgpu::TextureDescriptor {
                     label: Some(label),

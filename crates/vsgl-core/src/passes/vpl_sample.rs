@@ -3,7 +3,8 @@
 
 use super::{run_compute, uniform_buffer};
 use crate::error::Result;
-use crate::gpu::{groups, storage_binding, uniform_binding, Gpu, PassTimer};
+use crate::gpu::{groups, storage_binding, uniform_binding, Gpu, PassTimer, PipelineVariants};
+use crate::plan::ShaderFeatures;
 use crate::passes::rsm_flux::Rsm;
 
 const WORKGROUP: u32 = 64;
@@ -48,8 +49,8 @@ pub enum Sampling {
 }
 
 pub struct VplSamplePass {
-    importance: wgpu::ComputePipeline,
-    every_texel: wgpu::ComputePipeline,
+    importance: PipelineVariants,
+    every_texel: PipelineVariants,
 }
 
 impl VplSamplePass {
@@ -60,8 +61,8 @@ impl VplSamplePass {
         bindings.extend([storage_binding(true); 7]);
         bindings.push(storage_binding(false));
         Ok(Self {
-            importance: gpu.compute_pipeline_explicit("vpl_sample_importance_pipeline", &module, "importance", &bindings),
-            every_texel: gpu.compute_pipeline_explicit("vpl_sample_every_texel_pipeline", &module, "every_texel", &bindings),
+            importance: PipelineVariants::from_module(module.clone(), "passes/vpl_sample.wgsl", "importance", Some(bindings.clone())),
+            every_texel: PipelineVariants::from_module(module, "passes/vpl_sample.wgsl", "every_texel", Some(bindings)),
         })
     }
 
@@ -91,7 +92,7 @@ impl VplSamplePass {
 
     /// `count` VPLs with p ∝ Φ·(R_d + R_s), estimator weights 1/(N p).
     #[allow(clippy::too_many_arguments)]
-    pub fn record_importance(&self, gpu: &Gpu, enc: &mut wgpu::CommandEncoder, timer: &mut PassTimer, light: wgpu::BindingResource<'_>, rsm: &Rsm, count: u32, sampling: Sampling, seed: u32, out: &wgpu::Buffer) {
+    pub fn record_importance(&self, gpu: &Gpu, enc: &mut wgpu::CommandEncoder, timer: &mut PassTimer, light: wgpu::BindingResource<'_>, rsm: &Rsm, count: u32, sampling: Sampling, seed: u32, out: &wgpu::Buffer, features: ShaderFeatures) {
         let params = SampleParamsRaw {
             count,
             levels: rsm.levels,
@@ -101,13 +102,13 @@ impl VplSamplePass {
             first: 0,
             _pad: [0; 2],
         };
-        self.dispatch(gpu, enc, timer, &self.importance, params, light, rsm, out);
+        self.dispatch(gpu, enc, timer, &self.importance.get(gpu, &features.specular_flags()), params, light, rsm, out);
     }
 
     /// Texels `first .. first + count` as VPLs of weight Φ·R.
     #[allow(clippy::too_many_arguments)]
-    pub fn record_every_texel(&self, gpu: &Gpu, enc: &mut wgpu::CommandEncoder, timer: &mut PassTimer, light: wgpu::BindingResource<'_>, rsm: &Rsm, first: u32, count: u32, out: &wgpu::Buffer) {
+    pub fn record_every_texel(&self, gpu: &Gpu, enc: &mut wgpu::CommandEncoder, timer: &mut PassTimer, light: wgpu::BindingResource<'_>, rsm: &Rsm, first: u32, count: u32, out: &wgpu::Buffer, features: ShaderFeatures) {
         let params = SampleParamsRaw { count, levels: rsm.levels, rsm_size: rsm.size, mode: 0, seed: 0, first, _pad: [0; 2] };
-        self.dispatch(gpu, enc, timer, &self.every_texel, params, light, rsm, out);
+        self.dispatch(gpu, enc, timer, &self.every_texel.get(gpu, &features.specular_flags()), params, light, rsm, out);
     }
 }

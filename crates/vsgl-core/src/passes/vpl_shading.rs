@@ -2,7 +2,8 @@
 
 use super::{run_compute, uniform_buffer};
 use crate::error::Result;
-use crate::gpu::{groups, Gpu, PassTimer};
+use crate::gpu::{groups, Gpu, PassTimer, PipelineVariants};
+use crate::plan::ShaderFeatures;
 use crate::passes::material::GBuffer;
 
 const WORKGROUP: u32 = 8;
@@ -28,13 +29,12 @@ pub struct IndirectTargets {
 }
 
 pub struct VplShadingPass {
-    pipeline: wgpu::ComputePipeline,
+    pipelines: PipelineVariants,
 }
 
 impl VplShadingPass {
     pub fn new(gpu: &Gpu) -> Result<Self> {
-        let module = gpu.shader("passes/vpl_shading.wgsl")?;
-        Ok(Self { pipeline: gpu.compute_pipeline("vpl_shading_pipeline", &module, "main") })
+        Ok(Self { pipelines: PipelineVariants::new(gpu, "passes/vpl_shading.wgsl", "main")? })
     }
 
     #[allow(clippy::too_many_arguments)]
@@ -49,8 +49,10 @@ impl VplShadingPass {
         min_distance2: f32,
         gbuffer: &GBuffer,
         out: &IndirectTargets,
+        features: ShaderFeatures,
         size: (u32, u32),
     ) {
+        let pipeline = self.pipelines.get(gpu, &features.specular_flags());
         let mut first = 0;
         while first < vpl_count {
             let count = (vpl_count - first).min(VPLS_PER_DISPATCH);
@@ -60,7 +62,7 @@ impl VplShadingPass {
                 enc,
                 timer,
                 "vpl_shading",
-                &self.pipeline,
+                &pipeline,
                 &[
                     &[frame.as_entire_binding()],
                     &[

@@ -9,7 +9,8 @@
 
 use super::{run_compute, storage_buffer, uniform_buffer};
 use crate::error::Result;
-use crate::gpu::{groups, storage_binding, uniform_binding, Gpu, PassTimer};
+use crate::gpu::{groups, storage_binding, uniform_binding, Gpu, PassTimer, PipelineVariants};
+use crate::plan::ShaderFeatures;
 use crate::passes::rsm_flux::Rsm;
 
 /// Side of an RSM tile summed by one `tiles` workgroup.
@@ -33,8 +34,8 @@ struct ReduceParamsRaw {
 }
 
 pub struct Vsgl2Reduce {
-    tiles: wgpu::ComputePipeline,
-    merge: wgpu::ComputePipeline,
+    tiles: PipelineVariants,
+    merge: PipelineVariants,
 }
 
 /// Partials after the tile pass for an RSM of side `rsm_size`.
@@ -50,8 +51,8 @@ impl Vsgl2Reduce {
         let rw = storage_binding(false);
         let bindings = [uniform_binding(), ro, ro, ro, ro, ro, rw, rw];
         Ok(Self {
-            tiles: gpu.compute_pipeline_explicit("vsgl2_reduce_tiles_pipeline", &module, "tiles", &bindings),
-            merge: gpu.compute_pipeline_explicit("vsgl2_reduce_merge_pipeline", &module, "merge", &bindings),
+            tiles: PipelineVariants::from_module(module.clone(), "passes/vsgl2_reduce.wgsl", "tiles", Some(bindings.to_vec())),
+            merge: PipelineVariants::from_module(module, "passes/vsgl2_reduce.wgsl", "merge", Some(bindings.to_vec())),
         })
     }
 
@@ -64,7 +65,8 @@ impl Vsgl2Reduce {
 
     /// Records the reduction of `rsm` into `out` (two VSGL records, means relative to the
     /// frame origin: `light_offset` is the light's position relative to it).
-    pub fn record(&self, gpu: &Gpu, enc: &mut wgpu::CommandEncoder, timer: &mut PassTimer, rsm: &Rsm, light_offset: [f32; 3], out: &wgpu::Buffer) {
+    pub fn record(&self, gpu: &Gpu, enc: &mut wgpu::CommandEncoder, timer: &mut PassTimer, rsm: &Rsm, light_offset: [f32; 3], out: &wgpu::Buffer, features: ShaderFeatures) {
+        let (tiles, merge) = (self.tiles.get(gpu, &features.specular_flags()), self.merge.get(gpu, &features.specular_flags()));
         let n = rsm.size;
         let p = tile_partials(n);
         let a = storage_buffer(gpu, "vsgl2_partial_a_buffer", p * PARTIAL_BYTES);
@@ -95,7 +97,7 @@ impl Vsgl2Reduce {
         };
         let u = params(0, false);
         let t = groups(n, TILE);
-        dispatch(&u, &b, &a, &self.tiles, enc, timer, (t, t, 1));
+        dispatch(&u, &b, &a, &tiles, enc, timer, (t, t, 1));
         // Ping-pong: each merge reads `count` partials from one buffer and writes
         // ⌈count/256⌉ to the other (the first buffer is the larger, so both always fit).
         let (mut input, mut output) = (&a, &b);
@@ -104,7 +106,7 @@ impl Vsgl2Reduce {
             let wgs = count.div_ceil(MERGE_SPAN as u64);
             let finish = wgs == 1;
             let u = params(count, finish);
-            dispatch(&u, input, output, &self.merge, enc, timer, (wgs as u32, 1, 1));
+            dispatch(&u, input, output, &merge, enc, timer, (wgs as u32, 1, 1));
             if finish {
                 break;
             }

@@ -3,7 +3,8 @@
 
 use super::{run_compute, storage_buffer, uniform_buffer};
 use crate::error::Result;
-use crate::gpu::{groups, Gpu, PassTimer};
+use crate::gpu::{groups, Gpu, PassTimer, PipelineVariants};
+use crate::plan::ShaderFeatures;
 use crate::passes::rsm_flux::Rsm;
 
 const WORKGROUP: u32 = 8;
@@ -37,23 +38,23 @@ struct MomentParamsRaw {
 }
 
 pub struct VsglMomentsPass {
-    pipeline: wgpu::ComputePipeline,
+    pipelines: PipelineVariants,
 }
 
 impl VsglMomentsPass {
     pub fn new(gpu: &Gpu) -> Result<Self> {
-        let module = gpu.shader("passes/vsgl_moments.wgsl")?;
-        Ok(Self { pipeline: gpu.compute_pipeline("vsgl_moments_pipeline", &module, "main") })
+        Ok(Self { pipelines: PipelineVariants::new(gpu, "passes/vsgl_moments.wgsl", "main")? })
     }
 
-    pub fn record(&self, gpu: &Gpu, enc: &mut wgpu::CommandEncoder, timer: &mut PassTimer, rsm: &Rsm, chains: &MomentChains) {
+    pub fn record(&self, gpu: &Gpu, enc: &mut wgpu::CommandEncoder, timer: &mut PassTimer, rsm: &Rsm, chains: &MomentChains, features: ShaderFeatures) {
+        let pipeline = self.pipelines.get(gpu, &features.specular_flags());
         let uniform = uniform_buffer(gpu, "vsgl_moments_params_uniform_buffer", &MomentParamsRaw { rsm_size: rsm.size, chain_len: chains.chain_len, _pad: [0; 2] });
         run_compute(
             gpu,
             enc,
             timer,
             "vsgl_moments",
-            &self.pipeline,
+            &pipeline,
             &[&[
                 uniform.as_entire_binding(),
                 rsm.gbuffer.position.as_entire_binding(),

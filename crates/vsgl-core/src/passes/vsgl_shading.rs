@@ -2,7 +2,8 @@
 
 use super::{run_compute, uniform_buffer};
 use crate::error::Result;
-use crate::gpu::{groups, Gpu, PassTimer};
+use crate::gpu::{groups, Gpu, PassTimer, PipelineVariants};
+use crate::plan::ShaderFeatures;
 use crate::passes::material::GBuffer;
 use crate::passes::vpl_shading::IndirectTargets;
 
@@ -55,13 +56,12 @@ impl DiffuseMode {
 }
 
 pub struct VsglShadingPass {
-    pipeline: wgpu::ComputePipeline,
+    pipelines: PipelineVariants,
 }
 
 impl VsglShadingPass {
     pub fn new(gpu: &Gpu) -> Result<Self> {
-        let module = gpu.shader("passes/vsgl_shading.wgsl")?;
-        Ok(Self { pipeline: gpu.compute_pipeline("vsgl_shading_pipeline", &module, "main") })
+        Ok(Self { pipelines: PipelineVariants::new(gpu, "passes/vsgl_shading.wgsl", "main")? })
     }
 
     #[allow(clippy::too_many_arguments)]
@@ -77,8 +77,10 @@ impl VsglShadingPass {
         diffuse: DiffuseMode,
         gbuffer: &GBuffer,
         out: &IndirectTargets,
+        features: ShaderFeatures,
         size: (u32, u32),
     ) {
+        let pipeline = self.pipelines.get(gpu, &features.specular_flags());
         // Chunks are multiples of k² so the interleaved subsets stay j ≡ t (mod k²).
         let chunk = VSGLS_PER_PIXEL_PER_DISPATCH * interleave * interleave;
         let mut first = 0;
@@ -91,7 +93,7 @@ impl VsglShadingPass {
                 enc,
                 timer,
                 "vsgl_shading",
-                &self.pipeline,
+                &pipeline,
                 &[
                     &[frame.as_entire_binding()],
                     &[

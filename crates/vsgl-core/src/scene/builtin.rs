@@ -8,7 +8,7 @@ use glam::{DMat4, DVec3, Vec3};
 use std::f64::consts::PI;
 
 /// The names accepted by [`by_name`], in the order `vsgl.scenes.names()` lists them.
-pub const NAMES: &[&str] = &["cornell_box", "glossy_cornell", "caustics_ring", "cave_flashlight"];
+pub const NAMES: &[&str] = &["cornell_box", "glossy_cornell", "caustics_ring", "cave_flashlight", "diffuse_cornell"];
 
 /// A built-in scene by name, or `None` for an unknown name.
 pub fn by_name(name: &str) -> Option<Scene> {
@@ -17,6 +17,7 @@ pub fn by_name(name: &str) -> Option<Scene> {
         "glossy_cornell" => glossy_cornell(),
         "caustics_ring" => caustics_ring(),
         "cave_flashlight" => cave_flashlight(),
+        "diffuse_cornell" => diffuse_cornell(),
         _ => return None,
     })
 }
@@ -187,6 +188,17 @@ pub fn cornell_box() -> Scene {
     add(&mut s, "short_block", Material::dielectric("white", WHITE, 1.0), |b| {
         b.cuboid(DVec3::new(0.1, 0.0, 0.0), DVec3::new(0.7, 0.6, 0.6), false, Some(2))
     });
+    s
+}
+
+/// The Cornell box with purely Lambertian materials (`KHR_materials_specular` factor 0, so
+/// R_s = 0): the diffuse-only scene on which a frame leaves out every specular lobe.
+pub fn diffuse_cornell() -> Scene {
+    let mut s = cornell_box();
+    s.source = "builtin:diffuse_cornell".into();
+    for m in &mut s.materials {
+        *m = Material::lambertian(&m.name, [m.base_color_factor[0], m.base_color_factor[1], m.base_color_factor[2]]);
+    }
     s
 }
 

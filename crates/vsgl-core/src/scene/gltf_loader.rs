@@ -55,6 +55,7 @@ const MAX_UNBACKED_ELEMENTS: u64 = 1 << 24;
 const SUPPORTED_REQUIRED_EXTENSIONS: &[&str] = &[
     "KHR_lights_punctual",
     "KHR_materials_emissive_strength",
+    "KHR_materials_specular",
     "KHR_mesh_quantization",
 ];
 
@@ -1889,6 +1890,19 @@ fn material_index(
                 }
                 _ => None,
             };
+            // KHR_materials_specular: the scalar factor scales the dielectric F0 (0.04); the
+            // coloured factor and the textures are not supported.
+            let mut specular_factor = 1.0;
+            if let Some(spec) = m.extensions.as_ref().and_then(|e| e.specular.as_ref()) {
+                let sel = format!("{el}.extensions.KHR_materials_specular");
+                specular_factor = unit_factor(ctx, spec.specular_factor.0, format!("{sel}.specularFactor"))?;
+                if spec.specular_texture.is_some() || spec.specular_color_texture.is_some() {
+                    b.warn(format!("{sel}: specular textures are not supported; the factor alone is used"));
+                }
+                if spec.specular_color_factor.0 != [1.0; 3] {
+                    b.warn(format!("{sel}.specularColorFactor: coloured specular is not supported; treated as white"));
+                }
+            }
             let emissive = m.emissive_factor.0;
             if m.emissive_texture.is_some() || emissive.iter().any(|&e| e != 0.0) {
                 b.warn(format!("{el}: emission is not supported; ignored"));
@@ -1910,6 +1924,7 @@ fn material_index(
                 metallic_roughness_texture,
                 normal_texture,
                 normal_scale,
+                specular_factor,
             }
         }
     };

@@ -63,6 +63,10 @@ pub struct Material {
     pub metallic_roughness_texture: Option<usize>,
     pub normal_texture: Option<usize>,
     pub normal_scale: f32,
+    /// Strength of the dielectric specular reflection (`KHR_materials_specular`
+    /// `specularFactor`, 0…1): R_s = mix(0.04·specular_factor, base, metallic). 0 with
+    /// metallic 0 is a purely Lambertian material.
+    pub specular_factor: f32,
 }
 
 impl Default for Material {
@@ -77,6 +81,7 @@ impl Default for Material {
             metallic_roughness_texture: None,
             normal_texture: None,
             normal_scale: 1.0,
+            specular_factor: 1.0,
         }
     }
 }
@@ -91,6 +96,14 @@ impl Material {
             roughness_factor: roughness,
             ..Default::default()
         }
+    }
+    /// A purely Lambertian material (metallic 0, specular factor 0): R_s = 0.
+    pub fn lambertian(name: &str, color: [f32; 3]) -> Self {
+        Self { specular_factor: 0.0, ..Self::dielectric(name, color, 1.0) }
+    }
+    /// Whether this material reflects specularly anywhere (R_s > 0 for some texel).
+    pub fn has_specular(&self) -> bool {
+        self.metallic_factor > 0.0 || self.specular_factor > 0.0
     }
     /// A metal (metallic 1) material: Rs = base colour, Rd = 0.
     pub fn metal(name: &str, color: [f32; 3], roughness: f32) -> Self {
@@ -284,6 +297,7 @@ impl Scene {
             has_textures: used.iter().any(|m| m.has_texture()),
             has_normal_maps: used.iter().any(|m| m.normal_texture.is_some()),
             has_metallic: used.iter().any(|m| m.metallic_factor > 0.0),
+            has_specular: used.iter().any(|m| m.has_specular()),
             has_diffuse: used.iter().any(|m| m.metallic_factor < 1.0 || m.metallic_roughness_texture.is_some()),
         }
     }
@@ -300,5 +314,7 @@ pub struct SceneStats {
     pub has_textures: bool,
     pub has_normal_maps: bool,
     pub has_metallic: bool,
+    /// Some used material has R_s > 0 (metallic > 0 or a non-zero dielectric specular).
+    pub has_specular: bool,
     pub has_diffuse: bool,
 }

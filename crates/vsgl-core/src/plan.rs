@@ -1,0 +1,93 @@
+//! The pass plan: what a frame needs, derived from the scene (cheap: one walk over the used
+//! materials, redone every frame so an edited scene is re-planned) and the settings. It picks
+//! the shader variants (WGSL `override` constants, `wgsl/common/plan.wgsl` and
+//! `passes/material.wgsl`) with the unneeded work compiled out, and says in words what it
+//! left out (`frame.skipped`). Settings-driven choices (which method's passes run) are made
+//! by `renderer.rs` and reported the same way. Rules and their proofs: docs/rendering.md,
+//! "Pass plan"; every rule leaves the image unchanged beyond float rounding (tests/test_plan.py).
+
+use crate::scene::Scene;
+
+/// What the scene's materials need from the shaders. `ALL` is `plan="full"`.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub struct ShaderFeatures {
+    /// Some used material samples a texture (else: untextured material variant).
+    pub textures: bool,
+    /// Some used material has a normal map (else: no tangent frames).
+    pub normal_maps: bool,
+    /// Some used material has R_s > 0 (else: no specular flux, lobes, GGX or SG–ASG terms).
+    pub specular: bool,
+}
+
+impl ShaderFeatures {
+    pub const ALL: Self = Self { textures: true, normal_maps: true, specular: true };
+
+    /// The override constants of the passes that read only the specular switch.
+    pub fn specular_flags(self) -> [(&'static str, bool); 1] {
+        [("HAS_SPECULAR", self.specular)]
+    }
+
+    /// `name[variant,…]` for `frame.passes`: the pass name with what its variant leaves out.
+    pub fn pass_name(self, pass: &str) -> String {
+        let mut cut: Vec<&str> = Vec::new();
+        if pass.ends_with("material") {
+            if !self.textures {
+                cut.push("untextured");
+            } else if !self.normal_maps {
+                cut.push("no_normal_maps");
+            }
+        }
+        if !self.specular && SPECULAR_PASSES.contains(&pass) {
+            cut.push("diffuse_only");
+        }
+        match (cut.is_empty(), pass.strip_suffix(']')) {
+            (true, _) => pass.to_string(),
+            (false, Some(open)) => format!("{open},{}]", cut.join(",")),
+            (false, None) => format!("{pass}[{}]", cut.join(",")),
+        }
+    }
+}
+
+/// Passes with a `HAS_SPECULAR` variant.
+const SPECULAR_PASSES: &[&str] = &[
+    "direct", "rsm_flux", "vpl_sample", "vpl_sample[every_texel]", "vpl_shading", "vsgl_moments", "vsgl2_reduce",
+    "vsgl_shading", "denoise",
+];
+
+/// A frame's scene-derived plan: the shader features and what they leave out, with reasons.
+#[derive(Clone, Debug)]
+pub struct Plan {
+    pub features: ShaderFeatures,
+    pub skipped: Vec<(String, String)>,
+}
+
+impl Plan {
+    /// `full`: every feature on (`plan="full"`), nothing left out.
+    pub fn new(scene: &Scene, full: bool) -> Self {
+        if full {
+            return Self { features: ShaderFeatures::ALL, skipped: Vec::new() };
+        }
+        let stats = scene.stats();
+        let features = ShaderFeatures {
+            textures: stats.has_textures,
+            normal_maps: stats.has_normal_maps,
+            specular: stats.has_specular,
+        };
+        let mut skipped = Vec::new();
+        if !features.textures {
+            skipped.push(("material_texture_fetch".into(), "no material in the scene uses a texture".into()));
+        }
+        if !features.normal_maps {
+            skipped.push(("normal_map_tangent_frames".into(), "no material in the scene has a normal map".into()));
+        }
+        if !features.specular {
+            skipped.push((
+                "specular_lobes".into(),
+                "no material has specular reflectance (metallic = 0 and KHR_materials_specular factor 0 \
+                 everywhere): no specular flux, lobes, GGX or SG-ASG terms, no indirect_specular buffers"
+                    .into(),
+            ));
+        }
+        Self { features, skipped }
+    }
+}
