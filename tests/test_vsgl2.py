@@ -63,18 +63,28 @@ def _cpu_vsgl2(frame: vsgl.Frame) -> dict[str, dict[str, np.ndarray | float]]:
     return out
 
 
+def _reduction_or_skip(renderer, reduction: str) -> None:
+    if reduction == "subgroup" and not renderer.adapter["subgroups"]:
+        pytest.skip(f"adapter {renderer.adapter['name']!r} has no subgroup operations; the shared-memory variant is tested")
+
+
+@pytest.mark.parametrize("reduction", ["subgroup", "shared_memory"])
 @pytest.mark.parametrize("rsm_size", [128, 100, 37])
-def test_two_vsgls_equal_a_float64_sum_of_the_same_rsm(renderer, rsm_size):
+def test_two_vsgls_equal_a_float64_sum_of_the_same_rsm(renderer, rsm_size, reduction):
     """128 is a multiple of the 8×8 tile, 100 and 37 are not (partial tiles count as zero).
     Bounds: each GPU total is an f32 pairwise tree (depth ~log2 of the texel count, ≤ 15
     roundings of 2^-24 relative each, ~1e-6) over per-texel f32 lobe functions (a few ULP);
     measured worst relative errors are ~1e-7 … 1e-6, the bounds leave a factor ≥ 10.
     λ = r/(1 − r) amplifies a relative error ε of r by 1/(1 − r) (λ + 1 ≤ 5 here), and σ² =
     E‖y‖² − ‖μ‖² is known only to f32 rounding of E‖y‖² (cancellation), so it is bounded
-    absolutely by that."""
+    absolutely by that. Both implementations (subgroup sums, shared-memory tree) must meet them;
+    subgroupAdd's order is the driver's, a butterfly or a serial sum over ≤ 64 lanes at worst
+    (6 more roundings than a tree: still far inside the bounds)."""
+    _reduction_or_skip(renderer, reduction)
     scene = vsgl.scenes.glossy_cornell()
     cam, light = scene.cameras[0], scene.lights[0]
-    f = renderer.render(scene, method="vsgl2", rsm_size=rsm_size, capture_rsm=True)
+    f = renderer.render(scene, method="vsgl2", rsm_size=rsm_size, capture_rsm=True, vsgl2_reduction=reduction)
+    assert f.settings["vsgl2_reduction"] == reduction
     assert f.passes[-2:] == ["vsgl2_reduce", "vsgl_shading"]
     assert {"denoise", "pdf_mips", "moment_mips", "vsgl_sampling"} <= set(f.skipped)
     assert set(f.timings_ms) >= {"vsgl2_reduce", "vsgl_shading"}
@@ -103,7 +113,7 @@ def test_two_vsgls_equal_a_float64_sum_of_the_same_rsm(renderer, rsm_size):
             mean=float(np.max(np.abs(v["mean"][i] - want["mean"] - offset)) / scale),
             variance=float(abs(v["variance"][i] - want["variance"]) / want["second"]),
         )
-    print(f"rsm {rsm_size}: relative deviations from float64 {worst}")
+    print(f"rsm {rsm_size} {reduction}: relative deviations from float64 {worst}")
     assert np.isfinite(f.image).all()
 
 
@@ -211,3 +221,15 @@ def test_vsgl2_diffuse_forms(renderer, diffuse):
     np.testing.assert_array_equal(f.aov("indirect_specular"), base.aov("indirect_specular"))
     with pytest.raises(ValueError, match="diffuse"):
         renderer.render(scene, method="vsgl2", rsm_size=64, diffuse="nope")
+
+
+def test_reduction_setting_is_checked_and_defaults_to_subgroups_where_available(renderer):
+    scene = vsgl.scenes.cornell_box()
+    f = renderer.render(scene, method="vsgl2", rsm_size=32)
+    want = "subgroup" if renderer.adapter["subgroups"] else "shared_memory"
+    assert f.settings["vsgl2_reduction"] == want
+    with pytest.raises(ValueError, match="vsgl2_reduction"):
+        renderer.render(scene, method="vsgl2", vsgl2_reduction="warp")
+    if not renderer.adapter["subgroups"]:
+        with pytest.raises(ValueError, match="vsgl2_reduction.*SUBGROUP"):
+            renderer.render(scene, method="vsgl2", vsgl2_reduction="subgroup")

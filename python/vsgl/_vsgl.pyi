@@ -157,6 +157,7 @@ class Renderer:
         interleave: int = 8,
         denoise: bool = True,
         diffuse: str = "papers",
+        vsgl2_reduction: str = "auto",
     ) -> Frame: ...
 
 def adapters() -> list[dict[str, Any]]: ...

@@ -14,6 +14,8 @@ pub struct AdapterSummary {
     pub device_type: String,
     pub driver: String,
     pub timestamps: bool,
+    /// wgpu's SUBGROUP feature (subgroup arithmetic in compute shaders).
+    pub subgroups: bool,
 }
 
 const INSTALL_HINT: &str = "no usable GPU or CPU adapter was found by wgpu (Vulkan). \
@@ -47,6 +49,7 @@ fn summary(a: &wgpu::Adapter) -> AdapterSummary {
         device_type: format!("{:?}", info.device_type),
         driver: format!("{} {}", info.driver, info.driver_info).trim().to_string(),
         timestamps: a.features().contains(wgpu::Features::TIMESTAMP_QUERY),
+        subgroups: a.features().contains(wgpu::Features::SUBGROUP),
     }
 }
 
@@ -102,6 +105,9 @@ impl Gpu {
         let mut features = wgpu::Features::empty();
         if summary.timestamps {
             features |= wgpu::Features::TIMESTAMP_QUERY;
+        }
+        if summary.subgroups {
+            features |= wgpu::Features::SUBGROUP;
         }
         let limits = adapter.limits();
         let (device, queue) = pollster::block_on(adapter.request_device(&wgpu::DeviceDescriptor {

@@ -8,7 +8,7 @@ use crate::passes::vpl_shading::{IndirectTargets, VplShadingPass};
 use crate::passes::vsgl_gen::{GenSettings, Kernel, VsglGenPass, VSGL_BYTES};
 use crate::passes::vsgl_moments::{MomentChains, VsglMomentsPass};
 use crate::passes::vsgl_shading::{DiffuseMode, VsglShadingPass};
-use crate::passes::vsgl2_reduce::{Vsgl2Reduce, VSGL2_COUNT};
+use crate::passes::vsgl2_reduce::{Vsgl2Reduce, Vsgl2Reduction, VSGL2_COUNT};
 use crate::passes::{denoise::DenoisePass, moment_mips::MomentMipsPass};
 use crate::passes::pathtrace::{PathTraceInputs, PathTracePass};
 use crate::passes::{
@@ -70,6 +70,8 @@ pub struct RenderOptions {
     /// Run the geometry-aware filter after interleaved shading.
     pub denoise: bool,
     pub diffuse: DiffuseMode,
+    /// How `vsgl2`'s workgroups add (subgroups where available by default).
+    pub vsgl2_reduction: Vsgl2Reduction,
 }
 
 impl Default for RenderOptions {
@@ -92,6 +94,7 @@ impl Default for RenderOptions {
             interleave: 8,
             denoise: true,
             diffuse: DiffuseMode::Papers,
+            vsgl2_reduction: Vsgl2Reduction::Auto,
         }
     }
 }
@@ -255,6 +258,9 @@ impl Renderer {
 
     pub fn render(&self, scene: &Scene, camera: Option<&Camera>, opts: &RenderOptions) -> Result<Frame> {
         opts.validate()?;
+        if opts.method == "vsgl2" {
+            Vsgl2Reduce::resolve(&self.gpu, opts.vsgl2_reduction)?;
+        }
         if opts.method != "direct" {
             let n = opts.rsm_size() as u64;
             if n * n * 16 > self.gpu.limits.max_storage_buffer_binding_size as u64 {
@@ -439,7 +445,7 @@ impl Renderer {
                 } else if opts.method == "vsgl2" {
                     // The poster: the whole RSM summed to one diffuse and one specular VSGL.
                     let buf = storage_buffer(gpu, "vsgl2_buffer", VSGL2_COUNT as u64 * VSGL_BYTES);
-                    self.vsgl2_reduce.record(gpu, &mut enc, &mut timer, &rsm, lights[i].position, &buf, feat);
+                    self.vsgl2_reduce.record(gpu, &mut enc, &mut timer, &rsm, lights[i].position, &buf, feat, opts.vsgl2_reduction)?;
                     self.vsgl_shading.record(gpu, &mut enc, &mut timer, &frame_buf, &buf, VSGL2_COUNT, 1, opts.diffuse, &gbuffer, &indirect, feat, (w, h));
                     if i == 0 {
                         first_vsgls = Some(buf);
@@ -573,6 +579,8 @@ impl Renderer {
         if opts.method == "vsgl2" {
             settings.push(("diffuse".into(), opts.diffuse.name().into()));
             settings.push(("vsgl2_temporary_bytes".into(), Vsgl2Reduce::temporary_bytes(opts.rsm_size()).to_string()));
+            let reduction = Vsgl2Reduce::resolve(gpu, opts.vsgl2_reduction)?;
+            settings.push(("vsgl2_reduction".into(), reduction.name().into()));
         }
         if opts.method == "vpl" || opts.method == "vsgl" {
             settings.push(("num_lights".into(), opts.num_lights.to_string()));

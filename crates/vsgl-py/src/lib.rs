@@ -15,6 +15,7 @@ use vsgl_core::scene::{builtin, Camera, Scene, SpotLight};
 use vsgl_core::passes::vpl_sample::Sampling;
 use vsgl_core::passes::vsgl_gen::{Kernel, VSGL_FIELDS, VSGL_FLOATS};
 use vsgl_core::passes::vsgl_shading::DiffuseMode;
+use vsgl_core::passes::vsgl2_reduce::Vsgl2Reduction;
 use vsgl_core::{image_io, Frame, RenderOptions, Renderer};
 
 fn vec3(name: &str, v: Vec<f64>) -> PyResult<DVec3> {
@@ -448,7 +449,7 @@ impl PyRenderer {
     /// `vpl_clamp` = minimum VPL distance as a fraction of the scene size, 0 = unbiased);
     /// "reference" (every texel of an `rsm_size`² RSM as a VPL, default 1024²).
     /// `capture_rsm=True` keeps the first light's RSM for `Frame.rsm(name)`.
-    #[pyo3(signature = (scene, camera=None, method="direct", *, shadow_size=1024, plan="auto", num_lights=256, rsm_size=None, sampling="stratified", seed=0, vpl_clamp=0.0, visibility="none", capture_rsm=false, spp=64, kernel="integral", K=1.0, bisection_steps=12, interleave=8, denoise=true, diffuse="papers"))]
+    #[pyo3(signature = (scene, camera=None, method="direct", *, shadow_size=1024, plan="auto", num_lights=256, rsm_size=None, sampling="stratified", seed=0, vpl_clamp=0.0, visibility="none", capture_rsm=false, spp=64, kernel="integral", K=1.0, bisection_steps=12, interleave=8, denoise=true, diffuse="papers", vsgl2_reduction="auto"))]
     #[allow(clippy::too_many_arguments)]
     fn render(
         &self,
@@ -472,6 +473,7 @@ impl PyRenderer {
         interleave: i64,
         denoise: bool,
         diffuse: &str,
+        vsgl2_reduction: &str,
     ) -> PyResult<PyFrame> {
         let in_u32 = |name: &str, v: i64, lo: i64, hi: i64| -> PyResult<u32> {
             if (lo..=hi).contains(&v) { Ok(v as u32) } else { Err(PyValueError::new_err(format!("{name}: must be in {lo}..={hi}, got {v}"))) }
@@ -492,6 +494,12 @@ impl PyRenderer {
             "sg_product" => DiffuseMode::SgProduct,
             other => return Err(PyValueError::new_err(format!("diffuse: must be \"papers\", \"accurate\" or \"sg_product\", got {other:?}"))),
         };
+        let vsgl2_reduction = match vsgl2_reduction {
+            "auto" => Vsgl2Reduction::Auto,
+            "subgroup" => Vsgl2Reduction::Subgroup,
+            "shared_memory" => Vsgl2Reduction::SharedMemory,
+            other => return Err(PyValueError::new_err(format!("vsgl2_reduction: must be \"auto\", \"subgroup\" or \"shared_memory\", got {other:?}"))),
+        };
         let opts = RenderOptions {
             method: method.into(),
             shadow_size: in_u32("shadow_size", shadow_size, 16, 8192)?,
@@ -510,6 +518,7 @@ impl PyRenderer {
             interleave: in_u32("interleave", interleave, 1, 16)?,
             denoise,
             diffuse,
+            vsgl2_reduction,
         };
         let s: &Scene = &scene.inner;
         let cam = camera.map(|c| c.inner);
@@ -529,6 +538,7 @@ fn adapter_dict<'py>(py: Python<'py>, a: &vsgl_core::gpu::AdapterSummary) -> PyR
     d.set_item("device_type", &a.device_type)?;
     d.set_item("driver", &a.driver)?;
     d.set_item("timestamps", a.timestamps)?;
+    d.set_item("subgroups", a.subgroups)?;
     Ok(d)
 }
 

@@ -1,5 +1,6 @@
 //! Two VSGLs by parallel summation (compute, `method="vsgl2"`, the 2015 poster): the per-texel
-//! VSGL moments of the whole RSM summed in shared memory to one diffuse and one specular VSGL,
+//! VSGL moments of the whole RSM summed (subgroup sums where the adapter has them, else a
+//! shared-memory tree: [`Vsgl2Reduction`]) to one diffuse and one specular VSGL,
 //! written as two `VsglRaw` records (record 0 diffuse, record 1 specular).
 //!
 //! Dispatches (all timed as `vsgl2_reduce`): `tiles` (one 8×8 workgroup per RSM tile, any RSM
@@ -33,9 +34,52 @@ struct ReduceParamsRaw {
     _pad1: f32,
 }
 
-pub struct Vsgl2Reduce {
+/// How the workgroups of the reduction add their values.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Vsgl2Reduction {
+    /// Subgroups where the adapter has them, else shared memory.
+    Auto,
+    /// `subgroupAdd` within subgroups, a shared-memory tree across them.
+    Subgroup,
+    /// A pairwise tree in workgroup memory only (every adapter).
+    SharedMemory,
+}
+
+impl Vsgl2Reduction {
+    /// The `vsgl2_reduction=` name.
+    pub fn name(self) -> &'static str {
+        match self {
+            Vsgl2Reduction::Auto => "auto",
+            Vsgl2Reduction::Subgroup => "subgroup",
+            Vsgl2Reduction::SharedMemory => "shared_memory",
+        }
+    }
+}
+
+/// The `tiles` and `merge` entry points of one implementation.
+struct ReducePipelines {
     tiles: PipelineVariants,
     merge: PipelineVariants,
+}
+
+impl ReducePipelines {
+    fn new(gpu: &Gpu, path: &str) -> Result<Self> {
+        let module = gpu.shader(path)?;
+        let ro = storage_binding(true);
+        let rw = storage_binding(false);
+        let bindings = vec![uniform_binding(), ro, ro, ro, ro, ro, rw, rw];
+        Ok(Self {
+            tiles: PipelineVariants::from_module(module.clone(), path, "tiles", Some(bindings.clone())),
+            merge: PipelineVariants::from_module(module, path, "merge", Some(bindings)),
+        })
+    }
+}
+
+pub struct Vsgl2Reduce {
+    shared_memory: ReducePipelines,
+    /// Compiled on first use, and only on adapters with wgpu's SUBGROUP feature (devices
+    /// without it reject the subgroup built-ins).
+    subgroup: std::sync::OnceLock<ReducePipelines>,
 }
 
 /// Partials after the tile pass for an RSM of side `rsm_size`.
@@ -46,14 +90,34 @@ fn tile_partials(rsm_size: u32) -> u64 {
 
 impl Vsgl2Reduce {
     pub fn new(gpu: &Gpu) -> Result<Self> {
-        let module = gpu.shader("passes/vsgl2_reduce.wgsl")?;
-        let ro = storage_binding(true);
-        let rw = storage_binding(false);
-        let bindings = [uniform_binding(), ro, ro, ro, ro, ro, rw, rw];
-        Ok(Self {
-            tiles: PipelineVariants::from_module(module.clone(), "passes/vsgl2_reduce.wgsl", "tiles", Some(bindings.to_vec())),
-            merge: PipelineVariants::from_module(module, "passes/vsgl2_reduce.wgsl", "merge", Some(bindings.to_vec())),
-        })
+        Ok(Self { shared_memory: ReducePipelines::new(gpu, "passes/vsgl2_reduce.wgsl")?, subgroup: Default::default() })
+    }
+
+    /// The implementation `asked` resolves to on this adapter; asking for subgroups on an
+    /// adapter without them is an error naming the setting.
+    pub fn resolve(gpu: &Gpu, asked: Vsgl2Reduction) -> Result<Vsgl2Reduction> {
+        match (asked, gpu.adapter.subgroups) {
+            (Vsgl2Reduction::Auto, true) => Ok(Vsgl2Reduction::Subgroup),
+            (Vsgl2Reduction::Auto, false) => Ok(Vsgl2Reduction::SharedMemory),
+            (Vsgl2Reduction::Subgroup, false) => Err(crate::error::Error::invalid(
+                "vsgl2_reduction",
+                format!("\"subgroup\" needs wgpu's SUBGROUP feature, which adapter {:?} lacks; use \"auto\" or \"shared_memory\"", gpu.adapter.name),
+            )),
+            (other, _) => Ok(other),
+        }
+    }
+
+    fn pipelines(&self, gpu: &Gpu, reduction: Vsgl2Reduction) -> Result<&ReducePipelines> {
+        match Self::resolve(gpu, reduction)? {
+            Vsgl2Reduction::Subgroup => {
+                if let Some(p) = self.subgroup.get() {
+                    return Ok(p);
+                }
+                let p = ReducePipelines::new(gpu, "passes/vsgl2_reduce_subgroup.wgsl")?;
+                Ok(self.subgroup.get_or_init(|| p))
+            }
+            _ => Ok(&self.shared_memory),
+        }
     }
 
     /// Temporary bytes the reduction allocates for an RSM of side `rsm_size` (both partial
@@ -65,8 +129,9 @@ impl Vsgl2Reduce {
 
     /// Records the reduction of `rsm` into `out` (two VSGL records, means relative to the
     /// frame origin: `light_offset` is the light's position relative to it).
-    pub fn record(&self, gpu: &Gpu, enc: &mut wgpu::CommandEncoder, timer: &mut PassTimer, rsm: &Rsm, light_offset: [f32; 3], out: &wgpu::Buffer, features: ShaderFeatures) {
-        let (tiles, merge) = (self.tiles.get(gpu, &features.specular_flags()), self.merge.get(gpu, &features.specular_flags()));
+    pub fn record(&self, gpu: &Gpu, enc: &mut wgpu::CommandEncoder, timer: &mut PassTimer, rsm: &Rsm, light_offset: [f32; 3], out: &wgpu::Buffer, features: ShaderFeatures, reduction: Vsgl2Reduction) -> Result<()> {
+        let pipelines = self.pipelines(gpu, reduction)?;
+        let (tiles, merge) = (pipelines.tiles.get(gpu, &features.specular_flags()), pipelines.merge.get(gpu, &features.specular_flags()));
         let n = rsm.size;
         let p = tile_partials(n);
         let a = storage_buffer(gpu, "vsgl2_partial_a_buffer", p * PARTIAL_BYTES);
@@ -113,5 +178,6 @@ impl Vsgl2Reduce {
             count = wgs;
             std::mem::swap(&mut input, &mut output);
         }
+        Ok(())
     }
 }

@@ -1,0 +1,172 @@
+// vsgl:include-only (the includer defines the entry points)
+// Two VSGLs by parallel summation (compute) [the 2015 poster "Fast indirect illumination using
+// two virtual spherical Gaussian lights", Fig. 2]: one VSGL for the diffuse lobes and one for the
+// specular lobes of all RSM texels (VPLs), each with its own positional Gaussian.
+// Per texel (positions y relative to the light, as in vsgl_moments.wgsl), with
+// w_d = Φ·R_d and w_s = Φ·R_s summed over rgb:
+//   diffuse_power      = (Φ·R_d rgb, w_d ‖y‖²)
+//   diffuse_direction  = (w_d ξ̄_d, w_d)        ξ̄_d: Toksvig mean direction of the Lambert SG
+//   diffuse_position   = (w_d y, 0)
+//   specular_power     = (Φ·R_s rgb, w_s ‖y‖²)
+//   specular_direction = (w_s ξ̄_s, w_s)        ξ̄_s: Toksvig mean direction of the GGX lobe SG
+//   specular_position  = (w_s y, 0)
+// = 6 vec4 per texel: the poster's three RGBA32F buffers per VSGL.
+// Shared by the two implementations of the reduction (passes/vsgl2_reduce.wgsl: shared memory;
+// passes/vsgl2_reduce_subgroup.wgsl: subgroup sums). Their entry points:
+//   `tiles`: one 8×8 workgroup per 8×8 RSM tile (texels outside the RSM count as zero, so any
+//            RSM side works) sums its tile in shared memory (a pairwise tree) and writes one
+//            partial: ⌈n/8⌉² partials, 1/64 of the RSM as in the poster.
+//   `merge`: one 64-thread workgroup per 256 partials (each thread adds 4 pairwise, then the same
+//            tree): ⌈count/256⌉ partials. Repeated until one workgroup is left; that last
+//            dispatch (`finish` = 1) also turns the total into the two VSGL records.
+// Every addition is part of a pairwise tree (4-way pairwise, then binary), so the f32 rounding
+// error of a total grows with log2 of the texel count, not with the count.
+#include "common/constants.wgsl"
+#include "common/math.wgsl"
+#include "common/sg.wgsl"
+#include "common/ggx.wgsl"
+#include "common/vsgl.wgsl"
+#include "common/vsgl_record.wgsl"
+#include "common/plan.wgsl"
+
+struct ReduceParams {
+    rsm_size: u32,
+    // `merge`: number of input partials.
+    count: u32,
+    // `merge`: 1 on the last dispatch (one workgroup), which writes the two VSGLs.
+    finish: u32,
+    _pad0: u32,
+    // Light position relative to the frame origin: the moments are relative to the light.
+    light_offset: vec3f,
+    _pad1: f32,
+}
+
+struct Moments2 {
+    diffuse_power: vec4f,
+    diffuse_direction: vec4f,
+    diffuse_position: vec4f,
+    specular_power: vec4f,
+    specular_direction: vec4f,
+    specular_position: vec4f,
+}
+
+const TILE: u32 = 8u;
+const GROUP: u32 = 64u;
+// Partials one `merge` workgroup reduces (4 per thread).
+const MERGE_SPAN: u32 = 256u;
+
+@group(0) @binding(0) var<uniform> params: ReduceParams;
+@group(0) @binding(1) var<storage, read> rsm_position: array<vec4f>;
+@group(0) @binding(2) var<storage, read> rsm_normal: array<vec4f>;
+@group(0) @binding(3) var<storage, read> rsm_flux_diffuse: array<vec4f>;
+@group(0) @binding(4) var<storage, read> rsm_flux_specular: array<vec4f>;
+@group(0) @binding(5) var<storage, read> partial_in: array<Moments2>;
+@group(0) @binding(6) var<storage, read_write> partial_out: array<Moments2>;
+@group(0) @binding(7) var<storage, read_write> vsgls: array<VsglRaw>;
+
+
+fn moments_zero() -> Moments2 {
+    return Moments2(vec4f(0.0), vec4f(0.0), vec4f(0.0), vec4f(0.0), vec4f(0.0), vec4f(0.0));
+}
+
+fn moments_add(a: Moments2, b: Moments2) -> Moments2 {
+    return Moments2(
+        a.diffuse_power + b.diffuse_power,
+        a.diffuse_direction + b.diffuse_direction,
+        a.diffuse_position + b.diffuse_position,
+        a.specular_power + b.specular_power,
+        a.specular_direction + b.specular_direction,
+        a.specular_position + b.specular_position,
+    );
+}
+
+// The moments of RSM texel (x, y); zero outside the RSM and where no power is reflected (the
+// same test as vsgl_moments.wgsl, so background texels never reach the lobe functions).
+fn texel_moments(xy: vec2u) -> Moments2 {
+    let n = params.rsm_size;
+    if (xy.x >= n || xy.y >= n) {
+        return moments_zero();
+    }
+    let i = xy.y * n + xy.x;
+    let fd = rsm_flux_diffuse[i].rgb;
+    var fs = vec3f(0.0);
+    if (HAS_SPECULAR) {
+        fs = rsm_flux_specular[i].rgb;
+    }
+    let wd = fd.r + fd.g + fd.b;
+    let ws = fs.r + fs.g + fs.b;
+    if (!(wd + ws > 0.0)) {
+        return moments_zero();
+    }
+    let y = rsm_position[i].xyz;
+    let normal = rsm_normal[i].xyz;
+    let alpha = ggx_alpha_from_roughness(rsm_normal[i].w);
+    let to_light = safe_normalize(-y, normal);
+    let lobe_d = lambert_lobe_sg(normal);
+    let mean_d = sg_toksvig_mean_direction(lobe_d.axis, lobe_d.sharpness);
+    // Without specular materials w_s = 0: the GGX lobe fit would be multiplied by 0.
+    var mean_s = vec3f(0.0);
+    if (HAS_SPECULAR) {
+        let lobe_s = ggx_lobe_sg(normal, to_light, alpha);
+        mean_s = sg_toksvig_mean_direction(lobe_s.axis, lobe_s.sharpness);
+    }
+    let y2 = dot(y, y);
+    return Moments2(
+        vec4f(fd, wd * y2),
+        vec4f(wd * mean_d, wd),
+        vec4f(wd * y, 0.0),
+        vec4f(fs, ws * y2),
+        vec4f(ws * mean_s, ws),
+        vec4f(ws * y, 0.0),
+    );
+}
+
+fn partial_at(i: u32) -> Moments2 {
+    if (i < params.count) {
+        return partial_in[i];
+    }
+    return moments_zero();
+}
+
+// The record of one lobe's VSGL from its summed moments; the other lobe carries no power.
+fn lobe_record(power: vec4f, direction: vec4f, position_sum: vec4f) -> VsglRaw {
+    var out: VsglRaw;
+    let lobe = vsgl_lobe_from_moments(direction.w, direction.xyz);
+    let position = vsgl_position_from_moments(direction.w, position_sum.xyz, power.w);
+    out.mean = position.mean + params.light_offset;
+    out.variance = position.variance;
+    // vsgl_lobe_from_moments: ξ̄ = Σwξ̄/Σw → (axis, λ) by sg_from_toksvig_mean_direction; a lobe
+    // without power comes back as axis +z, λ = 0.
+    out.diffuse_axis = lobe.axis;
+    out.diffuse_sharpness = lobe.sharpness;
+    out.specular_axis = vec3f(0.0, 0.0, 1.0);
+    out.diffuse_power = min(power.rgb, vec3f(FLT_MAX));
+    // One kernel covering the whole RSM: level log2(n), centre n/2, mass 1, no sampling pdf.
+    out.level = log2(f32(params.rsm_size));
+    out.pdf = 0.0;
+    out.center = vec2f(0.5 * f32(params.rsm_size));
+    out.mass = 1.0;
+    return out;
+}
+
+// The last merge's total → record 0: the diffuse VSGL (its lobe in the diffuse fields);
+// record 1: the specular VSGL (its lobe moved to the specular fields).
+fn write_records(total: Moments2) {
+    vsgls[0] = lobe_record(total.diffuse_power, total.diffuse_direction, total.diffuse_position);
+    var specular = lobe_record(total.specular_power, total.specular_direction, total.specular_position);
+    specular.specular_axis = specular.diffuse_axis;
+    specular.specular_sharpness = specular.diffuse_sharpness;
+    specular.specular_power = specular.diffuse_power;
+    specular.diffuse_axis = vec3f(0.0, 0.0, 1.0);
+    specular.diffuse_sharpness = 0.0;
+    specular.diffuse_power = vec3f(0.0);
+    vsgls[1] = specular;
+}
+
+// The four partials a `merge` thread adds first (4-way pairwise).
+fn merge_inputs(wid: u32, lid: u32) -> Moments2 {
+    let base = wid * MERGE_SPAN + lid;
+    let a = moments_add(partial_at(base), partial_at(base + GROUP));
+    let b = moments_add(partial_at(base + 2u * GROUP), partial_at(base + 3u * GROUP));
+    return moments_add(a, b);
+}
