@@ -28,6 +28,7 @@
 #include "common/vsgl.wgsl"
 #include "common/vsgl_record.wgsl"
 #include "common/plan.wgsl"
+#include "common/rsm_lobes.wgsl"
 
 struct ReduceParams {
     rsm_size: u32,
@@ -99,17 +100,9 @@ fn texel_moments(xy: vec2u) -> Moments2 {
         return moments_zero();
     }
     let y = rsm_position[i].xyz;
-    let normal = rsm_normal[i].xyz;
-    let alpha = ggx_alpha_from_roughness(rsm_normal[i].w);
-    let to_light = safe_normalize(-y, normal);
-    let lobe_d = lambert_lobe_sg(normal);
-    let mean_d = sg_toksvig_mean_direction(lobe_d.axis, lobe_d.sharpness);
-    // Without specular materials w_s = 0: the GGX lobe fit would be multiplied by 0.
-    var mean_s = vec3f(0.0);
-    if (HAS_SPECULAR) {
-        let lobe_s = ggx_lobe_sg(normal, to_light, alpha);
-        mean_s = sg_toksvig_mean_direction(lobe_s.axis, lobe_s.sharpness);
-    }
+    let lobes = rsm_lobe_means(y, rsm_normal[i].xyz, rsm_normal[i].w);
+    let mean_d = lobes.diffuse;
+    let mean_s = lobes.specular;
     let y2 = dot(y, y);
     return Moments2(
         vec4f(fd, wd * y2),

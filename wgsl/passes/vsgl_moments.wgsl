@@ -14,6 +14,7 @@
 #include "common/ggx.wgsl"
 #include "common/gbuffer.wgsl"
 #include "common/plan.wgsl"
+#include "common/rsm_lobes.wgsl"
 
 struct MomentParams {
     rsm_size: u32,
@@ -54,17 +55,9 @@ fn main(@builtin(global_invocation_id) gid: vec3u) {
         return;
     }
     let y = rsm_position[i].xyz;
-    let normal = rsm_normal[i].xyz;
-    let alpha = ggx_alpha_from_roughness(rsm_normal[i].w);
-    let to_light = safe_normalize(-y, normal);
-    let lobe_d = lambert_lobe_sg(normal);
-    let mean_d = sg_toksvig_mean_direction(lobe_d.axis, lobe_d.sharpness);
-    // Without specular materials w_s = 0: the GGX lobe fit would be multiplied by 0.
-    var mean_s = vec3f(0.0);
-    if (HAS_SPECULAR) {
-        let lobe_s = ggx_lobe_sg(normal, to_light, alpha);
-        mean_s = sg_toksvig_mean_direction(lobe_s.axis, lobe_s.sharpness);
-    }
+    let lobes = rsm_lobe_means(y, rsm_normal[i].xyz, rsm_normal[i].w);
+    let mean_d = lobes.diffuse;
+    let mean_s = lobes.specular;
     moments[i] = vec4f(fd.rgb, w);
     moments[stride + i] = vec4f(fs, wd);
     moments[2u * stride + i] = vec4f(wd * mean_d, ws);
