@@ -146,14 +146,7 @@ impl Gpu {
 
     /// A compute pipeline with an automatic layout from `path`'s entry point `main`.
     pub fn compute_pipeline(&self, label: &str, module: &wgpu::ShaderModule, entry: &str) -> wgpu::ComputePipeline {
-        self.device.create_compute_pipeline(&wgpu::ComputePipelineDescriptor {
-            label: Some(label),
-            layout: None,
-            module,
-            entry_point: Some(entry),
-            compilation_options: Default::default(),
-            cache: None,
-        })
+        self.compute_pipeline_with(label, module, entry, &[])
     }
 
     /// A compute pipeline with an explicit single bind group 0 of `bindings` (in binding order),

@@ -91,3 +91,34 @@ impl Plan {
         Self { features, skipped }
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::SPECULAR_PASSES;
+    use crate::shader_lib;
+
+    /// The pass whose shader an entry of `frame.passes` names ("vpl_sample[every_texel]" →
+    /// passes/vpl_sample.wgsl).
+    fn shader_of(pass: &str) -> String {
+        format!("passes/{}.wgsl", pass.split('[').next().unwrap())
+    }
+
+    /// `[diffuse_only]` is reported for exactly the passes whose shader reads HAS_SPECULAR, so
+    /// `frame.passes` cannot claim a variant that does not exist or hide one that ran.
+    #[test]
+    fn diffuse_only_names_match_the_shaders_that_read_has_specular() {
+        for pass in SPECULAR_PASSES {
+            let src = shader_lib::compose(&shader_of(pass)).expect("pass shader composes");
+            assert!(src.contains("if (HAS_SPECULAR"), "{pass} is named diffuse_only but its shader never reads HAS_SPECULAR");
+        }
+        // pathtrace includes vpl.wgsl but keeps one variant (docs/rendering.md, "Pass plan").
+        for path in shader_lib::paths().filter(|p| p.starts_with("passes/") && *p != "passes/pathtrace.wgsl") {
+            let src = shader_lib::compose(path).expect("pass shader composes");
+            // The subgroup reduction runs under its pass's name (vsgl2_reduce).
+            let name = path.trim_start_matches("passes/").trim_end_matches(".wgsl").trim_end_matches("_subgroup");
+            if src.contains("if (HAS_SPECULAR") {
+                assert!(SPECULAR_PASSES.iter().any(|p| shader_of(p) == shader_of(name)), "{name} has a HAS_SPECULAR variant that frame.passes does not name");
+            }
+        }
+    }
+}

@@ -19,16 +19,21 @@ pub struct GBuffer {
 }
 
 impl GBuffer {
+    /// The four buffers in layout order (position, normal, geo_normal, base_color), as the
+    /// passes that read the G-buffer bind them.
+    pub fn bindings(&self) -> [wgpu::BindingResource<'_>; 4] {
+        [
+            self.position.as_entire_binding(),
+            self.normal.as_entire_binding(),
+            self.geo_normal.as_entire_binding(),
+            self.base_color.as_entire_binding(),
+        ]
+    }
+}
+
+impl GBuffer {
     pub fn new(gpu: &Gpu, width: u32, height: u32) -> Self {
-        let make = |label| {
-            super::note_allocation(label, width as u64 * height as u64 * 16);
-            gpu.device.create_buffer(&wgpu::BufferDescriptor {
-                label: Some(label),
-                size: width as u64 * height as u64 * 16,
-                usage: wgpu::BufferUsages::STORAGE | wgpu::BufferUsages::COPY_SRC,
-                mapped_at_creation: false,
-            })
-        };
+        let make = |label| super::storage_buffer(gpu, label, width as u64 * height as u64 * 16);
         Self {
             position: make("gbuffer_position_buffer"),
             normal: make("gbuffer_normal_buffer"),

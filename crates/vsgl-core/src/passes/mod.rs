@@ -88,6 +88,18 @@ pub fn run_compute(
     }
 }
 
+/// Calls `dispatch(first, count)` for consecutive chunks of at most `chunk` of `total` items:
+/// the shading passes split long light lists over dispatches (lavapipe ends shader loops after
+/// 65536 iterations) that add into the same targets.
+pub fn for_each_chunk(total: u32, chunk: u32, mut dispatch: impl FnMut(u32, u32)) {
+    let mut first = 0;
+    while first < total {
+        let count = (total - first).min(chunk);
+        dispatch(first, count);
+        first += count;
+    }
+}
+
 /// A uniform buffer holding `value` (a `#[repr(C)]` twin of a WGSL struct).
 pub fn uniform_buffer<T: bytemuck::Pod>(gpu: &Gpu, label: &str, value: &T) -> wgpu::Buffer {
     wgpu::util::DeviceExt::create_buffer_init(

@@ -1,6 +1,6 @@
 //! VPL shading (compute): adds the radiance of a batch of VPLs to the indirect buffers.
 
-use super::{run_compute, uniform_buffer};
+use super::{for_each_chunk, run_compute, uniform_buffer};
 use crate::error::Result;
 use crate::gpu::{groups, Gpu, PassTimer, PipelineVariants};
 use crate::plan::ShaderFeatures;
@@ -28,6 +28,17 @@ pub struct IndirectTargets {
     pub specular: wgpu::Buffer,
 }
 
+impl IndirectTargets {
+    /// What a shading pass binds (group 1): its parameters, its light list, the G-buffer and
+    /// both targets, in the order of vpl_shading.wgsl and vsgl_shading.wgsl.
+    pub fn shading_bindings<'a>(&'a self, params: &'a wgpu::Buffer, lights: &'a wgpu::Buffer, gbuffer: &'a GBuffer) -> Vec<wgpu::BindingResource<'a>> {
+        let mut b = vec![params.as_entire_binding(), lights.as_entire_binding()];
+        b.extend(gbuffer.bindings());
+        b.extend([self.diffuse.as_entire_binding(), self.specular.as_entire_binding()]);
+        b
+    }
+}
+
 pub struct VplShadingPass {
     pipelines: PipelineVariants,
 }
@@ -53,9 +64,7 @@ impl VplShadingPass {
         size: (u32, u32),
     ) {
         let pipeline = self.pipelines.get(gpu, &features.specular_flags());
-        let mut first = 0;
-        while first < vpl_count {
-            let count = (vpl_count - first).min(VPLS_PER_DISPATCH);
+        for_each_chunk(vpl_count, VPLS_PER_DISPATCH, |first, count| {
             let uniform = uniform_buffer(gpu, "vpl_shading_params_uniform_buffer", &ShadeParamsRaw { vpl_count: count, min_distance2, first, _pad: 0 });
             run_compute(
                 gpu,
@@ -63,22 +72,9 @@ impl VplShadingPass {
                 timer,
                 "vpl_shading",
                 &pipeline,
-                &[
-                    &[frame.as_entire_binding()],
-                    &[
-                        uniform.as_entire_binding(),
-                        vpls.as_entire_binding(),
-                        gbuffer.position.as_entire_binding(),
-                        gbuffer.normal.as_entire_binding(),
-                        gbuffer.geo_normal.as_entire_binding(),
-                        gbuffer.base_color.as_entire_binding(),
-                        out.diffuse.as_entire_binding(),
-                        out.specular.as_entire_binding(),
-                    ],
-                ],
+                &[&[frame.as_entire_binding()], &out.shading_bindings(&uniform, vpls, gbuffer)],
                 (groups(size.0, WORKGROUP), groups(size.1, WORKGROUP), 1),
             );
-            first += count;
-        }
+        });
     }
 }

@@ -1,6 +1,6 @@
 //! VSGL shading (compute): SG incoming radiance, diffuse and SG–ASG specular, interleaved.
 
-use super::{run_compute, uniform_buffer};
+use super::{for_each_chunk, run_compute, uniform_buffer};
 use crate::error::Result;
 use crate::gpu::{groups, Gpu, PassTimer, PipelineVariants};
 use crate::plan::ShaderFeatures;
@@ -83,9 +83,7 @@ impl VsglShadingPass {
         let pipeline = self.pipelines.get(gpu, &features.specular_flags());
         // Chunks are multiples of k² so the interleaved subsets stay j ≡ t (mod k²).
         let chunk = VSGLS_PER_PIXEL_PER_DISPATCH * interleave * interleave;
-        let mut first = 0;
-        while first < count {
-            let n = (count - first).min(chunk);
+        for_each_chunk(count, chunk, |first, n| {
             let params = ShadeParamsRaw { count: n, interleave, diffuse_mode: diffuse.shader_code(), first };
             let uniform = uniform_buffer(gpu, "vsgl_shading_params_uniform_buffer", &params);
             run_compute(
@@ -94,22 +92,9 @@ impl VsglShadingPass {
                 timer,
                 "vsgl_shading",
                 &pipeline,
-                &[
-                    &[frame.as_entire_binding()],
-                    &[
-                        uniform.as_entire_binding(),
-                        vsgls.as_entire_binding(),
-                        gbuffer.position.as_entire_binding(),
-                        gbuffer.normal.as_entire_binding(),
-                        gbuffer.geo_normal.as_entire_binding(),
-                        gbuffer.base_color.as_entire_binding(),
-                        out.diffuse.as_entire_binding(),
-                        out.specular.as_entire_binding(),
-                    ],
-                ],
+                &[&[frame.as_entire_binding()], &out.shading_bindings(&uniform, vsgls, gbuffer)],
                 (groups(size.0, WORKGROUP), groups(size.1, WORKGROUP), 1),
             );
-            first += n;
-        }
+        });
     }
 }
