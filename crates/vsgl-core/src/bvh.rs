@@ -374,36 +374,15 @@ pub fn scene_triangles(scene: &Scene, origin: DVec3) -> Vec<Triangle> {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::rng::SplitMix64;
 
     /// xorshift64*: a dependency-free deterministic generator for the tests.
-    struct Rng(u64);
-    impl Rng {
-        fn next(&mut self) -> f64 {
-            self.0 ^= self.0 >> 12;
-            self.0 ^= self.0 << 25;
-            self.0 ^= self.0 >> 27;
-            (self.0.wrapping_mul(0x2545_F491_4F6C_DD1D) >> 11) as f64 / (1u64 << 53) as f64
-        }
-        fn range(&mut self, lo: f64, hi: f64) -> f64 {
-            lo + (hi - lo) * self.next()
-        }
-        fn unit(&mut self) -> [f64; 3] {
-            loop {
-                let v = [self.range(-1.0, 1.0), self.range(-1.0, 1.0), self.range(-1.0, 1.0)];
-                let l2 = v[0] * v[0] + v[1] * v[1] + v[2] * v[2];
-                if l2 > 1e-6 && l2 <= 1.0 {
-                    let l = l2.sqrt();
-                    return v.map(|x| x / l);
-                }
-            }
-        }
-    }
 
-    fn random_soup(rng: &mut Rng, n: usize, scale: f64, offset: f64) -> Vec<Triangle> {
+    fn random_soup(rng: &mut SplitMix64, n: usize, scale: f64, offset: f64) -> Vec<Triangle> {
         (0..n)
             .map(|_| {
                 let c = [rng.range(-scale, scale) + offset, rng.range(-scale, scale), rng.range(-scale, scale)];
-                let size = scale * 0.3 * rng.next();
+                let size = scale * 0.3 * rng.next_f64();
                 [0, 1, 2].map(|_| [0, 1, 2].map(|k| (c[k] + rng.range(-size, size)) as f32))
             })
             .collect()
@@ -456,7 +435,7 @@ mod tests {
 
     #[test]
     fn bvh_closest_hit_matches_brute_force_on_random_rays() {
-        let mut rng = Rng(0x9E37_79B9_7F4A_7C15);
+        let mut rng = SplitMix64(0x9E37_79B9_7F4A_7C15);
         // Near the origin and far from it (1e5 m: the f32 spacing there is ~8 mm).
         for (offset, scale) in [(0.0, 1.0), (1.0e5, 50.0)] {
             let tris = random_soup(&mut rng, 2000, scale, offset);
@@ -465,7 +444,7 @@ mod tests {
             let mut hits = 0;
             for _ in 0..3000 {
                 let o = [rng.range(-1.5 * scale, 1.5 * scale) + offset, rng.range(-1.5 * scale, 1.5 * scale), rng.range(-1.5 * scale, 1.5 * scale)];
-                let d = rng.unit();
+                let d = rng.unit_vector().to_array();
                 let want = brute_force(&tris, o, d);
                 let got = bvh.closest_hit(o, d, f64::INFINITY);
                 match (want, got) {

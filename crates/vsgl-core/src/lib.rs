@@ -11,6 +11,7 @@ pub mod oracle;
 pub mod passes;
 pub mod plan;
 pub mod renderer;
+pub mod rng;
 pub mod scene;
 pub mod shader_lib;
 pub mod stability;

@@ -55,6 +55,7 @@ use crate::error::Result;
 use crate::gpu::Gpu;
 use crate::harness::{Harness, HarnessFunction as F, Input, Output, Output64, INPUT_WIDTH};
 use crate::oracle;
+use crate::rng::SplitMix64;
 use glam::DVec3;
 use std::f64::consts::PI;
 use std::ops::Range;
@@ -264,24 +265,6 @@ fn lin(lo: f64, hi: f64, n: usize) -> Vec<f64> {
 
 fn logspace(lo: f64, hi: f64, n: usize) -> Vec<f64> {
     (0..=n).map(|k| (lo.ln() + (hi.ln() - lo.ln()) * k as f64 / n as f64).exp()).collect()
-}
-
-/// A deterministic stream (SplitMix64) for cluster positions.
-struct Rng(u64);
-impl Rng {
-    fn next(&mut self) -> f64 {
-        self.0 = self.0.wrapping_add(0x9E37_79B9_7F4A_7C15);
-        let mut z = self.0;
-        z = (z ^ (z >> 30)).wrapping_mul(0xBF58_476D_1CE4_E5B9);
-        z = (z ^ (z >> 27)).wrapping_mul(0x94D0_49BB_1331_11EB);
-        ((z ^ (z >> 31)) >> 11) as f64 / (1u64 << 53) as f64
-    }
-    fn unit(&mut self) -> DVec3 {
-        let z = 2.0 * self.next() - 1.0;
-        let phi = 2.0 * PI * self.next();
-        let s = (1.0 - z * z).max(0.0).sqrt();
-        DVec3::new(s * phi.cos(), s * phi.sin(), z)
-    }
 }
 
 // ---------------------------------------------------------------------------------------------
@@ -1331,19 +1314,19 @@ fn vsgl_families(f: &mut Vec<Family>) {
     }
     // vsgl_position_from_moments: VPL clusters summed in f32 as a GPU would, relative to a local
     // origin (the light) — near it, and 1e5 m from the world origin — and degenerate clusters.
-    let mut rng = Rng(0x5eed);
+    let mut rng = SplitMix64(0x5eed);
     let (mut near, mut far, mut degenerate) = (Vec::new(), Vec::new(), Vec::new());
     let world = DVec3::new(1e5, -1e5, 1e5);
     for &dist in &[0.0, 0.1, 1.0, 10.0, 100.0] {
         for &radius_fraction in &[1e-6, 1e-4, 1e-2, 0.3, 1.0] {
             for &power in &INTENSITIES[1..] {
-                let light = world + dist * rng.unit();
+                let light = world + dist * rng.unit_vector();
                 let radius = radius_fraction * dist.max(1.0);
                 let (mut w, mut sy, mut sy2) = (0f32, glam::Vec3::ZERO, 0f32);
                 for _ in 0..64 {
-                    let p = world + radius * rng.unit() * rng.next().sqrt();
+                    let p = world + radius * rng.unit_vector() * rng.next_f64().sqrt();
                     let y = (p - light).as_vec3(); // position relative to the local origin, in f32
-                    let pw = (power * (0.5 + rng.next())) as f32;
+                    let pw = (power * (0.5 + rng.next_f64())) as f32;
                     w += pw;
                     sy += pw * y;
                     sy2 += pw * y.length_squared();

@@ -112,43 +112,28 @@ mod tests {
     use super::*;
     use crate::oracle::ggx::ggx_brdf_over_rs;
     use crate::oracle::quadrature::{clamped_cosine_reference, integrate_sphere};
+    use crate::rng::SplitMix64;
     use crate::oracle::sg::{ggx_lobe_sg, sg_evaluate, sg_toksvig_mean_direction, TOKSVIG_SHARPNESS_MAX};
 
     fn dir(theta: f64, phi: f64) -> DVec3 {
         DVec3::new(theta.sin() * phi.cos(), theta.sin() * phi.sin(), theta.cos())
     }
 
-    /// A deterministic pseudo-random stream (SplitMix64) for test inputs.
-    struct Rng(u64);
-    impl Rng {
-        fn next(&mut self) -> f64 {
-            self.0 = self.0.wrapping_add(0x9E37_79B9_7F4A_7C15);
-            let mut z = self.0;
-            z = (z ^ (z >> 30)).wrapping_mul(0xBF58_476D_1CE4_E5B9);
-            z = (z ^ (z >> 27)).wrapping_mul(0x94D0_49BB_1331_11EB);
-            ((z ^ (z >> 31)) >> 11) as f64 / (1u64 << 53) as f64
-        }
-        fn dir(&mut self) -> DVec3 {
-            let z = 2.0 * self.next() - 1.0;
-            dir(z.acos(), 2.0 * PI * self.next())
-        }
-    }
-
     #[test]
     fn vsgl_lobe_from_moments_conserves_power() {
         // ∫ I_v dω = c_v A(λ_v) = Σ Φ R exactly (the definition of c_v); a single lobe comes back
         // unchanged (Toksvig round trip); no power gives amplitude 0. Tolerance 1e-12 relative.
-        let mut rng = Rng(7);
+        let mut rng = SplitMix64(7);
         let n0 = dir(0.3, 0.2);
         let (mut w, mut wd) = (0.0, DVec3::ZERO);
         for _ in 0..64 {
-            let n = (n0 + 0.3 * rng.dir()).normalize();
-            let lobe = if rng.next() < 0.5 {
+            let n = (n0 + 0.3 * rng.unit_vector()).normalize();
+            let lobe = if rng.next_f64() < 0.5 {
                 lambert_lobe_sg(n)
             } else {
-                ggx_lobe_sg(n, (n + rng.dir()).normalize(), 0.2)
+                ggx_lobe_sg(n, (n + rng.unit_vector()).normalize(), 0.2)
             };
-            let power = 1e-8 + 1e8 * rng.next().powi(8);
+            let power = 1e-8 + 1e8 * rng.next_f64().powi(8);
             w += power;
             wd += power * sg_toksvig_mean_direction(lobe.axis, lobe.sharpness);
         }
@@ -168,10 +153,10 @@ mod tests {
         // (here: ≥ 100% wrong); relative to a local origin (the first VPL, standing in for the
         // light position) the same f32 sums give σ² to 1e-3. The oracle then agrees with the
         // exact value to 1e-9 (f64 on relative positions).
-        let mut rng = Rng(11);
+        let mut rng = SplitMix64(11);
         let centre = DVec3::splat(1e5);
         let origin = centre + DVec3::new(0.3, -0.2, 0.1);
-        let points: Vec<DVec3> = (0..256).map(|_| centre + 0.01 * (rng.dir() * rng.next().sqrt())).collect();
+        let points: Vec<DVec3> = (0..256).map(|_| centre + 0.01 * (rng.unit_vector() * rng.next_f64().sqrt())).collect();
         let exact = {
             let mean = points.iter().sum::<DVec3>() / points.len() as f64;
             points.iter().map(|p| (*p - mean).length_squared()).sum::<f64>() / points.len() as f64
