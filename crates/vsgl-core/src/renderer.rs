@@ -18,7 +18,7 @@ use crate::passes::{
 use crate::plan::Plan;
 use crate::scene::{Camera, Scene};
 use crate::upload::GpuScene;
-use std::sync::Arc;
+use std::sync::{Arc, Mutex};
 use std::time::Instant;
 use wgpu::util::DeviceExt;
 
@@ -209,6 +209,23 @@ pub struct Renderer {
     vsgl2_reduce: Vsgl2Reduce,
     denoise: DenoisePass,
     pathtrace: PathTracePass,
+    /// The last scene uploaded and what it was uploaded from: reused while the key matches.
+    scene_cache: Mutex<Option<(SceneUploadKey, Arc<GpuScene>)>>,
+}
+
+/// What [`GpuScene::upload`] reads: the scene instance, its geometry version, and the frame
+/// origin (positions are uploaded relative to the camera, so a moved camera re-uploads).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+struct SceneUploadKey {
+    scene: u64,
+    geometry_version: u64,
+    origin_bits: [u64; 3],
+}
+
+impl SceneUploadKey {
+    fn new(scene: &Scene, origin: glam::DVec3) -> Self {
+        Self { scene: scene.id.get(), geometry_version: scene.geometry_version, origin_bits: origin.to_array().map(f64::to_bits) }
+    }
 }
 
 fn light_storage(gpu: &Gpu, light: &SpotLightRaw) -> wgpu::Buffer {
@@ -251,6 +268,7 @@ impl Renderer {
                 vsgl2_reduce: Vsgl2Reduce::new(&gpu)?,
                 denoise: DenoisePass::new(&gpu)?,
                 pathtrace: PathTracePass::new(&gpu)?,
+                scene_cache: Mutex::new(None),
             })
         })?;
         Ok(r)
@@ -285,6 +303,26 @@ impl Renderer {
         frame.map(|f| Frame { memory_bytes: memory, ..f })
     }
 
+    /// The scene's GPU copy for a frame at `origin`: the cached one when nothing it was made
+    /// from has changed (then `true`), else a fresh upload that replaces it. One scene is
+    /// kept, so alternating between two scenes re-uploads each time.
+    fn uploaded_scene(&self, scene: &Scene, origin: glam::DVec3) -> Result<(Arc<GpuScene>, bool)> {
+        let key = SceneUploadKey::new(scene, origin);
+        if let Some((cached_key, gscene)) = self.scene_cache.lock().unwrap_or_else(|e| e.into_inner()).as_ref() {
+            if *cached_key == key {
+                return Ok((gscene.clone(), true));
+            }
+        }
+        let gscene = Arc::new(GpuScene::upload(&self.gpu, scene, origin)?);
+        *self.scene_cache.lock().unwrap_or_else(|e| e.into_inner()) = Some((key, gscene.clone()));
+        Ok((gscene, false))
+    }
+
+    /// Drops the cached scene upload (its GPU memory is freed once no frame uses it).
+    pub fn clear_scene_cache(&self) {
+        *self.scene_cache.lock().unwrap_or_else(|e| e.into_inner()) = None;
+    }
+
     fn render_inner(&self, scene: &Scene, camera: &Camera, opts: &RenderOptions) -> Result<Frame> {
         let gpu = &*self.gpu;
         let (w, h) = (self.width, self.height);
@@ -295,7 +333,7 @@ impl Renderer {
         let mut skipped: Vec<(String, String)> = plan.skipped.clone();
 
         let origin = camera.eye;
-        let gscene = GpuScene::upload(gpu, scene, origin)?;
+        let (gscene, scene_reused) = self.uploaded_scene(scene, origin)?;
         let extent = gscene.extent;
         let lights: Vec<_> = scene
             .lights
@@ -559,6 +597,7 @@ impl Renderer {
             ("shadow_size".into(), opts.shadow_size.to_string()),
             ("plan".into(), opts.plan.clone()),
             ("adapter".into(), gpu.adapter.name.clone()),
+            ("scene_upload".into(), if scene_reused { "reused" } else { "uploaded" }.into()),
         ];
         if opts.method == "pathtrace" {
             settings.push(("spp".into(), opts.spp.to_string()));

@@ -1,8 +1,9 @@
-//! Scene → GPU buffers, per frame.
+//! Scene → GPU buffers.
 //!
 //! Positions are uploaded relative to a frame origin (the camera position), computed in f64,
-//! so a scene 1e5 m from the world origin renders as precisely as one at the origin. Nothing is
-//! cached across frames that a moved node would invalidate.
+//! so a scene 1e5 m from the world origin renders as precisely as one at the origin. The
+//! renderer reuses an upload while the scene instance, its `geometry_version` and the origin
+//! are unchanged (`Renderer::uploaded_scene`, docs/rendering.md "Scene upload cache").
 
 use crate::error::{Error, Result};
 use crate::gpu::Gpu;

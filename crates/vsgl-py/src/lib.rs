@@ -225,7 +225,6 @@ impl PyScene {
     #[setter]
     fn set_lights(&mut self, lights: Vec<PySpotLight>) {
         self.inner.lights = lights.into_iter().map(|l| l.inner).collect();
-        self.inner.version += 1;
     }
     #[getter]
     fn cameras(&self) -> Vec<PyCamera> {
@@ -435,6 +434,12 @@ impl PyRenderer {
     #[getter]
     fn height(&self) -> u32 {
         self.inner.height
+    }
+    /// Frees the GPU copy of the last scene rendered. The renderer keeps it while the scene's
+    /// geometry and the camera position are unchanged, so repeated frames skip the upload
+    /// (`frame.settings["scene_upload"]` says "reused" or "uploaded").
+    fn clear_scene_cache(&self) {
+        self.inner.clear_scene_cache();
     }
     /// The adapter in use: name, backend, device type, driver, timestamp support.
     #[getter]

@@ -214,8 +214,42 @@ pub struct Scene {
     pub cameras: Vec<Camera>,
     /// Human-readable notes from loading (skipped primitives, unsupported features).
     pub warnings: Vec<String>,
-    /// Bumped by every change, so GPU caches know when to re-upload.
-    pub version: u64,
+    /// Which scene instance this is, for the renderer's upload cache (a clone is another
+    /// instance: it gets a new id, see [`SceneId`]).
+    pub id: SceneId,
+    /// Bumped by every change to what [`crate::upload::GpuScene`] reads (nodes, meshes,
+    /// materials, textures), so the renderer knows when its uploaded copy is stale. Lights and
+    /// cameras are read anew every frame and do not bump it. Code that edits those fields
+    /// directly, not through the methods below, must bump it too.
+    pub geometry_version: u64,
+}
+
+/// Identity of one [`Scene`] value: unique in the process, and a clone gets a fresh one, so
+/// two copies edited apart can never share an (id, geometry_version) key in the upload cache.
+#[derive(Debug, PartialEq, Eq, Hash)]
+pub struct SceneId(u64);
+
+impl SceneId {
+    fn fresh() -> Self {
+        static NEXT: std::sync::atomic::AtomicU64 = std::sync::atomic::AtomicU64::new(1);
+        Self(NEXT.fetch_add(1, std::sync::atomic::Ordering::Relaxed))
+    }
+
+    pub fn get(&self) -> u64 {
+        self.0
+    }
+}
+
+impl Default for SceneId {
+    fn default() -> Self {
+        Self::fresh()
+    }
+}
+
+impl Clone for SceneId {
+    fn clone(&self) -> Self {
+        Self::fresh()
+    }
 }
 
 impl Scene {
@@ -242,21 +276,20 @@ impl Scene {
             n += 1;
         }
         if n > 0 {
-            self.version += 1;
+            self.geometry_version += 1;
         }
         n
     }
 
     pub fn add_light(&mut self, light: SpotLight) {
         self.lights.push(light);
-        self.version += 1;
     }
 
     /// Adds a mesh instanced by a new root node; returns the node index.
     pub fn add_mesh_node(&mut self, name: &str, mesh: Mesh, local: DMat4) -> usize {
         self.meshes.push(mesh);
         self.nodes.push(Node { name: name.into(), local, parent: None, mesh: Some(self.meshes.len() - 1) });
-        self.version += 1;
+        self.geometry_version += 1;
         self.nodes.len() - 1
     }
 
@@ -317,4 +350,25 @@ pub struct SceneStats {
     /// Some used material has R_s > 0 (metallic > 0 or a non-zero dielectric specular).
     pub has_specular: bool,
     pub has_diffuse: bool,
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn every_scene_value_has_its_own_id_and_geometry_edits_bump_the_version() {
+        let a = builtin::cornell_box();
+        let b = builtin::cornell_box();
+        assert_ne!(a.id, b.id, "two scenes built apart share an id");
+        let mut c = a.clone();
+        assert_ne!(a.id, c.id, "a clone shares its original's id: editing either would alias the upload cache");
+        let v = c.geometry_version;
+        c.add_light(a.lights[0]);
+        assert_eq!(c.geometry_version, v, "lights are read every frame; they must not force a re-upload");
+        assert_eq!(c.set_transform("short_block", DMat4::IDENTITY), 1);
+        assert_eq!(c.geometry_version, v + 1);
+        assert_eq!(c.set_transform("no such node", DMat4::IDENTITY), 0);
+        assert_eq!(c.geometry_version, v + 1);
+    }
 }
