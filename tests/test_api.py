@@ -98,6 +98,39 @@ def test_frame_aovs_and_metadata(renderer):
     assert "total" in frame.timings_ms
 
 
+@pytest.mark.parametrize("method", ["direct", "vsgl", "vsgl2", "pathtrace"])
+def test_aovs_reads_back_only_what_is_asked_and_the_same_values(renderer, method):
+    scene = vsgl.scenes.cornell_box()
+    kw = dict(method=method, num_lights=16, rsm_size=32, spp=2)
+    full = renderer.render(scene, **kw)
+    for asked in (["image"], ["indirect_specular", "depth"], ["albedo", "image", "normal"], []):
+        if method == "direct":
+            asked = [a for a in asked if not a.startswith("indirect")]
+        frame = renderer.render(scene, aovs=asked, **kw)
+        # Listed in the frame's usual order, whatever order they were asked in.
+        assert frame.aovs == [a for a in full.aovs if a in asked]
+        for name in asked:
+            np.testing.assert_array_equal(frame.aov(name), full.aov(name), err_msg=f"{method}: {name}")
+        left_out = [a for a in full.aovs if a not in asked]
+        for name in left_out:
+            with pytest.raises(ValueError, match="aovs= left it out"):
+                frame.aov(name)
+    if method != "direct":
+        assert full.aov("indirect").max() > 0.0, "the comparison above would be vacuous"
+
+
+def test_aovs_argument_errors(renderer):
+    scene = vsgl.scenes.cornell_box()
+    with pytest.raises(ValueError, match=r"aovs: unknown AOV \"shadow\""):
+        renderer.render(scene, aovs=["image", "shadow"])
+    with pytest.raises(ValueError, match=r"aovs: \"indirect\" is not made by method=\"direct\""):
+        renderer.render(scene, aovs=["indirect"])
+    with pytest.raises(ValueError, match=r"aovs: \"stderr\" is not made by method=\"vsgl\""):
+        renderer.render(scene, method="vsgl", aovs=["stderr"])
+    with pytest.raises(TypeError):
+        renderer.render(scene, aovs="image")  # a string is not a list of names
+
+
 def test_untextured_variant_equals_full_plan(renderer):
     scene = vsgl.scenes.glossy_cornell()
     pruned = renderer.render(scene)

@@ -159,6 +159,7 @@ class Renderer:
         denoise: bool = True,
         diffuse: str = "papers",
         vsgl2_reduction: str = "auto",
+        aovs: Sequence[str] | None = None,
     ) -> Frame: ...
 
 def adapters() -> list[dict[str, Any]]: ...

@@ -72,6 +72,30 @@ pub struct RenderOptions {
     pub diffuse: DiffuseMode,
     /// How `vsgl2`'s workgroups add (subgroups where available by default).
     pub vsgl2_reduction: Vsgl2Reduction,
+    /// The AOVs to read back (names from [`AOV_NAMES`]); `None`: every AOV the method makes.
+    /// Readback and the RGB conversion are most of a frame's wall time at high resolution, so
+    /// a loop that only shows `image` should ask for it alone.
+    pub aovs: Option<Vec<String>>,
+}
+
+/// Every AOV a frame can hold, in the order a frame lists them.
+pub const AOV_NAMES: &[&str] = &["image", "indirect", "indirect_diffuse", "indirect_specular", "direct", "albedo", "normal", "depth", "stderr"];
+
+/// Which methods make an AOV (`None`: every method).
+fn aov_methods(name: &str) -> Option<&'static str> {
+    match name {
+        "indirect" | "indirect_diffuse" | "indirect_specular" => Some("every method but \"direct\""),
+        "stderr" => Some("method=\"pathtrace\""),
+        _ => None,
+    }
+}
+
+fn method_makes_aov(method: &str, name: &str) -> bool {
+    match name {
+        "indirect" | "indirect_diffuse" | "indirect_specular" => method != "direct",
+        "stderr" => method == "pathtrace",
+        _ => true,
+    }
 }
 
 impl Default for RenderOptions {
@@ -95,6 +119,7 @@ impl Default for RenderOptions {
             denoise: true,
             diffuse: DiffuseMode::Papers,
             vsgl2_reduction: Vsgl2Reduction::Auto,
+            aovs: None,
         }
     }
 }
@@ -145,12 +170,26 @@ impl RenderOptions {
         if !(1..=65536).contains(&self.spp) {
             return Err(Error::invalid("spp", format!("must be in 1..=65536, got {}", self.spp)));
         }
+        for name in self.aovs.iter().flatten() {
+            if !AOV_NAMES.contains(&name.as_str()) {
+                return Err(Error::invalid("aovs", format!("unknown AOV {name:?}; valid: {}", AOV_NAMES.join(", "))));
+            }
+            if !method_makes_aov(&self.method, name) {
+                let who = aov_methods(name).unwrap_or("every method");
+                return Err(Error::invalid("aovs", format!("{name:?} is not made by method={:?}, only by {who}", self.method)));
+            }
+        }
         if self.visibility != "none" {
             return Err(Error::invalid("visibility", format!(
                 "only \"none\" is available in this build (virtual lights are unshadowed), got {:?}", self.visibility
             )));
         }
         Ok(())
+    }
+
+    /// Whether the frame reads back AOV `name` (asked for, or all asked for and made).
+    fn wants_aov(&self, name: &str) -> bool {
+        method_makes_aov(&self.method, name) && self.aovs.as_ref().is_none_or(|a| a.iter().any(|n| n == name))
     }
 
     fn rsm_size(&self) -> u32 {
@@ -544,11 +583,26 @@ impl Renderer {
 
         timer.resolve(&mut enc);
         gpu.queue.submit([enc.finish()]);
-        let read = gpu.read_buffers(&[&direct_out, &gbuffer.base_color, &gbuffer.normal, &gbuffer.position, &indirect.diffuse, &indirect.specular])?;
-        let stderr = match &pathtrace_stderr {
-            Some(b) => Some(rgb(bytemuck::cast_slice::<u8, f32>(&gpu.read_buffers(&[b])?[0]))),
-            None => None,
-        };
+        // Read back only the buffers the asked-for AOVs are made from.
+        let wants = |names: &[&str]| names.iter().any(|n| opts.wants_aov(n));
+        let indirect_specular = feat.specular && wants(&["image", "indirect", "indirect_specular"]);
+        let sources: Vec<(&str, &wgpu::Buffer)> = [
+            ("direct", &direct_out, wants(&["image", "direct"])),
+            ("indirect_diffuse", &indirect.diffuse, wants(&["image", "indirect", "indirect_diffuse"])),
+            ("indirect_specular", &indirect.specular, indirect_specular),
+            ("albedo", &gbuffer.base_color, wants(&["albedo"])),
+            ("normal", &gbuffer.normal, wants(&["normal"])),
+            ("depth", &gbuffer.position, wants(&["depth"])),
+        ]
+        .into_iter()
+        .chain(pathtrace_stderr.as_ref().map(|b| ("stderr", b, wants(&["stderr"]))))
+        .filter(|(_, _, wanted)| *wanted)
+        .map(|(name, buffer, _)| (name, buffer))
+        .collect();
+        let buffers: Vec<&wgpu::Buffer> = sources.iter().map(|(_, b)| *b).collect();
+        let read = if buffers.is_empty() { Vec::new() } else { gpu.read_buffers(&buffers)? };
+        let mut raw: std::collections::HashMap<&str, Vec<f32>> =
+            sources.iter().zip(read).map(|((name, _), bytes)| (*name, bytemuck::cast_slice::<u8, f32>(&bytes).to_vec())).collect();
         let vsgls = match &first_vsgls {
             Some(b) => Some(bytemuck::cast_slice::<u8, f32>(&gpu.read_buffers(&[b])?[0]).to_vec()),
             None => None,
@@ -564,32 +618,43 @@ impl Renderer {
             "gpu-timestamp"
         };
 
-        let f = |b: &Vec<u8>| -> Vec<f32> { bytemuck::cast_slice::<u8, f32>(b).to_vec() };
-        let direct = rgb(&f(&read[0]));
-        let albedo = rgb(&f(&read[1]));
-        let normal = rgb(&f(&read[2]));
+        let pixels = w as usize * h as usize;
+        let mut take_rgb = |name: &str| raw.remove(name).map(|v| rgb(&v));
+        let direct = take_rgb("direct");
+        let ind_d = take_rgb("indirect_diffuse");
+        // Without specular materials the specular target is a placeholder: zero by definition.
+        let ind_s = take_rgb("indirect_specular").or_else(|| ind_d.as_ref().map(|_| vec![0.0; pixels * 3]));
+        let albedo = take_rgb("albedo");
+        let normal = take_rgb("normal");
+        let stderr = take_rgb("stderr");
         // View depth; 0 where no surface was hit (never Inf, see docs/rendering.md).
-        let depth: Vec<f32> = f(&read[3]).chunks_exact(4).map(|p| if p[3] > 0.0 { p[3] } else { 0.0 }).collect();
-        let mut aovs = Vec::new();
-        if opts.method == "direct" {
-            aovs.push(("image".to_string(), 3, direct.clone()));
-        } else {
-            let ind_d = rgb(&f(&read[4]));
-            let ind_s = if feat.specular { rgb(&f(&read[5])) } else { vec![0.0; w as usize * h as usize * 3] };
-            let indirect: Vec<f32> = ind_d.iter().zip(&ind_s).map(|(a, b)| a + b).collect();
-            let image: Vec<f32> = direct.iter().zip(&indirect).map(|(a, b)| a + b).collect();
-            aovs.push(("image".to_string(), 3, image));
-            aovs.push(("indirect".to_string(), 3, indirect));
-            aovs.push(("indirect_diffuse".to_string(), 3, ind_d));
-            aovs.push(("indirect_specular".to_string(), 3, ind_s));
-        }
-        aovs.push(("direct".to_string(), 3, direct));
-        aovs.push(("albedo".to_string(), 3, albedo));
-        aovs.push(("normal".to_string(), 3, normal));
-        aovs.push(("depth".to_string(), 1, depth));
-        if let Some(e) = stderr {
-            aovs.push(("stderr".to_string(), 3, e));
-        }
+        let depth = raw.remove("depth").map(|p| p.chunks_exact(4).map(|p| if p[3] > 0.0 { p[3] } else { 0.0 }).collect::<Vec<f32>>());
+        let sum = |a: &[f32], b: &[f32]| -> Vec<f32> { a.iter().zip(b).map(|(x, y)| x + y).collect() };
+        let indirect_sum = match (&ind_d, &ind_s) {
+            (Some(d), Some(s)) => Some(sum(d, s)),
+            _ => None,
+        };
+        let image = match (&direct, &indirect_sum) {
+            _ if opts.method == "direct" => direct.clone(),
+            (Some(d), Some(i)) => Some(sum(d, i)),
+            _ => None,
+        };
+        let made: [(&str, usize, Option<Vec<f32>>); 9] = [
+            ("image", 3, image),
+            ("indirect", 3, indirect_sum),
+            ("indirect_diffuse", 3, ind_d),
+            ("indirect_specular", 3, ind_s),
+            ("direct", 3, direct),
+            ("albedo", 3, albedo),
+            ("normal", 3, normal),
+            ("depth", 1, depth),
+            ("stderr", 3, stderr),
+        ];
+        let aovs: Vec<(String, usize, Vec<f32>)> = made
+            .into_iter()
+            .filter(|(name, _, _)| opts.wants_aov(name))
+            .filter_map(|(name, c, data)| data.map(|d| (name.to_string(), c, d)))
+            .collect();
         let mut settings = vec![
             ("method".into(), opts.method.clone()),
             ("width".into(), w.to_string()),

@@ -259,7 +259,14 @@ struct PyFrame {
 impl PyFrame {
     fn array<'py>(&self, py: Python<'py>, name: &str) -> PyResult<Bound<'py, PyAny>> {
         let (c, data) = self.inner.aov(name).ok_or_else(|| {
-            PyValueError::new_err(format!("name: unknown AOV {name:?}; available: {}", self.inner.aov_names().join(", ")))
+            let available = self.inner.aov_names().join(", ");
+            if vsgl_core::renderer::AOV_NAMES.contains(&name) {
+                PyValueError::new_err(format!(
+                    "name: this frame has no AOV {name:?} (its method does not make it, or the render's aovs= left it out); available: {available}"
+                ))
+            } else {
+                PyValueError::new_err(format!("name: unknown AOV {name:?}; available: {available}"))
+            }
         })?;
         let arr = PyArray1::from_slice(py, data);
         Ok(arr.reshape([self.inner.height as usize, self.inner.width as usize, c])?.into_any())
@@ -454,7 +461,9 @@ impl PyRenderer {
     /// `vpl_clamp` = minimum VPL distance as a fraction of the scene size, 0 = unbiased);
     /// "reference" (every texel of an `rsm_size`² RSM as a VPL, default 1024²).
     /// `capture_rsm=True` keeps the first light's RSM for `Frame.rsm(name)`.
-    #[pyo3(signature = (scene, camera=None, method="direct", *, shadow_size=1024, plan="auto", num_lights=256, rsm_size=None, sampling="stratified", seed=0, vpl_clamp=0.0, visibility="none", capture_rsm=false, spp=64, kernel="integral", K=1.0, bisection_steps=12, interleave=8, denoise=true, diffuse="papers", vsgl2_reduction="auto"))]
+    /// `aovs=["image"]` reads back only those AOVs (default: every AOV the method makes);
+    /// readback is most of a frame's wall time at high resolution.
+    #[pyo3(signature = (scene, camera=None, method="direct", *, shadow_size=1024, plan="auto", num_lights=256, rsm_size=None, sampling="stratified", seed=0, vpl_clamp=0.0, visibility="none", capture_rsm=false, spp=64, kernel="integral", K=1.0, bisection_steps=12, interleave=8, denoise=true, diffuse="papers", vsgl2_reduction="auto", aovs=None))]
     #[allow(clippy::too_many_arguments)]
     fn render(
         &self,
@@ -479,6 +488,7 @@ impl PyRenderer {
         denoise: bool,
         diffuse: &str,
         vsgl2_reduction: &str,
+        aovs: Option<Vec<String>>,
     ) -> PyResult<PyFrame> {
         let in_u32 = |name: &str, v: i64, lo: i64, hi: i64| -> PyResult<u32> {
             if (lo..=hi).contains(&v) { Ok(v as u32) } else { Err(PyValueError::new_err(format!("{name}: must be in {lo}..={hi}, got {v}"))) }
@@ -524,6 +534,7 @@ impl PyRenderer {
             denoise,
             diffuse,
             vsgl2_reduction,
+            aovs,
         };
         let s: &Scene = &scene.inner;
         let cam = camera.map(|c| c.inner);
