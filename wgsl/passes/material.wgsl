@@ -7,10 +7,8 @@
 #include "common/constants.wgsl"
 #include "common/frame.wgsl"
 #include "common/gbuffer.wgsl"
+#include "common/material_eval.wgsl"
 
-// Leave-out: the untextured variant compiles every texture fetch out.
-override HAS_TEXTURES: bool = true;
-override HAS_NORMAL_MAPS: bool = true;
 const WORKGROUP: u32 = 8u;
 
 @group(0) @binding(0) var<uniform> frame: FrameUniforms;
@@ -104,45 +102,22 @@ fn main(@builtin(global_invocation_id) gid: vec3u) {
         ns = -ns;
     }
 
-    let material = materials[triangle_materials[tri]];
-    var base = material.base_color.rgb;
-    var metallic = material.metallic;
-    var roughness = material.roughness;
+    var uv = vec2f(0.0);
+    var lod = 0.0;
     if (HAS_TEXTURES) {
-        let uv = interpolate2(a.uv, b.uv, c.uv, w);
+        uv = interpolate2(a.uv, b.uv, c.uv, w);
         // Ray differentials: UV of the neighbouring pixels' rays on the same triangle plane.
         let hx = ray_triangle(camera_ray(frame, vec2f(pixel) + vec2f(1.5, 0.5)), a.position, b.position, c.position);
         let hy = ray_triangle(camera_ray(frame, vec2f(pixel) + vec2f(0.5, 1.5)), a.position, b.position, c.position);
         let duv_dx = interpolate2(a.uv, b.uv, c.uv, hx.b) - uv;
         let duv_dy = interpolate2(a.uv, b.uv, c.uv, hy.b) - uv;
         let footprint = max(length(duv_dx), length(duv_dy)) * f32(frame.texture_layer_size);
-        let lod = log2(max(footprint, 1.0e-6));
-        if (material.base_color_layer >= 0) {
-            base *= textureSampleLevel(color_textures, texture_sampler, uv, material.base_color_layer, lod).rgb;
-        }
-        if (material.metallic_roughness_layer >= 0) {
-            let mr = textureSampleLevel(data_textures, texture_sampler, uv, material.metallic_roughness_layer, lod);
-            roughness *= mr.g;
-            metallic *= mr.b;
-        }
-        // HAS_NORMAL_MAPS = false compiles the tangent frame out (no material has a normal map).
-        if (HAS_NORMAL_MAPS && material.normal_layer >= 0) {
-            let tn = textureSampleLevel(data_textures, texture_sampler, uv, material.normal_layer, lod).xyz * 2.0 - 1.0;
-            let t_interp = a.tangent.xyz + w.x * (b.tangent.xyz - a.tangent.xyz) + w.y * (c.tangent.xyz - a.tangent.xyz);
-            let t_orth = t_interp - ns * dot(ns, t_interp);
-            let t_len = length(t_orth);
-            if (t_len > 1.0e-6) {
-                let t = t_orth / t_len;
-                let bt = cross(ns, t) * select(-1.0, 1.0, a.tangent.w >= 0.0);
-                let scaled = vec3f(tn.xy * material.normal_scale, tn.z);
-                let mapped = t * scaled.x + bt * scaled.y + ns * scaled.z;
-                let m_len = length(mapped);
-                if (m_len > 1.0e-6) {
-                    ns = mapped / m_len;
-                }
-            }
-        }
+        lod = log2(max(footprint, 1.0e-6));
     }
+    let tangent = a.tangent.xyz + w.x * (b.tangent.xyz - a.tangent.xyz) + w.y * (c.tangent.xyz - a.tangent.xyz);
+    let material = materials[triangle_materials[tri]];
+    let surface = evaluate_material(material, uv, lod, ns, tangent, a.tangent.w);
+    ns = surface.ns;
     // A shading normal facing away from the viewer (interpolation or normal maps at
     // silhouettes) would shade a surface the camera cannot see; fall back to the geometry.
     if (dot(ns, -d) <= 0.0) {
@@ -150,7 +125,7 @@ fn main(@builtin(global_invocation_id) gid: vec3u) {
     }
     let view_depth = dot(position, frame.cam_forward.xyz);
     gbuf_position[index] = vec4f(position, max(view_depth, FLT_MIN));
-    gbuf_normal[index] = vec4f(ns, clamp(roughness, 0.0, 1.0));
-    gbuf_geo_normal[index] = vec4f(ng, clamp(metallic, 0.0, 1.0));
-    gbuf_base_color[index] = vec4f(max(base, vec3f(0.0)), material.specular_factor);
+    gbuf_normal[index] = vec4f(ns, surface.roughness);
+    gbuf_geo_normal[index] = vec4f(ng, surface.metallic);
+    gbuf_base_color[index] = vec4f(surface.base, material.specular_factor);
 }

@@ -27,9 +27,8 @@
 #include "common/math.wgsl"
 #include "common/sampling.wgsl"
 #include "common/bvh.wgsl"
+#include "common/material_eval.wgsl"
 
-// Leave-out: the untextured variant compiles the bounce point's texture fetches out.
-override HAS_TEXTURES: bool = true;
 const WORKGROUP: u32 = 8u;
 // Ray origins are moved off their surface along the geometric normal by this fraction of the
 // point's coordinate magnitude (relative to the frame origin, where f32 rounding is ~6e-8 of
@@ -151,43 +150,18 @@ fn hit_surface(dir: vec3f, hit: RayHit) -> Surface {
         ns = -ns;
     }
     let material = materials[triangle_materials[tri]];
-    var base = material.base_color.rgb;
-    var metallic = material.metallic;
-    var roughness = material.roughness;
-    if (HAS_TEXTURES) {
-        let uv = a.uv + w.x * (b.uv - a.uv) + w.y * (c.uv - a.uv);
-        if (material.base_color_layer >= 0) {
-            base *= textureSampleLevel(color_textures, texture_sampler, uv, material.base_color_layer, 0.0).rgb;
-        }
-        if (material.metallic_roughness_layer >= 0) {
-            let mr = textureSampleLevel(data_textures, texture_sampler, uv, material.metallic_roughness_layer, 0.0);
-            roughness *= mr.g;
-            metallic *= mr.b;
-        }
-        if (material.normal_layer >= 0) {
-            // Tangent-space normal map (glTF: +x tangent, +y bitangent × tangent.w).
-            let tn = textureSampleLevel(data_textures, texture_sampler, uv, material.normal_layer, 0.0).xyz * 2.0 - 1.0;
-            let t_interp = lerp_bary3(a.tangent.xyz, b.tangent.xyz, c.tangent.xyz, w);
-            let t_orth = t_interp - ns * dot(ns, t_interp);
-            let t_len = length(t_orth);
-            if (t_len > 1.0e-6) {
-                let t = t_orth / t_len;
-                let bt = cross(ns, t) * select(-1.0, 1.0, a.tangent.w >= 0.0);
-                let mapped = t * (tn.x * material.normal_scale) + bt * (tn.y * material.normal_scale) + ns * tn.z;
-                ns = safe_normalize(mapped, ns);
-            }
-        }
-    }
+    // The finest mip: a bounce ray's footprint is not tracked.
+    let uv = a.uv + w.x * (b.uv - a.uv) + w.y * (c.uv - a.uv);
+    let sm = evaluate_material(material, uv, 0.0, ns, lerp_bary3(a.tangent.xyz, b.tangent.xyz, c.tangent.xyz, w), a.tangent.w);
+    ns = sm.ns;
     // As in the material pass: a shading normal facing away from the viewer (here the bounce
     // ray's origin) falls back to the geometric normal.
     if (dot(ns, -dir) <= 0.0) {
         ns = ng;
     }
-    metallic = clamp(metallic, 0.0, 1.0);
-    base = max(base, vec3f(0.0));
-    return Surface(position, ng, ns, gbuffer_diffuse_reflectance(base, metallic),
-                   gbuffer_specular_reflectance(base, metallic, material.specular_factor),
-                   ggx_alpha_from_roughness(clamp(roughness, 0.0, 1.0)), tri);
+    return Surface(position, ng, ns, gbuffer_diffuse_reflectance(sm.base, sm.metallic),
+                   gbuffer_specular_reflectance(sm.base, sm.metallic, material.specular_factor),
+                   ggx_alpha_from_roughness(sm.roughness), tri);
 }
 
 // The G-buffer surface of a pixel (which must not be background).
