@@ -363,6 +363,7 @@ impl PassTimer {
 /// so a renderer never compiles a variant no scene of its asked for, and never twice.
 pub struct PipelineVariants {
     label: String,
+    path: String,
     module: wgpu::ShaderModule,
     entry: String,
     /// `Some`: one explicit bind group 0 of these bindings (see `compute_pipeline_explicit`).
@@ -379,11 +380,12 @@ impl PipelineVariants {
     /// Variants of `module`'s `entry`, with an explicit bind group 0 of `bindings` when given.
     pub fn from_module(module: wgpu::ShaderModule, path: &str, entry: &str, bindings: Option<Vec<wgpu::BindingType>>) -> Self {
         let label = format!("{}_{entry}", path.trim_start_matches("passes/").trim_end_matches(".wgsl"));
-        Self { label, module, entry: entry.into(), bindings, compiled: Default::default() }
+        Self { label, path: path.into(), module, entry: entry.into(), bindings, compiled: Default::default() }
     }
 
     /// The pipeline with these boolean override constants (compiled now if it is the first use).
     pub fn get(&self, gpu: &Gpu, flags: &[(&'static str, bool)]) -> wgpu::ComputePipeline {
+        crate::passes::note_variant(&self.path, &self.entry, flags);
         let mut compiled = self.compiled.lock().unwrap_or_else(|e| e.into_inner());
         if let Some((_, p)) = compiled.iter().find(|(k, _)| k.as_slice() == flags) {
             return p.clone();

@@ -218,6 +218,9 @@ pub struct Frame {
     /// GPU buffers and render targets the frame allocated: (label, bytes), summed per label.
     /// The scene's own upload (geometry, textures) is not included.
     pub memory_bytes: Vec<(String, u64)>,
+    /// The pipeline variants the frame bound: (shader path, entry point, override flags), so
+    /// tests can check that each pass ran the variant its plan asked for.
+    pub variants: Vec<(String, String, Vec<(&'static str, bool)>)>,
 }
 
 impl Frame {
@@ -338,8 +341,8 @@ impl Renderer {
             Some(c) => *c,
             None => default_camera(scene)?,
         };
-        let (frame, memory) = crate::passes::log_allocations(|| self.gpu.scoped("render", || self.render_inner(scene, &camera, opts)));
-        frame.map(|f| Frame { memory_bytes: memory, ..f })
+        let (frame, log) = crate::passes::log_frame(|| self.gpu.scoped("render", || self.render_inner(scene, &camera, opts)));
+        frame.map(|f| Frame { memory_bytes: log.allocations, variants: log.variants, ..f })
     }
 
     /// The scene's GPU copy for a frame at `origin`: the cached one when nothing it was made
@@ -691,7 +694,7 @@ impl Renderer {
             settings.push(("sampling".into(), match opts.sampling { Sampling::Stratified => "stratified", Sampling::Random => "random" }.into()));
             settings.push(("seed".into(), opts.seed.to_string()));
         }
-        Ok(Frame { width: w, height: h, aovs, timings_ms: timings, timings_clock: clock.into(), passes, skipped, settings, rsm: captured_rsm, vsgls, memory_bytes: Vec::new() })
+        Ok(Frame { width: w, height: h, aovs, timings_ms: timings, timings_clock: clock.into(), passes, skipped, settings, rsm: captured_rsm, vsgls, memory_bytes: Vec::new(), variants: Vec::new() })
     }
 }
 

@@ -39,3 +39,49 @@ fn variants_are_compiled_once_and_only_when_a_plan_needs_them() {
     renderer.render(&glossy, None, &opts).expect("specular frame again");
     assert_eq!(compiled(), after_specular, "switching between cached plans recompiled a variant");
 }
+
+/// Every pipeline a frame binds runs the variant its plan asked for: each leave-out override a
+/// pass's shader declares (`override HAS_SPECULAR`, …) is set, to the plan's value. A pass that
+/// ignored its features (hard-coded a flag, or left one at its default of true) would still
+/// render the same image — the unused buffers are placeholders whose writes are dropped — so
+/// only this check sees it.
+#[test]
+fn every_pass_binds_the_variant_its_plan_asks_for() {
+    use vsgl_core::plan::Plan;
+    use vsgl_core::shader_lib;
+    let gpu = match Gpu::new(None) {
+        Ok(gpu) => gpu,
+        Err(Error::NoAdapter(msg)) => {
+            println!("SKIPPED: no GPU or CPU adapter: {msg}");
+            return;
+        }
+        Err(e) => panic!("could not open the default adapter: {e}"),
+    };
+    let renderer = Renderer::new(gpu, 16, 16).expect("renderer");
+    let mut checked = 0;
+    for scene_name in ["diffuse_cornell", "cornell_box"] {
+        let scene = builtin::by_name(scene_name).unwrap();
+        for method in ["direct", "vpl", "vsgl", "vsgl2", "reference"] {
+            for plan in ["auto", "full"] {
+                let opts = RenderOptions { method: method.into(), plan: plan.into(), num_lights: 16, rsm_size: Some(32), ..Default::default() };
+                let frame = renderer.render(&scene, None, &opts).expect("frame");
+                let features = Plan::new(&scene, plan == "full").features;
+                let wanted = [("HAS_SPECULAR", features.specular), ("HAS_TEXTURES", features.textures), ("HAS_NORMAL_MAPS", features.normal_maps)];
+                assert!(!frame.variants.is_empty(), "{scene_name}/{method}/{plan}: no variant logged");
+                for (shader, entry, flags) in &frame.variants {
+                    let src = shader_lib::compose(shader).expect("shader composes");
+                    for (name, value) in wanted {
+                        if src.contains(&format!("override {name}")) {
+                            assert!(
+                                flags.contains(&(name, value)),
+                                "{scene_name}/{method}/plan={plan}: {shader}:{entry} ran with {flags:?}, the plan asks {name}={value}"
+                            );
+                            checked += 1;
+                        }
+                    }
+                }
+            }
+        }
+    }
+    assert!(checked > 50, "only {checked} flags checked: the test would pass vacuously");
+}
