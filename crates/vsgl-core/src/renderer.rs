@@ -453,7 +453,7 @@ impl Renderer {
         } else if opts.method == "pathtrace" {
             // Direct light by shadow rays, then `spp` BRDF-sampled bounces per pixel in batches.
             let input = PathTraceInputs {
-                scene, origin, frame: &frame_buf, lights: &light_buf, gscene: &gscene, gbuffer: &gbuffer, ids: &vis.ids, textured: feat.textures,
+                scene, origin, frame: &frame_buf, lights: &light_buf, gscene: &gscene, gbuffer: &gbuffer, ids: &vis.ids, features: feat,
             };
             let out = self.pathtrace.record(gpu, &mut enc, &new_encoder, &mut timer, &input, &indirect, &direct_out, opts.spp, opts.seed, (w, h))?;
             passes.extend(out.passes);

@@ -61,9 +61,9 @@ fn every_pass_binds_the_variant_its_plan_asks_for() {
     let mut checked = 0;
     for scene_name in ["diffuse_cornell", "cornell_box"] {
         let scene = builtin::by_name(scene_name).unwrap();
-        for method in ["direct", "vpl", "vsgl", "vsgl2", "reference"] {
+        for method in ["direct", "vpl", "vsgl", "vsgl2", "reference", "pathtrace"] {
             for plan in ["auto", "full"] {
-                let opts = RenderOptions { method: method.into(), plan: plan.into(), num_lights: 16, rsm_size: Some(32), ..Default::default() };
+                let opts = RenderOptions { method: method.into(), plan: plan.into(), num_lights: 16, rsm_size: Some(32), spp: 2, ..Default::default() };
                 let frame = renderer.render(&scene, None, &opts).expect("frame");
                 let features = Plan::new(&scene, plan == "full").features;
                 let wanted = [("HAS_SPECULAR", features.specular), ("HAS_TEXTURES", features.textures), ("HAS_NORMAL_MAPS", features.normal_maps)];

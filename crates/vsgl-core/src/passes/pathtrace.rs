@@ -6,7 +6,8 @@
 use super::{entries, uniform_buffer};
 use crate::bvh::{scene_triangles, Bvh};
 use crate::error::{Error, Result};
-use crate::gpu::{groups, storage_binding, uniform_binding, Gpu, PassTimer};
+use crate::gpu::{groups, storage_binding, uniform_binding, Gpu, PassTimer, PipelineVariants};
+use crate::plan::ShaderFeatures;
 use crate::passes::material::GBuffer;
 use crate::passes::vpl_shading::IndirectTargets;
 use crate::passes::storage_buffer;
@@ -46,8 +47,9 @@ pub struct PathTraceInputs<'a> {
     pub gscene: &'a GpuScene,
     pub gbuffer: &'a GBuffer,
     pub ids: &'a wgpu::TextureView,
-    /// Fetch textures at bounce points (false when no material has one).
-    pub textured: bool,
+    /// The plan's features: no texture fetches at bounce points without textured materials,
+    /// no tangent frames without normal maps.
+    pub features: ShaderFeatures,
 }
 
 /// What one path-traced frame produced besides the indirect buffers and the direct buffer.
@@ -63,10 +65,9 @@ pub struct PathTraceOutput {
 }
 
 pub struct PathTracePass {
-    indirect_textured: wgpu::ComputePipeline,
-    indirect_untextured: wgpu::ComputePipeline,
-    direct: wgpu::ComputePipeline,
-    resolve: wgpu::ComputePipeline,
+    indirect: PipelineVariants,
+    direct: PipelineVariants,
+    resolve: PipelineVariants,
     sampler: wgpu::Sampler,
 }
 
@@ -104,33 +105,8 @@ fn binding_types() -> Vec<wgpu::BindingType> {
 impl PathTracePass {
     pub fn new(gpu: &Gpu) -> Result<Self> {
         let module = gpu.shader("passes/pathtrace.wgsl")?;
-        let layout_entries: Vec<wgpu::BindGroupLayoutEntry> = binding_types()
-            .into_iter()
-            .enumerate()
-            .map(|(i, ty)| wgpu::BindGroupLayoutEntry { binding: i as u32, visibility: wgpu::ShaderStages::COMPUTE, ty, count: None })
-            .collect();
-        let bgl = gpu.device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
-            label: Some("pathtrace_bind_group_layout"),
-            entries: &layout_entries,
-        });
-        let layout = gpu.device.create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
-            label: Some("pathtrace_pipeline_layout"),
-            bind_group_layouts: &[Some(&bgl)],
-            immediate_size: 0,
-        });
-        let pipeline = |label: &str, entry: &str, textured: bool| {
-            gpu.device.create_compute_pipeline(&wgpu::ComputePipelineDescriptor {
-                label: Some(label),
-                layout: Some(&layout),
-                module: &module,
-                entry_point: Some(entry),
-                compilation_options: wgpu::PipelineCompilationOptions {
-                    constants: &[("HAS_TEXTURES", if textured { 1.0 } else { 0.0 })],
-                    ..Default::default()
-                },
-                cache: None,
-            })
-        };
+        // One explicit layout (the entry points bind different subsets of it).
+        let variants = |entry: &str| PipelineVariants::from_module(module.clone(), "passes/pathtrace.wgsl", entry, Some(binding_types()));
         let sampler = gpu.device.create_sampler(&wgpu::SamplerDescriptor {
             label: Some("pathtrace_texture_sampler"),
             address_mode_u: wgpu::AddressMode::Repeat,
@@ -141,10 +117,9 @@ impl PathTracePass {
             ..Default::default()
         });
         Ok(Self {
-            indirect_textured: pipeline("pathtrace_indirect_textured_pipeline", "indirect", true),
-            indirect_untextured: pipeline("pathtrace_indirect_untextured_pipeline", "indirect", false),
-            direct: pipeline("pathtrace_direct_pipeline", "direct", false),
-            resolve: pipeline("pathtrace_resolve_pipeline", "resolve", false),
+            indirect: variants("indirect"),
+            direct: variants("direct"),
+            resolve: variants("resolve"),
             sampler,
         })
     }
@@ -235,8 +210,10 @@ impl PathTracePass {
         };
 
         let params = |sample_offset, batch_samples| PathParamsRaw { seed, sample_offset, batch_samples, _pad: 0 };
-        dispatch(enc, timer, "pathtrace_direct", &self.direct, params(0, 0));
-        let indirect_pipeline = if input.textured { &self.indirect_textured } else { &self.indirect_untextured };
+        // The three entry points share one shader, so they take the same leave-out flags.
+        let flags = [("HAS_TEXTURES", input.features.textures), ("HAS_NORMAL_MAPS", input.features.normal_maps)];
+        dispatch(enc, timer, "pathtrace_direct", &self.direct.get(gpu, &flags), params(0, 0));
+        let indirect_pipeline = &self.indirect.get(gpu, &flags);
         let per_batch = (PATHS_PER_BATCH / pixels.max(1)).clamp(1, MAX_SAMPLES_PER_DISPATCH as u64) as u32;
         let mut done = 0u32;
         let mut batch = 0u32;
@@ -254,8 +231,8 @@ impl PathTracePass {
             dispatch(enc, timer, "pathtrace", indirect_pipeline, params(done, count));
             done += count;
         }
-        dispatch(enc, timer, "pathtrace_resolve", &self.resolve, params(spp, 0));
-        let name = if input.textured { "pathtrace" } else { "pathtrace[untextured]" };
+        dispatch(enc, timer, "pathtrace_resolve", &self.resolve.get(gpu, &flags), params(spp, 0));
+        let name = if input.features.textures { "pathtrace" } else { "pathtrace[untextured]" };
         Ok(PathTraceOutput {
             stderr,
             passes: vec!["bvh_build".into(), "pathtrace_direct".into(), name.into(), "pathtrace_resolve".into()],
