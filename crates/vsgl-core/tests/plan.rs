@@ -8,16 +8,21 @@ use vsgl_core::renderer::{RenderOptions, Renderer};
 use vsgl_core::scene::builtin;
 use vsgl_core::Error;
 
-#[test]
-fn variants_are_compiled_once_and_only_when_a_plan_needs_them() {
-    let gpu = match Gpu::new(None) {
-        Ok(gpu) => gpu,
+/// The default adapter; `None` (and a message) only when there is no adapter at all.
+fn open_gpu() -> Option<std::sync::Arc<Gpu>> {
+    match Gpu::new(None) {
+        Ok(gpu) => Some(gpu),
         Err(Error::NoAdapter(msg)) => {
             println!("SKIPPED: no GPU or CPU adapter: {msg}");
-            return;
+            None
         }
         Err(e) => panic!("could not open the default adapter: {e}"),
-    };
+    }
+}
+
+#[test]
+fn variants_are_compiled_once_and_only_when_a_plan_needs_them() {
+    let Some(gpu) = open_gpu() else { return };
     let renderer = Renderer::new(gpu.clone(), 16, 16).expect("renderer");
     let compiled = || gpu.variants_compiled.load(Ordering::Relaxed);
     assert_eq!(compiled(), 0, "no variant is compiled before a frame asks for one");
@@ -49,14 +54,7 @@ fn variants_are_compiled_once_and_only_when_a_plan_needs_them() {
 fn every_pass_binds_the_variant_its_plan_asks_for() {
     use vsgl_core::plan::Plan;
     use vsgl_core::shader_lib;
-    let gpu = match Gpu::new(None) {
-        Ok(gpu) => gpu,
-        Err(Error::NoAdapter(msg)) => {
-            println!("SKIPPED: no GPU or CPU adapter: {msg}");
-            return;
-        }
-        Err(e) => panic!("could not open the default adapter: {e}"),
-    };
+    let Some(gpu) = open_gpu() else { return };
     let renderer = Renderer::new(gpu, 16, 16).expect("renderer");
     let mut checked = 0;
     for scene_name in ["diffuse_cornell", "cornell_box"] {
