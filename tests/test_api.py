@@ -119,6 +119,16 @@ def test_aovs_reads_back_only_what_is_asked_and_the_same_values(renderer, method
         assert full.aov("indirect").max() > 0.0, "the comparison above would be vacuous"
 
 
+def test_aovs_indirect_specular_alone_on_a_diffuse_only_scene(renderer):
+    # Without specular materials the specular target is a placeholder and the AOV is zeros; it
+    # must still be there when asked for alone (no diffuse readback to borrow the shape from).
+    scene = vsgl.scenes.load("diffuse_cornell")
+    frame = renderer.render(scene, method="vsgl", num_lights=16, rsm_size=32, aovs=["indirect_specular"])
+    assert frame.aovs == ["indirect_specular"]
+    spec = frame.aov("indirect_specular")
+    assert spec.shape == (48, 64, 3) and not spec.any()
+
+
 def test_aovs_argument_errors(renderer):
     scene = vsgl.scenes.cornell_box()
     with pytest.raises(ValueError, match=r"aovs: unknown AOV \"shadow\""):

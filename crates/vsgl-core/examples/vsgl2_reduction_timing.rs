@@ -14,6 +14,7 @@ use std::time::Instant;
 use vsgl_core::gpu::{Gpu, PassTimer};
 use vsgl_core::passes::rsm_flux::Rsm;
 use vsgl_core::passes::storage_buffer;
+use vsgl_core::passes::vsgl_gen::VSGL_BYTES;
 use vsgl_core::passes::vsgl2_reduce::{Vsgl2Reduce, Vsgl2Reduction, VSGL2_COUNT};
 use vsgl_core::plan::ShaderFeatures;
 use vsgl_core::rng::SplitMix64;
@@ -74,7 +75,7 @@ fn main() {
         std::process::exit(2);
     }
     let reduce = Vsgl2Reduce::new(&gpu).expect("reduction pipelines");
-    let out = storage_buffer(&gpu, "vsgl2_buffer", VSGL2_COUNT as u64 * 96);
+    let out = storage_buffer(&gpu, "vsgl2_buffer", VSGL2_COUNT as u64 * VSGL_BYTES);
     let variants = [Vsgl2Reduction::Subgroup, Vsgl2Reduction::SharedMemory];
     let mut rows = Vec::new();
     for &n in &sizes {

@@ -588,11 +588,11 @@ impl Renderer {
         gpu.queue.submit([enc.finish()]);
         // Read back only the buffers the asked-for AOVs are made from.
         let wants = |names: &[&str]| names.iter().any(|n| opts.wants_aov(n));
-        let indirect_specular = feat.specular && wants(&["image", "indirect", "indirect_specular"]);
+        let specular_wanted = wants(&["image", "indirect", "indirect_specular"]);
         let sources: Vec<(&str, &wgpu::Buffer)> = [
             ("direct", &direct_out, wants(&["image", "direct"])),
             ("indirect_diffuse", &indirect.diffuse, wants(&["image", "indirect", "indirect_diffuse"])),
-            ("indirect_specular", &indirect.specular, indirect_specular),
+            ("indirect_specular", &indirect.specular, feat.specular && specular_wanted),
             ("albedo", &gbuffer.base_color, wants(&["albedo"])),
             ("normal", &gbuffer.normal, wants(&["normal"])),
             ("depth", &gbuffer.position, wants(&["depth"])),
@@ -625,8 +625,9 @@ impl Renderer {
         let mut take_rgb = |name: &str| raw.remove(name).map(|v| rgb(&v));
         let direct = take_rgb("direct");
         let ind_d = take_rgb("indirect_diffuse");
-        // Without specular materials the specular target is a placeholder: zero by definition.
-        let ind_s = take_rgb("indirect_specular").or_else(|| ind_d.as_ref().map(|_| vec![0.0; pixels * 3]));
+        // Without specular materials the specular target is a placeholder: zero by definition
+        // (made whenever the specular part is wanted, with or without the diffuse readback).
+        let ind_s = take_rgb("indirect_specular").or_else(|| specular_wanted.then(|| vec![0.0; pixels * 3]));
         let albedo = take_rgb("albedo");
         let normal = take_rgb("normal");
         let stderr = take_rgb("stderr");
@@ -637,10 +638,13 @@ impl Renderer {
             (Some(d), Some(s)) => Some(sum(d, s)),
             _ => None,
         };
-        let image = match (&direct, &indirect_sum) {
-            _ if opts.method == "direct" => direct.clone(),
-            (Some(d), Some(i)) => Some(sum(d, i)),
-            _ => None,
+        // With method="direct" the image is the direct AOV: moved, not copied, unless both are
+        // asked for.
+        let (image, direct) = match (&direct, &indirect_sum) {
+            _ if opts.method == "direct" && opts.wants_aov("direct") => (direct.clone(), direct),
+            _ if opts.method == "direct" => (direct, None),
+            (Some(d), Some(i)) => (Some(sum(d, i)), direct),
+            _ => (None, direct),
         };
         let made: [(&str, usize, Option<Vec<f32>>); 9] = [
             ("image", 3, image),
