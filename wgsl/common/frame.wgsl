@@ -22,7 +22,7 @@ struct FrameUniforms {
     _pad1: f32,
 }
 
-struct SpotLightRaw {
+struct LightRaw {
     position: vec3f,
     intensity: f32,
     direction: vec3f,
@@ -34,9 +34,12 @@ struct SpotLightRaw {
     // the distance to the light.
     texel_tan: f32,
     shadow_layer: u32,
-    _pad0: f32,
-    _pad1: f32,
+    // LIGHT_KIND_SPOT, …: the light's type (only spot lights are rendered so far).
+    kind: u32,
+    _pad: f32,
 }
+
+const LIGHT_KIND_SPOT: u32 = 0u;
 
 struct VertexRaw {
     position: vec3f,
@@ -69,7 +72,7 @@ fn camera_ray(frame: FrameUniforms, pixel: vec2f) -> vec3f {
 
 // glTF KHR_lights_punctual smooth cone attenuation: a quadratic ramp in cos θ between the
 // outer and the inner cone (the extension's recommended implementation).
-fn spot_cone_attenuation(light: SpotLightRaw, to_light: vec3f) -> f32 {
+fn spot_cone_attenuation(light: LightRaw, to_light: vec3f) -> f32 {
     let cd = dot(light.direction, -to_light);
     let t = clamp((cd - light.cos_outer) / max(light.cos_inner - light.cos_outer, 1.0e-4), 0.0, 1.0);
     return t * t;

@@ -13,7 +13,7 @@ const WORKGROUP: u32 = 8u;
 const SHADOW_NORMAL_OFFSET_TEXELS: f32 = 1.5;
 
 @group(0) @binding(0) var<uniform> frame: FrameUniforms;
-@group(1) @binding(0) var<storage, read> lights: array<SpotLightRaw>;
+@group(1) @binding(0) var<storage, read> lights: array<LightRaw>;
 @group(1) @binding(1) var shadow_maps: texture_depth_2d_array;
 @group(1) @binding(2) var shadow_sampler: sampler_comparison;
 @group(1) @binding(3) var<storage, read> gbuf_position: array<vec4f>;
@@ -23,7 +23,7 @@ const SHADOW_NORMAL_OFFSET_TEXELS: f32 = 1.5;
 @group(1) @binding(7) var<storage, read_write> direct_out: array<vec4f>;
 
 // Fraction of the 3×3 PCF footprint that sees the light (1 = lit).
-fn shadow_visibility(light: SpotLightRaw, p: vec3f, ng: vec3f, dist: f32) -> f32 {
+fn shadow_visibility(light: LightRaw, p: vec3f, ng: vec3f, dist: f32) -> f32 {
     let offset = SHADOW_NORMAL_OFFSET_TEXELS * light.texel_tan * dist;
     let clip = light.view_proj * vec4f(p + ng * offset, 1.0);
     if (clip.w <= 0.0) {

@@ -56,7 +56,7 @@ struct PathParams {
 @group(0) @binding(5) var<storage, read> indices: array<u32>;
 @group(0) @binding(6) var<storage, read> triangle_materials: array<u32>;
 @group(0) @binding(7) var<storage, read> materials: array<MaterialRaw>;
-@group(0) @binding(8) var<storage, read> lights: array<SpotLightRaw>;
+@group(0) @binding(8) var<storage, read> lights: array<LightRaw>;
 @group(0) @binding(9) var<storage, read> gbuf_position: array<vec4f>;
 @group(0) @binding(10) var<storage, read> gbuf_normal: array<vec4f>;
 @group(0) @binding(11) var<storage, read> gbuf_geo_normal: array<vec4f>;

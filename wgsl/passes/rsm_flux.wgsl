@@ -17,7 +17,7 @@ override SAMPLING_WEIGHTS: bool = true;
 const WORKGROUP: u32 = 8u;
 
 @group(0) @binding(0) var<uniform> view: FrameUniforms;
-@group(1) @binding(0) var<storage, read> light: SpotLightRaw;
+@group(1) @binding(0) var<storage, read> light: LightRaw;
 @group(1) @binding(1) var<storage, read> rsm_position: array<vec4f>;
 @group(1) @binding(2) var<storage, read> rsm_geo_normal: array<vec4f>;
 @group(1) @binding(3) var<storage, read> rsm_base_color: array<vec4f>;

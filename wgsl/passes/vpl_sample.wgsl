@@ -28,7 +28,7 @@ struct SampleParams {
 const WORKGROUP: u32 = 64u;
 
 @group(0) @binding(0) var<uniform> params: SampleParams;
-@group(0) @binding(1) var<storage, read> light: SpotLightRaw;
+@group(0) @binding(1) var<storage, read> light: LightRaw;
 @group(0) @binding(2) var<storage, read> pyramid: array<f32>;
 // Start of each pyramid level in `pyramid`, level 0 first.
 @group(0) @binding(3) var<storage, read> level_offsets: array<u32>;

@@ -435,7 +435,7 @@ impl Harness {
             let bind = gpu.device.create_bind_group(&wgpu::BindGroupDescriptor {
                 label: Some("harness_bind_group"),
                 layout: &self.pipeline.get_bind_group_layout(0),
-                entries: &crate::passes::entries(&[
+                entries: &crate::gpu::entries(&[
                     params_buf.as_entire_binding(),
                     input_buf.as_entire_binding(),
                     output_buf.as_entire_binding(),

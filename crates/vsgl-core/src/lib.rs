@@ -1,12 +1,12 @@
 //! vsgl-core: a real-time renderer of one-bounce glossy indirect illumination with virtual
 //! spherical Gaussian lights (Tokuyoshi 2015, 2016) on wgpu. No Python here: `vsgl-py` binds it.
 
-pub mod bvh;
 pub mod error;
-pub mod frame_data;
+pub mod frame;
 pub mod gpu;
 pub mod harness;
 pub mod image_io;
+pub mod methods;
 pub mod oracle;
 pub mod passes;
 pub mod plan;

@@ -2,6 +2,9 @@
 
 use pyo3::create_exception;
 use pyo3::exceptions::{PyException, PyValueError};
+use pyo3::prelude::*;
+use pyo3::sync::PyOnceLock;
+use pyo3::types::{PyDict, PyTuple, PyType};
 use pyo3::PyErr;
 use vsgl_core::Error;
 
@@ -11,6 +14,33 @@ create_exception!(vsgl, NoAdapterError, VsglError, "No usable GPU or CPU adapter
 create_exception!(vsgl, ShaderError, VsglError, "A shader failed to compose or compile (a bug in vsgl).");
 create_exception!(vsgl, GpuError, VsglError, "The GPU reported a validation error or ran out of memory.");
 
+/// `vsgl.ArgumentError(VsglError, ValueError)`: both `except vsgl.VsglError` and
+/// `except ValueError` catch a bad argument. `create_exception!` takes one base, so the class is
+/// made by calling `type` once.
+static ARGUMENT_ERROR: PyOnceLock<Py<PyType>> = PyOnceLock::new();
+
+pub fn argument_error_type(py: Python<'_>) -> PyResult<Bound<'_, PyType>> {
+    let ty = ARGUMENT_ERROR.get_or_try_init(py, || -> PyResult<Py<PyType>> {
+        let bases = PyTuple::new(py, [py.get_type::<VsglError>(), py.get_type::<PyValueError>()])?;
+        let namespace = PyDict::new(py);
+        namespace.set_item("__doc__", "A bad argument value; the message names the argument and what was expected.")?;
+        namespace.set_item("__module__", "vsgl")?;
+        let made = py.import("builtins")?.getattr("type")?.call1(("ArgumentError", bases, namespace))?;
+        Ok(made.cast_into::<PyType>()?.unbind())
+    })?;
+    Ok(ty.bind(py).clone())
+}
+
+/// A `vsgl.ArgumentError` with `message` (which names the argument).
+pub fn argument_error(message: impl Into<String>) -> PyErr {
+    let message = message.into();
+    Python::attach(|py| match argument_error_type(py) {
+        Ok(ty) => PyErr::from_type(ty, message),
+        // Only if `type(...)` itself failed: still a ValueError with the message.
+        Err(_) => PyValueError::new_err(message),
+    })
+}
+
 pub fn to_py(e: Error) -> PyErr {
     let msg = e.to_string();
     match e {
@@ -18,6 +48,6 @@ pub fn to_py(e: Error) -> PyErr {
         Error::Scene { .. } => SceneError::new_err(msg),
         Error::ShaderCompile { .. } => ShaderError::new_err(msg),
         Error::Validation { .. } | Error::OutOfMemory { .. } => GpuError::new_err(msg),
-        Error::InvalidArgument { .. } => PyValueError::new_err(msg),
+        Error::InvalidArgument { .. } => argument_error(msg),
     }
 }

@@ -4,33 +4,31 @@
 mod errors;
 mod stability;
 
-use errors::to_py;
+use errors::{argument_error, to_py};
 use glam::{DMat4, DVec3};
 use numpy::{PyArray1, PyArrayMethods};
-use pyo3::exceptions::PyValueError;
+use pyo3::exceptions::PyTypeError;
 use pyo3::prelude::*;
-use pyo3::types::{PyBytes, PyDict};
+use pyo3::types::{PyBool, PyBytes, PyDict, PyFloat, PyInt, PyString, PyTuple};
 use std::sync::Arc;
-use vsgl_core::scene::{builtin, Camera, Scene, SpotLight};
-use vsgl_core::passes::vpl_sample::Sampling;
-use vsgl_core::passes::vsgl_gen::{Kernel, VSGL_FIELDS, VSGL_FLOATS};
-use vsgl_core::passes::vsgl_shading::DiffuseMode;
-use vsgl_core::passes::vsgl2_reduce::Vsgl2Reduction;
+use vsgl_core::methods::{self, OptionValue};
+use vsgl_core::passes::vsgl_gen::{VSGL_FIELDS, VSGL_FLOATS};
+use vsgl_core::scene::{builtin, Camera, Light, Scene, SpotLight};
 use vsgl_core::{image_io, Frame, RenderOptions, Renderer};
 
 fn vec3(name: &str, v: Vec<f64>) -> PyResult<DVec3> {
     if v.len() != 3 {
-        return Err(PyValueError::new_err(format!("{name}: expected 3 numbers, got {}", v.len())));
+        return Err(argument_error(format!("{name}: expected 3 numbers, got {}", v.len())));
     }
     let d = DVec3::new(v[0], v[1], v[2]);
     if !d.is_finite() {
-        return Err(PyValueError::new_err(format!("{name}: every component must be finite, got {v:?}")));
+        return Err(argument_error(format!("{name}: every component must be finite, got {v:?}")));
     }
     Ok(d)
 }
 
 fn finite(name: &str, x: f64) -> PyResult<f64> {
-    if x.is_finite() { Ok(x) } else { Err(PyValueError::new_err(format!("{name}: must be finite, got {x}"))) }
+    if x.is_finite() { Ok(x) } else { Err(argument_error(format!("{name}: must be finite, got {x}"))) }
 }
 
 /// A spot light (KHR_lights_punctual conventions): intensity in candela, smooth cone falloff
@@ -49,23 +47,23 @@ impl PySpotLight {
         let position = vec3("position", position)?;
         let direction = vec3("direction", direction)?;
         if !(direction.length() > 0.0) {
-            return Err(PyValueError::new_err("direction: must be a non-zero vector"));
+            return Err(argument_error("direction: must be a non-zero vector"));
         }
         let intensity = finite("intensity", intensity)?;
         if !(intensity > 0.0) || intensity > f32::MAX as f64 {
-            return Err(PyValueError::new_err(format!("intensity: must be positive (candela), got {intensity}")));
+            return Err(argument_error(format!("intensity: must be positive (candela), got {intensity}")));
         }
         let color = vec3("color", color)?;
         if color.min_element() < 0.0 {
-            return Err(PyValueError::new_err(format!("color: components must be >= 0, got {color:?}")));
+            return Err(argument_error(format!("color: components must be >= 0, got {color:?}")));
         }
         let outer = finite("outer_cone_deg", outer_cone_deg)?;
         let inner = finite("inner_cone_deg", inner_cone_deg)?;
         if !(outer > 0.0 && outer <= 90.0) {
-            return Err(PyValueError::new_err(format!("outer_cone_deg: must be in (0, 90], got {outer}")));
+            return Err(argument_error(format!("outer_cone_deg: must be in (0, 90], got {outer}")));
         }
         if !(inner >= 0.0 && inner < outer) {
-            return Err(PyValueError::new_err(format!("inner_cone_deg: must be in [0, outer_cone_deg={outer}), got {inner}")));
+            return Err(argument_error(format!("inner_cone_deg: must be in [0, outer_cone_deg={outer}), got {inner}")));
         }
         Ok(Self {
             inner: SpotLight {
@@ -127,10 +125,10 @@ impl PyCamera {
     fn look_at(eye: Vec<f64>, target: Vec<f64>, up: Vec<f64>, fov_y_deg: f64) -> PyResult<Self> {
         let fov = finite("fov_y_deg", fov_y_deg)?;
         if !(fov > 0.0 && fov < 180.0) {
-            return Err(PyValueError::new_err(format!("fov_y_deg: must be in (0, 180), got {fov}")));
+            return Err(argument_error(format!("fov_y_deg: must be in (0, 180), got {fov}")));
         }
         let cam = Camera::look_at(vec3("eye", eye)?, vec3("target", target)?, vec3("up", up)?, (fov as f32).to_radians())
-            .map_err(|e| PyValueError::new_err(format!("Camera.look_at: {e}")))?;
+            .map_err(|e| argument_error(format!("Camera.look_at: {e}")))?;
         Ok(Self { inner: cam })
     }
     #[getter]
@@ -197,19 +195,19 @@ impl PyScene {
     /// NumPy prints it: p' = M @ p). Raises ValueError when no node has that name.
     fn set_transform(&mut self, node_name: &str, matrix: Vec<Vec<f64>>) -> PyResult<()> {
         if matrix.len() != 4 || matrix.iter().any(|r| r.len() != 4) {
-            return Err(PyValueError::new_err("matrix: expected a 4x4 matrix"));
+            return Err(argument_error("matrix: expected a 4x4 matrix"));
         }
         if matrix.iter().flatten().any(|x| !x.is_finite()) {
-            return Err(PyValueError::new_err("matrix: every entry must be finite"));
+            return Err(argument_error("matrix: every entry must be finite"));
         }
         let rows: Vec<f64> = matrix.into_iter().flatten().collect();
         let m = DMat4::from_cols_slice(&rows).transpose();
         if m.determinant() == 0.0 {
-            return Err(PyValueError::new_err("matrix: must be invertible"));
+            return Err(argument_error("matrix: must be invertible"));
         }
         if self.inner.set_transform(node_name, m) == 0 {
             let names: Vec<&str> = self.inner.nodes.iter().map(|n| n.name.as_str()).collect();
-            return Err(PyValueError::new_err(format!("node_name: no node named {node_name:?}; nodes: {names:?}")));
+            return Err(argument_error(format!("node_name: no node named {node_name:?}; nodes: {names:?}")));
         }
         Ok(())
     }
@@ -217,14 +215,14 @@ impl PyScene {
     fn node_names(&self) -> Vec<String> {
         self.inner.nodes.iter().map(|n| n.name.clone()).collect()
     }
-    /// The spot lights; assign a list to replace them all.
+    /// The lights; assign a list to replace them all.
     #[getter]
-    fn lights(&self) -> Vec<PySpotLight> {
-        self.inner.lights.iter().map(|l| PySpotLight { inner: *l }).collect()
+    fn lights(&self) -> PyResult<Vec<PySpotLight>> {
+        self.inner.lights.iter().enumerate().map(|(i, l)| light_to_py(i, l)).collect()
     }
     #[setter]
     fn set_lights(&mut self, lights: Vec<PySpotLight>) {
-        self.inner.lights = lights.into_iter().map(|l| l.inner).collect();
+        self.inner.lights = lights.into_iter().map(|l| Light::Spot(l.inner)).collect();
     }
     #[getter]
     fn cameras(&self) -> Vec<PyCamera> {
@@ -261,11 +259,11 @@ impl PyFrame {
         let (c, data) = self.inner.aov(name).ok_or_else(|| {
             let available = self.inner.aov_names().join(", ");
             if vsgl_core::renderer::AOV_NAMES.contains(&name) {
-                PyValueError::new_err(format!(
+                argument_error(format!(
                     "name: this frame has no AOV {name:?} (its method does not make it, or the render's aovs= left it out); available: {available}"
                 ))
             } else {
-                PyValueError::new_err(format!("name: unknown AOV {name:?}; available: {available}"))
+                argument_error(format!("name: unknown AOV {name:?}; available: {available}"))
             }
         })?;
         let arr = PyArray1::from_slice(py, data);
@@ -295,7 +293,7 @@ impl PyFrame {
     /// centre in RSM texels), mass (the kernel's probability mass (4^l/M)·p̄), _pad.
     fn vsgls<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyAny>> {
         let Some(data) = &self.inner.vsgls else {
-            return Err(PyValueError::new_err("this frame has no VSGLs; render with method=\"vsgl\" or \"vsgl2\" and a spot light"));
+            return Err(argument_error("this frame has no VSGLs; render with method=\"vsgl\" or \"vsgl2\" and a spot light"));
         };
         let np = py.import("numpy")?;
         let fields = pyo3::types::PyList::empty(py);
@@ -316,11 +314,11 @@ impl PyFrame {
     /// roughness, flux_diffuse (Φ·R_d), flux_specular (Φ·R_s), weight (Φ·(R_d+R_s) summed).
     fn rsm<'py>(&self, py: Python<'py>, name: &str) -> PyResult<Bound<'py, PyAny>> {
         let Some((n, buffers)) = &self.inner.rsm else {
-            return Err(PyValueError::new_err("name: this frame kept no RSM; render with capture_rsm=True and a method that uses one"));
+            return Err(argument_error("name: this frame kept no RSM; render with capture_rsm=True and a method that uses one"));
         };
         let (c, data) = buffers.iter().find(|(k, _, _)| k == name).map(|(_, c, d)| (*c, d)).ok_or_else(|| {
             let names: Vec<&str> = buffers.iter().map(|(k, _, _)| k.as_str()).collect();
-            PyValueError::new_err(format!("name: unknown RSM buffer {name:?}; available: {}", names.join(", ")))
+            argument_error(format!("name: unknown RSM buffer {name:?}; available: {}", names.join(", ")))
         })?;
         Ok(PyArray1::from_slice(py, data).reshape([*n as usize, *n as usize, c])?.into_any())
     }
@@ -382,10 +380,10 @@ impl PyFrame {
     #[pyo3(signature = (path, exposure=1.0))]
     fn save(&self, py: Python<'_>, path: std::path::PathBuf, exposure: f32) -> PyResult<()> {
         if !exposure.is_finite() || exposure <= 0.0 {
-            return Err(PyValueError::new_err(format!("exposure: must be positive and finite, got {exposure}")));
+            return Err(argument_error(format!("exposure: must be positive and finite, got {exposure}")));
         }
         let ext = path.extension().and_then(|e| e.to_str()).unwrap_or("").to_ascii_lowercase();
-        let (_, rgb) = self.inner.aov("image").ok_or_else(|| PyValueError::new_err("frame has no image"))?;
+        let (_, rgb) = self.inner.aov("image").ok_or_else(|| argument_error("frame has no image"))?;
         let (w, h) = (self.inner.width, self.inner.height);
         let bytes = py.detach(|| match ext.as_str() {
             "png" => image_io::encode_png(rgb, w, h, exposure),
@@ -398,7 +396,7 @@ impl PyFrame {
     }
     /// PNG bytes for Jupyter.
     fn _repr_png_<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyBytes>> {
-        let (_, rgb) = self.inner.aov("image").ok_or_else(|| PyValueError::new_err("frame has no image"))?;
+        let (_, rgb) = self.inner.aov("image").ok_or_else(|| argument_error("frame has no image"))?;
         let png = image_io::encode_png(rgb, self.inner.width, self.inner.height, 1.0).map_err(to_py)?;
         Ok(PyBytes::new(py, &png))
     }
@@ -423,7 +421,7 @@ impl PyRenderer {
     fn new(py: Python<'_>, width: i64, height: i64, adapter: Option<String>) -> PyResult<Self> {
         for (n, v) in [("width", width), ("height", height)] {
             if v < 1 || v > 16384 {
-                return Err(PyValueError::new_err(format!("{n}: must be in 1..=16384, got {v}")));
+                return Err(argument_error(format!("{n}: must be in 1..=16384, got {v}")));
             }
         }
         let r = py
@@ -454,88 +452,52 @@ impl PyRenderer {
         adapter_dict(py, &self.inner.gpu.adapter)
     }
     /// Renders `scene` seen by `camera` (default: the scene's first camera, else one framing
-    /// the scene). Releases the GIL while the GPU works.
+    /// the scene) with `method`, and returns a `Frame`. Releases the GIL while the GPU works.
     ///
-    /// Methods: "direct"; "vpl" (`num_lights` VPLs per spot light importance-sampled from an
-    /// `rsm_size`² reflective shadow map, `sampling` "stratified" or "random", `seed`,
-    /// `vpl_clamp` = minimum VPL distance as a fraction of the scene size, 0 = unbiased);
-    /// "reference" (every texel of an `rsm_size`² RSM as a VPL, default 1024²).
+    /// `plan="auto"` leaves out what the scene does not need (`"full"` runs every variant);
+    /// `aovs=["image"]` reads back only those AOVs (default: every AOV the method makes).
+    /// Every other keyword is an option of the method; an option the method does not take
+    /// raises `vsgl.ArgumentError` naming it. `vsgl.describe_method(name)` lists each
+    /// method's options with their ranges and defaults:
+    ///
+    /// - "direct": direct light only. shadow_size.
+    /// - "vpl": num_lights VPLs per light importance-sampled from an rsm_size² reflective
+    ///   shadow map. shadow_size, num_lights, rsm_size, sampling ("stratified" | "random"),
+    ///   seed, vpl_clamp (minimum VPL distance as a fraction of the scene size; 0 = unbiased),
+    ///   visibility, capture_rsm.
+    /// - "vsgl": num_lights VSGLs per light by filtered importance sampling. shadow_size,
+    ///   num_lights, rsm_size, sampling, seed, kernel ("integral" | "density"), K,
+    ///   bisection_steps, interleave, denoise, diffuse ("papers" | "accurate" | "sg_product"),
+    ///   visibility, capture_rsm.
+    /// - "vsgl2": two VSGLs per light by a parallel sum. shadow_size, rsm_size (any side
+    ///   32..4096), diffuse, vsgl2_reduction ("auto" | "subgroup" | "shared_memory"),
+    ///   visibility, capture_rsm.
+    /// - "reference": every texel of an rsm_size² RSM (default 1024²) as a VPL. shadow_size,
+    ///   rsm_size, vpl_clamp, visibility, capture_rsm.
+    /// - "pathtrace": path-traced one-bounce ground truth with a stderr AOV. spp, seed.
+    ///
     /// `capture_rsm=True` keeps the first light's RSM for `Frame.rsm(name)`.
-    /// `aovs=["image"]` reads back only those AOVs (default: every AOV the method makes);
-    /// readback is most of a frame's wall time at high resolution.
-    #[pyo3(signature = (scene, camera=None, method="direct", *, shadow_size=1024, plan="auto", num_lights=256, rsm_size=None, sampling="stratified", seed=0, vpl_clamp=0.0, visibility="none", capture_rsm=false, spp=64, kernel="integral", K=1.0, bisection_steps=12, interleave=8, denoise=true, diffuse="papers", vsgl2_reduction="auto", aovs=None))]
-    #[allow(clippy::too_many_arguments)]
+    #[pyo3(signature = (scene, camera=None, method="direct", *, plan="auto", aovs=None, **options))]
     fn render(
         &self,
         py: Python<'_>,
         scene: PyRef<'_, PyScene>,
         camera: Option<PyCamera>,
         method: &str,
-        shadow_size: i64,
         plan: &str,
-        num_lights: i64,
-        rsm_size: Option<i64>,
-        sampling: &str,
-        seed: i64,
-        vpl_clamp: f64,
-        visibility: &str,
-        capture_rsm: bool,
-        spp: i64,
-        kernel: &str,
-        #[allow(non_snake_case)] K: f64,
-        bisection_steps: i64,
-        interleave: i64,
-        denoise: bool,
-        diffuse: &str,
-        vsgl2_reduction: &str,
         aovs: Option<Vec<String>>,
+        options: Option<&Bound<'_, PyDict>>,
     ) -> PyResult<PyFrame> {
-        let in_u32 = |name: &str, v: i64, lo: i64, hi: i64| -> PyResult<u32> {
-            if (lo..=hi).contains(&v) { Ok(v as u32) } else { Err(PyValueError::new_err(format!("{name}: must be in {lo}..={hi}, got {v}"))) }
-        };
-        let sampling = match sampling {
-            "stratified" => Sampling::Stratified,
-            "random" => Sampling::Random,
-            other => return Err(PyValueError::new_err(format!("sampling: must be \"stratified\" or \"random\", got {other:?}"))),
-        };
-        let kernel = match kernel {
-            "integral" => Kernel::Integral,
-            "density" => Kernel::Density,
-            other => return Err(PyValueError::new_err(format!("kernel: must be \"integral\" or \"density\", got {other:?}"))),
-        };
-        let diffuse = match diffuse {
-            "papers" => DiffuseMode::Papers,
-            "accurate" => DiffuseMode::Accurate,
-            "sg_product" => DiffuseMode::SgProduct,
-            other => return Err(PyValueError::new_err(format!("diffuse: must be \"papers\", \"accurate\" or \"sg_product\", got {other:?}"))),
-        };
-        let vsgl2_reduction = match vsgl2_reduction {
-            "auto" => Vsgl2Reduction::Auto,
-            "subgroup" => Vsgl2Reduction::Subgroup,
-            "shared_memory" => Vsgl2Reduction::SharedMemory,
-            other => return Err(PyValueError::new_err(format!("vsgl2_reduction: must be \"auto\", \"subgroup\" or \"shared_memory\", got {other:?}"))),
-        };
-        let opts = RenderOptions {
-            method: method.into(),
-            shadow_size: in_u32("shadow_size", shadow_size, 16, 8192)?,
-            plan: plan.into(),
-            num_lights: in_u32("num_lights", num_lights, 1, 1 << 20)?,
-            rsm_size: rsm_size.map(|v| in_u32("rsm_size", v, 32, 4096)).transpose()?,
-            sampling,
-            seed: in_u32("seed", seed, 0, u32::MAX as i64)?,
-            vpl_clamp: finite("vpl_clamp", vpl_clamp)? as f32,
-            visibility: visibility.into(),
-            capture_rsm,
-            spp: in_u32("spp", spp, 1, 1 << 16)?,
-            kernel,
-            k: finite("K", K)? as f32,
-            bisection_steps: in_u32("bisection_steps", bisection_steps, 1, 32)?,
-            interleave: in_u32("interleave", interleave, 1, 16)?,
-            denoise,
-            diffuse,
-            vsgl2_reduction,
-            aovs,
-        };
+        let mut opts = RenderOptions::new(method);
+        opts.plan = plan.into();
+        opts.aovs = aovs;
+        for (key, value) in options.into_iter().flat_map(|d| d.iter()) {
+            let name: String = key.extract()?;
+            if value.is_none() {
+                continue; // None: the method's default
+            }
+            opts.options.push((name.clone(), option_value(&name, &value)?));
+        }
         let s: &Scene = &scene.inner;
         let cam = camera.map(|c| c.inner);
         let r = &self.inner;
@@ -545,6 +507,64 @@ impl PyRenderer {
     fn __repr__(&self) -> String {
         format!("Renderer(width={}, height={}, adapter={:?})", self.inner.width, self.inner.height, self.inner.gpu.adapter.name)
     }
+}
+
+/// A keyword option as the core takes it. Names that no method takes are a `TypeError`, as
+/// for any unexpected keyword; values are checked by the method's option specs.
+fn option_value(name: &str, value: &Bound<'_, PyAny>) -> PyResult<OptionValue> {
+    if !methods::every_option_name().contains(&name) {
+        return Err(PyTypeError::new_err(format!(
+            "render() got an unexpected keyword argument {name:?}; options of the methods: {}",
+            methods::every_option_name().join(", ")
+        )));
+    }
+    if value.is_instance_of::<PyBool>() {
+        Ok(OptionValue::Bool(value.extract()?))
+    } else if value.is_instance_of::<PyInt>() {
+        let v: i64 = value.extract().map_err(|_| argument_error(format!("{name}: integer out of range: {value}")))?;
+        Ok(OptionValue::Int(v))
+    } else if value.is_instance_of::<PyFloat>() {
+        Ok(OptionValue::Float(value.extract()?))
+    } else if value.is_instance_of::<PyString>() {
+        Ok(OptionValue::from(value.extract::<String>()?))
+    } else {
+        Err(argument_error(format!("{name}: expected an int, float, bool or str, got {}", value.get_type().name()?)))
+    }
+}
+
+/// A scene light as its Python class (only spot lights exist in Python so far).
+fn light_to_py(index: usize, light: &Light) -> PyResult<PySpotLight> {
+    match light {
+        Light::Spot(s) => Ok(PySpotLight { inner: *s }),
+        other => Err(argument_error(format!("scene.lights[{index}]: {} lights have no Python class in this build yet", other.kind()))),
+    }
+}
+
+/// The method names, in registry order (`vsgl.METHODS`).
+fn method_names<'py>(py: Python<'py>) -> PyResult<Bound<'py, PyTuple>> {
+    PyTuple::new(py, methods::names())
+}
+
+/// What method `name` does and the options it takes, with their allowed values and defaults.
+#[pyfunction]
+fn describe_method(name: &str) -> PyResult<String> {
+    Ok(methods::info(name).map_err(to_py)?.describe())
+}
+
+/// The keyword options of method `name` mapped to their defaults.
+#[pyfunction]
+fn method_options<'py>(py: Python<'py>, name: &str) -> PyResult<Bound<'py, PyDict>> {
+    let info = methods::info(name).map_err(to_py)?;
+    let d = PyDict::new(py);
+    for o in info.options {
+        match &o.default {
+            OptionValue::Int(v) => d.set_item(o.name, v)?,
+            OptionValue::Float(v) => d.set_item(o.name, v)?,
+            OptionValue::Bool(v) => d.set_item(o.name, v)?,
+            OptionValue::Str(v) => d.set_item(o.name, v.as_ref())?,
+        }
+    }
+    Ok(d)
 }
 
 fn adapter_dict<'py>(py: Python<'py>, a: &vsgl_core::gpu::AdapterSummary) -> PyResult<Bound<'py, PyDict>> {
@@ -576,7 +596,7 @@ fn builtin_scene_names() -> Vec<&'static str> {
 fn builtin_scene(name: &str) -> PyResult<PyScene> {
     builtin::by_name(name)
         .map(|s| PyScene { inner: s })
-        .ok_or_else(|| PyValueError::new_err(format!("name: unknown built-in scene {name:?}; valid: {}", builtin::NAMES.join(", "))))
+        .ok_or_else(|| argument_error(format!("name: unknown built-in scene {name:?}; valid: {}", builtin::NAMES.join(", "))))
 }
 
 #[pymodule(gil_used = false)]
@@ -588,12 +608,16 @@ fn _vsgl(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add("NoAdapterError", py.get_type::<errors::NoAdapterError>())?;
     m.add("ShaderError", py.get_type::<errors::ShaderError>())?;
     m.add("GpuError", py.get_type::<errors::GpuError>())?;
+    m.add("ArgumentError", errors::argument_error_type(py)?)?;
+    m.add("METHODS", method_names(py)?)?;
     m.add_class::<PyRenderer>()?;
     m.add_class::<PyScene>()?;
     m.add_class::<PyCamera>()?;
     m.add_class::<PySpotLight>()?;
     m.add_class::<PyFrame>()?;
     m.add_function(wrap_pyfunction!(adapters, m)?)?;
+    m.add_function(wrap_pyfunction!(describe_method, m)?)?;
+    m.add_function(wrap_pyfunction!(method_options, m)?)?;
     m.add_function(wrap_pyfunction!(builtin_scene_names, m)?)?;
     m.add_function(wrap_pyfunction!(builtin_scene, m)?)?;
     m.add_function(wrap_pyfunction!(stability::stability_suite, m)?)?;

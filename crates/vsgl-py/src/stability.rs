@@ -2,7 +2,7 @@
 //! function in f32 on the GPU against its f64 oracle), as a list of dicts for `vsgl.stability`.
 
 use crate::errors::to_py;
-use pyo3::exceptions::PyValueError;
+use crate::errors::argument_error;
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
 
@@ -14,7 +14,7 @@ use pyo3::types::PyDict;
 #[pyo3(signature = (adapter=None, bound_scale=1.0))]
 pub fn stability_suite(py: Python<'_>, adapter: Option<String>, bound_scale: f64) -> PyResult<Vec<Bound<'_, PyDict>>> {
     if !(bound_scale.is_finite() && bound_scale > 0.0) {
-        return Err(PyValueError::new_err(format!("bound_scale: must be positive and finite, got {bound_scale}")));
+        return Err(argument_error(format!("bound_scale: must be positive and finite, got {bound_scale}")));
     }
     let rows = py
         .detach(|| vsgl_core::stability::run_on_adapter(adapter.as_deref(), bound_scale))

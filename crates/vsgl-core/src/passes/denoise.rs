@@ -1,12 +1,10 @@
 //! Geometry-aware denoising of interleaved indirect light (compute): two separable
 //! cross-bilateral passes (x, then y) over 2k taps each (see `wgsl/passes/denoise.wgsl`).
 
-use super::{run_compute, storage_buffer, uniform_buffer};
 use crate::error::Result;
-use crate::gpu::{groups, Gpu, PassTimer, PipelineVariants};
+use crate::frame::{GBuffer, IndirectTargets};
+use crate::gpu::{groups, run_compute, storage_buffer, uniform_buffer, Gpu, PassTimer, PipelineVariants};
 use crate::plan::ShaderFeatures;
-use crate::passes::material::GBuffer;
-use crate::passes::vpl_shading::IndirectTargets;
 
 const WORKGROUP: u32 = 8;
 

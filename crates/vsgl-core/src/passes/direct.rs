@@ -1,10 +1,9 @@
 //! Direct lighting (compute): spot lights, Lambert + GGX/Smith, shadow-mapped.
 
-use super::entries;
 use crate::error::Result;
-use crate::gpu::{groups, Gpu, PassTimer, PipelineVariants};
+use crate::frame::GBuffer;
+use crate::gpu::{entries, groups, Gpu, PassTimer, PipelineVariants};
 use crate::plan::ShaderFeatures;
-use crate::passes::material::GBuffer;
 
 const WORKGROUP: u32 = 8;
 

@@ -2,46 +2,14 @@
 //! untextured with every texture fetch compiled out (`HAS_TEXTURES = false`), and without
 //! normal maps with the tangent frame compiled out (`HAS_NORMAL_MAPS = false`).
 
-use super::entries;
+use crate::frame::GBuffer;
 use crate::error::Result;
-use crate::gpu::{groups, Gpu, PassTimer, PipelineVariants};
+use crate::gpu::{entries, groups, Gpu, PassTimer, PipelineVariants};
 use crate::plan::ShaderFeatures;
 use crate::upload::GpuScene;
 
 const WORKGROUP: u32 = 8;
 
-/// The G-buffer: four vec4f storage buffers (layout in `wgsl/common/gbuffer.wgsl`).
-pub struct GBuffer {
-    pub position: wgpu::Buffer,
-    pub normal: wgpu::Buffer,
-    pub geo_normal: wgpu::Buffer,
-    pub base_color: wgpu::Buffer,
-}
-
-impl GBuffer {
-    /// The four buffers in layout order (position, normal, geo_normal, base_color), as the
-    /// passes that read the G-buffer bind them.
-    pub fn bindings(&self) -> [wgpu::BindingResource<'_>; 4] {
-        [
-            self.position.as_entire_binding(),
-            self.normal.as_entire_binding(),
-            self.geo_normal.as_entire_binding(),
-            self.base_color.as_entire_binding(),
-        ]
-    }
-}
-
-impl GBuffer {
-    pub fn new(gpu: &Gpu, width: u32, height: u32) -> Self {
-        let make = |label| super::storage_buffer(gpu, label, width as u64 * height as u64 * 16);
-        Self {
-            position: make("gbuffer_position_buffer"),
-            normal: make("gbuffer_normal_buffer"),
-            geo_normal: make("gbuffer_geo_normal_buffer"),
-            base_color: make("gbuffer_base_color_buffer"),
-        }
-    }
-}
 
 pub struct MaterialPass {
     pipelines: PipelineVariants,

@@ -1,9 +1,8 @@
 //! Mip levels of the VSGL moment chains (compute): 2×2 averages, level by level.
 
-use super::{run_compute, uniform_buffer};
 use crate::error::Result;
-use crate::gpu::{groups, Gpu, PassTimer};
-use crate::passes::vsgl_moments::MomentChains;
+use crate::frame::MomentChains;
+use crate::gpu::{groups, run_compute, uniform_buffer, Gpu, PassTimer};
 
 const WORKGROUP: u32 = 8;
 
@@ -27,7 +26,7 @@ impl MomentMipsPass {
     }
 
     pub fn record(&self, gpu: &Gpu, enc: &mut wgpu::CommandEncoder, timer: &mut PassTimer, rsm_size: u32, chains: &MomentChains) {
-        let (offsets, _) = super::pdf_mips::pyramid_layout(rsm_size);
+        let (offsets, _) = crate::frame::pyramid_layout(rsm_size);
         for level in 1..offsets.len() {
             let dst_size = rsm_size >> level;
             let uniform = uniform_buffer(gpu, "moment_mips_level_uniform_buffer", &LevelRaw { src_offset: offsets[level - 1], dst_offset: offsets[level], dst_size, chain_len: chains.chain_len });

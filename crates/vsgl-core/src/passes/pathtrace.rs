@@ -1,20 +1,16 @@
 //! Path-traced one-bounce ground truth (compute, `method="pathtrace"`): a BVH built on the CPU
-//! ([`crate::bvh`]), then progressive batches of BRDF-sampled bounce rays with shadow rays at the
+//! ([`crate::upload::bvh`], built once per scene upload), then progressive batches of BRDF-sampled bounce rays with shadow rays at the
 //! bounce point, a ray-traced direct pass, and the per-pixel standard error. The estimator is
 //! documented in `wgsl/passes/pathtrace.wgsl`.
 
-use super::{entries, uniform_buffer};
-use crate::bvh::{scene_triangles, Bvh};
-use crate::error::{Error, Result};
-use crate::gpu::{groups, storage_binding, uniform_binding, Gpu, PassTimer, PipelineVariants};
+use crate::error::Result;
+use crate::frame::{GBuffer, IndirectTargets};
+use crate::gpu::frame_log::note_pass;
+use crate::gpu::{entries, groups, storage_binding, storage_buffer, uniform_binding, uniform_buffer, Gpu, PassTimer, PipelineVariants};
 use crate::plan::ShaderFeatures;
-use crate::passes::material::GBuffer;
-use crate::passes::vpl_shading::IndirectTargets;
-use crate::passes::storage_buffer;
 use crate::scene::Scene;
 use crate::upload::GpuScene;
 use glam::DVec3;
-use wgpu::util::DeviceExt;
 
 const WORKGROUP: u32 = 8;
 /// Bounce paths (pixel samples) per dispatch and submission. Each path is one closest-hit ray
@@ -56,8 +52,8 @@ pub struct PathTraceInputs<'a> {
 pub struct PathTraceOutput {
     /// Standard error of the mean indirect radiance, vec4f per pixel (rgb).
     pub stderr: wgpu::Buffer,
-    /// Names of the passes that ran, in order.
-    pub passes: Vec<String>,
+    /// Whether this frame built the BVH (else the scene upload's was reused).
+    pub bvh_built: bool,
     pub bvh_nodes: usize,
     pub bvh_depth: usize,
     /// Samples per dispatch (the last may have fewer).
@@ -143,29 +139,11 @@ impl PathTracePass {
         size: (u32, u32),
     ) -> Result<PathTraceOutput> {
         let (w, h) = size;
-        let triangles = scene_triangles(input.scene, input.origin);
-        if triangles.len() != input.gscene.triangle_count as usize {
-            return Err(Error::invalid("scene", format!(
-                "the BVH has {} triangles but the uploaded scene {}", triangles.len(), input.gscene.triangle_count
-            )));
+        let (bvh, bvh_built) = input.gscene.bvh(gpu, input.scene, input.origin)?;
+        if bvh_built {
+            note_pass("bvh_build");
         }
-        let bvh = Bvh::build(&triangles);
-        let tri_bytes = bvh.triangle_bytes();
-        let max = gpu.limits.max_storage_buffer_binding_size;
-        if tri_bytes.len() as u64 > max || bvh.node_bytes().len() as u64 > max {
-            return Err(Error::invalid("scene", format!(
-                "{} triangles exceed this adapter's storage binding limit of {max} bytes for the BVH", triangles.len()
-            )));
-        }
-        let make = |label: &str, bytes: &[u8]| {
-            gpu.device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
-                label: Some(label),
-                contents: bytes,
-                usage: wgpu::BufferUsages::STORAGE,
-            })
-        };
-        let nodes = make("bvh_node_buffer", bvh.node_bytes());
-        let tris = make("bvh_triangle_buffer", &tri_bytes);
+        let (nodes, tris) = (&bvh.nodes, &bvh.triangles);
         let pixels = w as u64 * h as u64;
         let m2 = storage_buffer(gpu, "pathtrace_m2_buffer", pixels * 16);
         let stderr = storage_buffer(gpu, "pathtrace_stderr_buffer", pixels * 16);
@@ -214,6 +192,8 @@ impl PathTracePass {
         let flags = [("HAS_TEXTURES", input.features.textures), ("HAS_NORMAL_MAPS", input.features.normal_maps)];
         dispatch(enc, timer, "pathtrace_direct", &self.direct.get(gpu, &flags), params(0, 0));
         let indirect_pipeline = &self.indirect.get(gpu, &flags);
+        // `frame.passes` names the untextured variant of the bounce pass (timed as `pathtrace`).
+        let indirect_label = if input.features.textures { "pathtrace" } else { "pathtrace[untextured]" };
         let per_batch = (PATHS_PER_BATCH / pixels.max(1)).clamp(1, MAX_SAMPLES_PER_DISPATCH as u64) as u32;
         let mut done = 0u32;
         let mut batch = 0u32;
@@ -228,15 +208,14 @@ impl PathTracePass {
                     gpu.wait("pathtrace batch")?;
                 }
             }
-            dispatch(enc, timer, "pathtrace", indirect_pipeline, params(done, count));
+            dispatch(enc, timer, indirect_label, indirect_pipeline, params(done, count));
             done += count;
         }
         dispatch(enc, timer, "pathtrace_resolve", &self.resolve.get(gpu, &flags), params(spp, 0));
-        let name = if input.features.textures { "pathtrace" } else { "pathtrace[untextured]" };
         Ok(PathTraceOutput {
             stderr,
-            passes: vec!["bvh_build".into(), "pathtrace_direct".into(), name.into(), "pathtrace_resolve".into()],
-            bvh_nodes: bvh.nodes.len(),
+            bvh_built,
+            bvh_nodes: bvh.node_count,
             bvh_depth: bvh.depth,
             samples_per_batch: per_batch,
         })

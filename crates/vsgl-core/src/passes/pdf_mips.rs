@@ -2,29 +2,12 @@
 //! and hierarchical sample warping can descend it. wgpu has no GenerateMips, and sums (not
 //! averages) keep the probabilities exact.
 
-use super::{run_compute, uniform_buffer};
 use crate::error::Result;
-use crate::gpu::{groups, Gpu, PassTimer};
-use crate::passes::rsm_flux::Rsm;
+use crate::frame::Rsm;
+use crate::gpu::{groups, run_compute, uniform_buffer, Gpu, PassTimer};
 
 const WORKGROUP: u32 = 8;
 
-/// Level start offsets (level 0 = size², …, top = 1) and the total texel count, for a
-/// power-of-two `size`.
-pub fn pyramid_layout(size: u32) -> (Vec<u32>, u32) {
-    let mut offsets = Vec::new();
-    let mut offset = 0u32;
-    let mut s = size;
-    loop {
-        offsets.push(offset);
-        offset += s * s;
-        if s == 1 {
-            break;
-        }
-        s /= 2;
-    }
-    (offsets, offset)
-}
 
 #[repr(C)]
 #[derive(Clone, Copy, bytemuck::Pod, bytemuck::Zeroable)]
@@ -46,7 +29,7 @@ impl PdfMipsPass {
     }
 
     pub fn record(&self, gpu: &Gpu, enc: &mut wgpu::CommandEncoder, timer: &mut PassTimer, rsm: &Rsm) {
-        let (offsets, _) = pyramid_layout(rsm.size);
+        let (offsets, _) = crate::frame::pyramid_layout(rsm.size);
         for level in 1..offsets.len() {
             let dst_size = rsm.size >> level;
             let uniform = uniform_buffer(gpu, "pdf_mips_level_uniform_buffer", &LevelRaw { src_offset: offsets[level - 1], dst_offset: offsets[level], dst_size, _pad: 0 });
@@ -63,10 +46,3 @@ impl PdfMipsPass {
     }
 }
 
-#[cfg(test)]
-mod tests {
-    #[test]
-    fn layout_of_8() {
-        assert_eq!(super::pyramid_layout(8), (vec![0, 64, 80, 84], 85));
-    }
-}

@@ -1,8 +1,7 @@
 //! Spot-light shadow maps: depth only, one array layer per light, reverse-Z.
 
-use super::uniform_buffer;
 use crate::error::Result;
-use crate::gpu::{Gpu, PassTimer};
+use crate::gpu::{uniform_buffer, Gpu, PassTimer};
 
 pub const FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Depth32Float;
 
@@ -44,7 +43,7 @@ impl ShadowMapPass {
 
     /// A depth array with one layer per light (at least one, so the binding always exists).
     pub fn target(gpu: &Gpu, size: u32, layers: u32) -> wgpu::Texture {
-        super::note_allocation("shadow_map_depth_texture", size as u64 * size as u64 * layers.max(1) as u64 * 4);
+        crate::gpu::frame_log::note_allocation("shadow_map_depth_texture", size as u64 * size as u64 * layers.max(1) as u64 * 4);
         gpu.device.create_texture(&wgpu::TextureDescriptor {
             label: Some("shadow_map_depth_texture"),
             size: wgpu::Extent3d { width: size, height: size, depth_or_array_layers: layers.max(1) },

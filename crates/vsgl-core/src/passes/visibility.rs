@@ -1,19 +1,14 @@
 //! Visibility raster: depth + visible triangle id (R32Uint), trivial fragment work.
 
 use crate::error::Result;
+use crate::frame::targets::{VisibilityTargets, VISIBILITY_DEPTH_FORMAT as DEPTH_FORMAT, VISIBILITY_ID_FORMAT as ID_FORMAT};
 use crate::gpu::{Gpu, PassTimer};
 
-pub const DEPTH_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Depth32Float;
-pub const ID_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::R32Uint;
 
 pub struct VisibilityPass {
     pipeline: wgpu::RenderPipeline,
 }
 
-pub struct VisibilityTargets {
-    pub ids: wgpu::TextureView,
-    pub depth: wgpu::TextureView,
-}
 
 impl VisibilityPass {
     pub fn new(gpu: &Gpu) -> Result<Self> {
@@ -52,29 +47,6 @@ impl VisibilityPass {
         Ok(Self { pipeline })
     }
 
-    pub fn targets(gpu: &Gpu, width: u32, height: u32) -> VisibilityTargets {
-        let make = |label, format, usage| {
-            // Both formats are 4 bytes a texel (r32uint ids, depth32float).
-            super::note_allocation(label, width as u64 * height as u64 * 4);
-            gpu.device
-                .create_texture(&wgpu::TextureDescriptor {
-                    label: Some(label),
-                    size: wgpu::Extent3d { width, height, depth_or_array_layers: 1 },
-                    mip_level_count: 1,
-                    sample_count: 1,
-                    dimension: wgpu::TextureDimension::D2,
-                    format,
-                    usage,
-                    view_formats: &[],
-                })
-                .create_view(&Default::default())
-        };
-        let usage = wgpu::TextureUsages::RENDER_ATTACHMENT | wgpu::TextureUsages::TEXTURE_BINDING;
-        VisibilityTargets {
-            ids: make("visibility_id_texture", ID_FORMAT, usage),
-            depth: make("visibility_depth_texture", DEPTH_FORMAT, usage),
-        }
-    }
 
     #[allow(clippy::too_many_arguments)]
     pub fn record(

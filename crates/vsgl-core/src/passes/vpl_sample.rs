@@ -1,11 +1,10 @@
 //! VPL sampling (compute): importance sampling of the RSM by hierarchical sample warping, or
 //! every texel as a VPL (the reference).
 
-use super::{run_compute, uniform_buffer};
 use crate::error::Result;
-use crate::gpu::{groups, storage_binding, uniform_binding, Gpu, PassTimer, PipelineVariants};
+use crate::frame::Rsm;
+use crate::gpu::{groups, run_compute, storage_binding, uniform_binding, uniform_buffer, Gpu, PassTimer, PipelineVariants};
 use crate::plan::ShaderFeatures;
-use crate::passes::rsm_flux::Rsm;
 
 const WORKGROUP: u32 = 64;
 
@@ -67,13 +66,13 @@ impl VplSamplePass {
     }
 
     #[allow(clippy::too_many_arguments)]
-    fn dispatch(&self, gpu: &Gpu, enc: &mut wgpu::CommandEncoder, timer: &mut PassTimer, pipeline: &wgpu::ComputePipeline, params: SampleParamsRaw, light: wgpu::BindingResource<'_>, rsm: &Rsm, out: &wgpu::Buffer) {
+    fn dispatch(&self, gpu: &Gpu, enc: &mut wgpu::CommandEncoder, timer: &mut PassTimer, label: &str, pipeline: &wgpu::ComputePipeline, params: SampleParamsRaw, light: wgpu::BindingResource<'_>, rsm: &Rsm, out: &wgpu::Buffer) {
         let uniform = uniform_buffer(gpu, "vpl_sample_params_uniform_buffer", &params);
         run_compute(
             gpu,
             enc,
             timer,
-            "vpl_sample",
+            label,
             pipeline,
             &[&[
                 uniform.as_entire_binding(),
@@ -102,13 +101,14 @@ impl VplSamplePass {
             first: 0,
             _pad: [0; 2],
         };
-        self.dispatch(gpu, enc, timer, &self.importance.get(gpu, &features.specular_flags()), params, light, rsm, out);
+        self.dispatch(gpu, enc, timer, "vpl_sample", &self.importance.get(gpu, &features.specular_flags()), params, light, rsm, out);
     }
 
     /// Texels `first .. first + count` as VPLs of weight Φ·R.
     #[allow(clippy::too_many_arguments)]
     pub fn record_every_texel(&self, gpu: &Gpu, enc: &mut wgpu::CommandEncoder, timer: &mut PassTimer, light: wgpu::BindingResource<'_>, rsm: &Rsm, first: u32, count: u32, out: &wgpu::Buffer, features: ShaderFeatures) {
         let params = SampleParamsRaw { count, levels: rsm.levels, rsm_size: rsm.size, mode: 0, seed: 0, first, _pad: [0; 2] };
-        self.dispatch(gpu, enc, timer, &self.every_texel.get(gpu, &features.specular_flags()), params, light, rsm, out);
+        // Reported as its own variant in `frame.passes`, timed as `vpl_sample`.
+        self.dispatch(gpu, enc, timer, "vpl_sample[every_texel]", &self.every_texel.get(gpu, &features.specular_flags()), params, light, rsm, out);
     }
 }

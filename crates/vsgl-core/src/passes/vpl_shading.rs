@@ -1,10 +1,10 @@
 //! VPL shading (compute): adds the radiance of a batch of VPLs to the indirect buffers.
 
-use super::{for_each_chunk, run_compute, uniform_buffer};
+use crate::frame::IndirectTargets;
 use crate::error::Result;
-use crate::gpu::{groups, Gpu, PassTimer, PipelineVariants};
+use crate::frame::GBuffer;
+use crate::gpu::{for_each_chunk, groups, run_compute, uniform_buffer, Gpu, PassTimer, PipelineVariants};
 use crate::plan::ShaderFeatures;
-use crate::passes::material::GBuffer;
 
 const WORKGROUP: u32 = 8;
 
@@ -22,22 +22,6 @@ struct ShadeParamsRaw {
 /// over several dispatches that add into the same targets.
 const VPLS_PER_DISPATCH: u32 = 16384;
 
-/// Diffuse and specular indirect radiance (vec4f per pixel each).
-pub struct IndirectTargets {
-    pub diffuse: wgpu::Buffer,
-    pub specular: wgpu::Buffer,
-}
-
-impl IndirectTargets {
-    /// What a shading pass binds (group 1): its parameters, its light list, the G-buffer and
-    /// both targets, in the order of vpl_shading.wgsl and vsgl_shading.wgsl.
-    pub fn shading_bindings<'a>(&'a self, params: &'a wgpu::Buffer, lights: &'a wgpu::Buffer, gbuffer: &'a GBuffer) -> Vec<wgpu::BindingResource<'a>> {
-        let mut b = vec![params.as_entire_binding(), lights.as_entire_binding()];
-        b.extend(gbuffer.bindings());
-        b.extend([self.diffuse.as_entire_binding(), self.specular.as_entire_binding()]);
-        b
-    }
-}
 
 pub struct VplShadingPass {
     pipelines: PipelineVariants,

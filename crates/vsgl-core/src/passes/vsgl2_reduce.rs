@@ -8,11 +8,10 @@
 //! one workgroup is left, whose dispatch also writes the VSGLs. Temporary memory: two partial
 //! buffers of 96 bytes per partial, ⌈n/8⌉² and ⌈⌈n/8⌉²/256⌉ partials (see [`Vsgl2Reduce::temporary_bytes`]).
 
-use super::{run_compute, storage_buffer, uniform_buffer};
 use crate::error::Result;
-use crate::gpu::{groups, storage_binding, uniform_binding, Gpu, PassTimer, PipelineVariants};
+use crate::frame::Rsm;
+use crate::gpu::{groups, run_compute, storage_binding, storage_buffer, uniform_binding, uniform_buffer, Gpu, PassTimer, PipelineVariants};
 use crate::plan::ShaderFeatures;
-use crate::passes::rsm_flux::Rsm;
 
 /// Side of an RSM tile summed by one `tiles` workgroup.
 const TILE: u32 = 8;

@@ -1,11 +1,9 @@
 //! VSGL generation (compute): filtered importance sampling of the mipmapped RSM, with the
 //! 2015 density kernel or the 2016 bisection ("integral") kernel.
 
-use super::{run_compute, uniform_buffer};
 use crate::error::Result;
-use crate::gpu::{groups, Gpu, PassTimer};
-use crate::passes::rsm_flux::Rsm;
-use crate::passes::vsgl_moments::MomentChains;
+use crate::frame::{MomentChains, Rsm};
+use crate::gpu::{groups, run_compute, uniform_buffer, Gpu, PassTimer};
 
 const WORKGROUP: u32 = 64;
 

@@ -1,33 +1,13 @@
 //! The papers' additional RSM buffers (compute): per-texel VSGL moments, level 0 of five mip
 //! chains (layout in `wgsl/passes/vsgl_moments.wgsl`).
 
-use super::{run_compute, storage_buffer, uniform_buffer};
+use crate::frame::MomentChains;
 use crate::error::Result;
-use crate::gpu::{groups, Gpu, PassTimer, PipelineVariants};
+use crate::frame::Rsm;
+use crate::gpu::{groups, run_compute, uniform_buffer, Gpu, PassTimer, PipelineVariants};
 use crate::plan::ShaderFeatures;
-use crate::passes::rsm_flux::Rsm;
 
 const WORKGROUP: u32 = 8;
-/// A, B, C, D, E of the shader.
-pub const CHAINS: u64 = 5;
-
-/// The five moment mip chains in one buffer (chain c at c·chain_len vec4s).
-pub struct MomentChains {
-    pub buffer: wgpu::Buffer,
-    pub chain_len: u32,
-}
-
-impl MomentChains {
-    pub fn new(gpu: &Gpu, rsm_size: u32) -> Self {
-        let (_, chain_len) = super::pdf_mips::pyramid_layout(rsm_size);
-        Self { buffer: storage_buffer(gpu, "vsgl_moment_chain_buffer", CHAINS * chain_len as u64 * 16), chain_len }
-    }
-
-    /// Bytes needed for an RSM of side `rsm_size`.
-    pub fn bytes(rsm_size: u32) -> u64 {
-        CHAINS * super::pdf_mips::pyramid_layout(rsm_size).1 as u64 * 16
-    }
-}
 
 #[repr(C)]
 #[derive(Clone, Copy, bytemuck::Pod, bytemuck::Zeroable)]

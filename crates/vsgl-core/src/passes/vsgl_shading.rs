@@ -1,11 +1,9 @@
 //! VSGL shading (compute): SG incoming radiance, diffuse and SG–ASG specular, interleaved.
 
-use super::{for_each_chunk, run_compute, uniform_buffer};
 use crate::error::Result;
-use crate::gpu::{groups, Gpu, PassTimer, PipelineVariants};
+use crate::frame::{GBuffer, IndirectTargets};
+use crate::gpu::{for_each_chunk, groups, run_compute, uniform_buffer, Gpu, PassTimer, PipelineVariants};
 use crate::plan::ShaderFeatures;
-use crate::passes::material::GBuffer;
-use crate::passes::vpl_shading::IndirectTargets;
 
 const WORKGROUP: u32 = 8;
 

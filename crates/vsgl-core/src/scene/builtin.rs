@@ -174,7 +174,7 @@ fn cornell_walls(scene: &mut Scene, floor: Material) {
     add(scene, "right_wall", Material::dielectric("green", GREEN, 1.0), |b| {
         b.quad(DVec3::new(1.0, 0.0, -1.0), DVec3::Z * 2.0, DVec3::Y * 2.0)
     });
-    scene.lights.push(spot(DVec3::new(0.0, 1.95, 0.0), DVec3::new(0.0, 0.0, 0.0), 6.0, 40.0, 55.0));
+    scene.add_light(spot(DVec3::new(0.0, 1.95, 0.0), DVec3::new(0.0, 0.0, 0.0), 6.0, 40.0, 55.0));
     scene.cameras.push(camera(DVec3::new(0.0, 1.0, 3.9), DVec3::new(0.0, 1.0, 0.0), 40.0));
 }
 
@@ -226,7 +226,7 @@ pub fn caustics_ring() -> Scene {
     add(&mut s, "ring", Material::metal("polished_gold", [1.0, 0.86, 0.57], 0.02), |b| {
         b.ring(DVec3::ZERO, 0.6, 0.03, 0.35, 128)
     });
-    s.lights.push(spot(DVec3::new(0.0, 2.2, 2.0), DVec3::new(0.0, 0.0, -0.3), 30.0, 20.0, 30.0));
+    s.add_light(spot(DVec3::new(0.0, 2.2, 2.0), DVec3::new(0.0, 0.0, -0.3), 30.0, 20.0, 30.0));
     s.cameras.push(camera(DVec3::new(0.0, 2.4, -2.2), DVec3::new(0.0, 0.0, 0.0), 45.0));
     s
 }
@@ -244,7 +244,7 @@ pub fn cave_flashlight() -> Scene {
     add(&mut s, "boulder", Material::dielectric("boulder", [0.6, 0.45, 0.3], 0.5), |b| {
         b.sphere(DVec3::new(0.8, 0.5, -1.2), 0.5, 24, 48)
     });
-    s.lights.push(spot(DVec3::new(-0.3, 1.5, 2.2), DVec3::new(0.3, 0.0, -1.5), 40.0, 8.0, 12.0));
+    s.add_light(spot(DVec3::new(-0.3, 1.5, 2.2), DVec3::new(0.3, 0.0, -1.5), 40.0, 8.0, 12.0));
     s.cameras.push(camera(DVec3::new(0.0, 1.6, 2.6), DVec3::new(0.0, 0.6, -1.0), 60.0));
     s
 }

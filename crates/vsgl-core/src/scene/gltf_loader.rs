@@ -1381,7 +1381,7 @@ fn add_light(
         ));
         return Ok(());
     }
-    b.scene.lights.push(SpotLight {
+    b.scene.add_light(SpotLight {
         position,
         direction: direction / len,
         intensity: light.intensity,

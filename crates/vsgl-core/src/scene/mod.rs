@@ -1,4 +1,4 @@
-//! CPU-side scene: meshes, materials, textures, node hierarchy, spot lights and cameras.
+//! CPU-side scene: meshes, materials, textures, node hierarchy, lights and cameras.
 //!
 //! The scene is plain data. Everything the GPU needs is derived from it per frame (see
 //! `crate::upload`), so moving a node with [`Scene::set_transform`] invalidates nothing that
@@ -6,8 +6,11 @@
 
 pub mod builtin;
 pub mod gltf_loader;
+mod light;
 
-use glam::{DMat4, DVec3, Vec3};
+pub use light::{DirectionalLight, Light, PointLight, SpotLight};
+
+use glam::{DMat4, DVec3};
 
 /// One triangle list with one material. Attributes are in the mesh's local space.
 #[derive(Clone, Debug, Default)]
@@ -132,20 +135,6 @@ pub struct Node {
     pub mesh: Option<usize>,
 }
 
-/// A spot light (KHR_lights_punctual conventions: intensity in candela, smooth cone falloff).
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub struct SpotLight {
-    /// World position (f64 so scenes far from the origin keep their precision).
-    pub position: DVec3,
-    /// Unit direction the light points at.
-    pub direction: DVec3,
-    pub intensity: f32,
-    pub color: Vec3,
-    /// Half-angles in radians, 0 ≤ inner < outer ≤ π/2.
-    pub inner_cone: f32,
-    pub outer_cone: f32,
-}
-
 /// A perspective pinhole camera.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Camera {
@@ -210,7 +199,7 @@ pub struct Scene {
     pub materials: Vec<Material>,
     pub textures: Vec<Texture>,
     pub nodes: Vec<Node>,
-    pub lights: Vec<SpotLight>,
+    pub lights: Vec<Light>,
     pub cameras: Vec<Camera>,
     /// Human-readable notes from loading (skipped primitives, unsupported features).
     pub warnings: Vec<String>,
@@ -281,8 +270,8 @@ impl Scene {
         n
     }
 
-    pub fn add_light(&mut self, light: SpotLight) {
-        self.lights.push(light);
+    pub fn add_light(&mut self, light: impl Into<Light>) {
+        self.lights.push(light.into());
     }
 
     /// Adds a mesh instanced by a new root node; returns the node index.

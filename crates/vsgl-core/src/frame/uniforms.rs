@@ -1,6 +1,8 @@
-//! CPU twins of the per-frame GPU structs in `wgsl/common/frame.wgsl`.
+//! CPU twins of the per-frame GPU structs in `wgsl/common/frame.wgsl`: the frame uniforms and
+//! one `LightRaw` per light.
 
-use crate::scene::{Camera, SpotLight};
+use crate::error::{Error, Result};
+use crate::scene::{Camera, Light, SpotLight};
 use glam::{DMat4, DVec3, Mat4};
 
 #[repr(C)]
@@ -22,7 +24,7 @@ const _: () = assert!(std::mem::size_of::<FrameUniforms>() == 160);
 
 #[repr(C)]
 #[derive(Clone, Copy, bytemuck::Pod, bytemuck::Zeroable)]
-pub struct SpotLightRaw {
+pub struct LightRaw {
     pub position: [f32; 3],
     pub intensity: f32,
     pub direction: [f32; 3],
@@ -32,9 +34,26 @@ pub struct SpotLightRaw {
     pub view_proj: [[f32; 4]; 4],
     pub texel_tan: f32,
     pub shadow_layer: u32,
-    pub _pad: [f32; 2],
+    /// [`LIGHT_KIND_SPOT`], … (`LIGHT_KIND_*` in frame.wgsl).
+    pub kind: u32,
+    pub _pad: f32,
 }
-const _: () = assert!(std::mem::size_of::<SpotLightRaw>() == 128);
+const _: () = assert!(std::mem::size_of::<LightRaw>() == 128);
+
+/// `LightRaw::kind` of a spot light (the only kind the passes render so far).
+pub const LIGHT_KIND_SPOT: u32 = 0;
+
+/// The GPU twin of light `index` of a scene, or an error naming it when its type does not
+/// render yet.
+pub fn light_raw(light: &Light, index: usize, origin: DVec3, extent: f64, shadow_size: u32) -> Result<LightRaw> {
+    match light {
+        Light::Spot(spot) => Ok(spot_light_raw(spot, origin, extent, index as u32, shadow_size)),
+        other => Err(Error::invalid(
+            format!("scene.lights[{index}]"),
+            format!("{} lights do not render in this build yet (spot lights only)", other.kind()),
+        )),
+    }
+}
 
 /// Widest shadow frustum: a perspective projection degenerates at 180°, so cones wider than
 /// this (outer half-angle > 85°) are unshadowed outside it (documented in docs/rendering.md).
@@ -84,10 +103,10 @@ pub fn light_view_proj(light: &SpotLight, origin: DVec3, extent: f64) -> Mat4 {
     (proj * view).as_mat4()
 }
 
-pub fn spot_light_raw(light: &SpotLight, origin: DVec3, extent: f64, layer: u32, shadow_size: u32) -> SpotLightRaw {
+pub fn spot_light_raw(light: &SpotLight, origin: DVec3, extent: f64, layer: u32, shadow_size: u32) -> LightRaw {
     let pos = (light.position - origin).as_vec3();
     let fov = (2.0 * light.outer_cone as f64).min(SHADOW_FOV_MAX);
-    SpotLightRaw {
+    LightRaw {
         position: pos.to_array(),
         intensity: light.intensity,
         direction: light.direction.normalize().as_vec3().to_array(),
@@ -97,7 +116,8 @@ pub fn spot_light_raw(light: &SpotLight, origin: DVec3, extent: f64, layer: u32,
         view_proj: light_view_proj(light, origin, extent).to_cols_array_2d(),
         texel_tan: (2.0 * (fov * 0.5).tan() / shadow_size as f64) as f32,
         shadow_layer: layer,
-        _pad: [0.0; 2],
+        kind: LIGHT_KIND_SPOT,
+        _pad: 0.0,
     }
 }
 

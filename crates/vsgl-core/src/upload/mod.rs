@@ -5,6 +5,8 @@
 //! renderer reuses an upload while the scene instance, its `geometry_version` and the origin
 //! are unchanged (`Renderer::uploaded_scene`, docs/rendering.md "Scene upload cache").
 
+pub mod bvh;
+
 use crate::error::{Error, Result};
 use crate::gpu::Gpu;
 use crate::scene::{Scene, TextureUsage};
@@ -69,6 +71,17 @@ pub struct GpuScene {
     pub triangle_count: u32,
     /// World-space bounds diagonal, for scale-aware epsilons.
     pub extent: f64,
+    /// The ray tracers' BVH over these very triangles, built on first use and kept with the
+    /// upload (a changed geometry or frame origin re-uploads, and so rebuilds it).
+    bvh: std::sync::Mutex<Option<std::sync::Arc<GpuBvh>>>,
+}
+
+/// A BVH on the GPU (layout in `wgsl/common/bvh.wgsl`).
+pub struct GpuBvh {
+    pub nodes: wgpu::Buffer,
+    pub triangles: wgpu::Buffer,
+    pub node_count: usize,
+    pub depth: usize,
 }
 
 fn storage(gpu: &Gpu, label: &str, bytes: &[u8], extra: wgpu::BufferUsages) -> wgpu::Buffer {
@@ -88,6 +101,41 @@ fn storage(gpu: &Gpu, label: &str, bytes: &[u8], extra: wgpu::BufferUsages) -> w
 }
 
 impl GpuScene {
+    /// The BVH of the uploaded triangles (`scene` and `origin` must be what the upload was made
+    /// from), built now if no frame has needed it yet (then `true`).
+    pub fn bvh(&self, gpu: &Gpu, scene: &Scene, origin: DVec3) -> Result<(std::sync::Arc<GpuBvh>, bool)> {
+        let mut cached = self.bvh.lock().unwrap_or_else(|e| e.into_inner());
+        if let Some(b) = cached.as_ref() {
+            return Ok((b.clone(), false));
+        }
+        let triangles = bvh::scene_triangles(scene, origin);
+        if triangles.len() != self.triangle_count as usize {
+            return Err(Error::invalid("scene", format!(
+                "the BVH has {} triangles but the uploaded scene {}", triangles.len(), self.triangle_count
+            )));
+        }
+        let built = bvh::Bvh::build(&triangles);
+        let tri_bytes = built.triangle_bytes();
+        let max = gpu.limits.max_storage_buffer_binding_size;
+        if tri_bytes.len() as u64 > max || built.node_bytes().len() as u64 > max {
+            return Err(Error::invalid("scene", format!(
+                "{} triangles exceed this adapter's storage binding limit of {max} bytes for the BVH", triangles.len()
+            )));
+        }
+        let make = |label: &str, bytes: &[u8]| {
+            gpu.device.create_buffer_init(&wgpu::util::BufferInitDescriptor { label: Some(label), contents: bytes, usage: wgpu::BufferUsages::STORAGE })
+        };
+        let gpu_bvh = std::sync::Arc::new(GpuBvh {
+            nodes: make("bvh_node_buffer", built.node_bytes()),
+            triangles: make("bvh_triangle_buffer", &tri_bytes),
+            node_count: built.nodes.len(),
+            depth: built.depth,
+        });
+        *cached = Some(gpu_bvh.clone());
+        Ok((gpu_bvh, true))
+    }
+
+
     pub fn upload(gpu: &Gpu, scene: &Scene, origin: DVec3) -> Result<Self> {
         let mut raster = Vec::new();
         let mut verts = Vec::new();
@@ -200,6 +248,7 @@ impl GpuScene {
             texture_layer_size: layer_size,
             triangle_count: tri_mat.len() as u32,
             extent: if extent.is_finite() && extent > 0.0 { extent } else { 1.0 },
+            bvh: Default::default(),
         })
     }
 }

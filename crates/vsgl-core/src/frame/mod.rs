@@ -1,0 +1,10 @@
+//! Frame data shared between passes: GPU twins of the per-frame uniforms and lights
+//! ([`uniforms`]), the per-frame targets ([`targets`]) and a light's RSM with its pyramids
+//! ([`rsm`]). Passes and methods read and write these; nothing here records GPU work.
+
+pub mod rsm;
+pub mod targets;
+pub mod uniforms;
+
+pub use rsm::{pyramid_layout, MomentChains, Rsm};
+pub use targets::{GBuffer, IndirectTargets, VisibilityTargets};

@@ -1,0 +1,89 @@
+//! The reflective shadow map of one light and what the VSGL methods derive from it: the
+//! per-texel buffers, the layout of its mip pyramids, and the VSGL moment chains.
+
+use super::targets::GBuffer;
+use crate::gpu::{storage_buffer, Gpu};
+
+/// Level start offsets (level 0 = size², …, top = 1) and the total texel count, for a
+/// power-of-two `size`.
+pub fn pyramid_layout(size: u32) -> (Vec<u32>, u32) {
+    let mut offsets = Vec::new();
+    let mut offset = 0u32;
+    let mut s = size;
+    loop {
+        offsets.push(offset);
+        offset += s * s;
+        if s == 1 {
+            break;
+        }
+        s /= 2;
+    }
+    (offsets, offset)
+}
+
+/// The per-texel RSM data: the light-view G-buffer plus flux and the weight pyramid.
+pub struct Rsm {
+    pub size: u32,
+    pub gbuffer: GBuffer,
+    pub flux_diffuse: wgpu::Buffer,
+    pub flux_specular: wgpu::Buffer,
+    /// Sampling-weight pyramid, all levels (see `pdf_mips`).
+    pub pyramid: wgpu::Buffer,
+    pub level_offsets: wgpu::Buffer,
+    pub levels: u32,
+    /// Whether the weight pyramid exists (the method samples texels by weight).
+    pub sampling: bool,
+}
+
+impl Rsm {
+    /// `specular = false` (no specular material): the specular flux is never written or read,
+    /// so it gets a 16-byte placeholder; `sampling = false` (nothing is sampled from the RSM):
+    /// neither is the weight pyramid.
+    pub fn new(gpu: &Gpu, size: u32, specular: bool, sampling: bool) -> Self {
+        let texels = size as u64 * size as u64;
+        let (offsets, total) = pyramid_layout(size);
+        Self {
+            size,
+            gbuffer: GBuffer::new(gpu, size, size),
+            flux_diffuse: storage_buffer(gpu, "rsm_flux_diffuse_buffer", texels * 16),
+            flux_specular: storage_buffer(gpu, "rsm_flux_specular_buffer", if specular { texels * 16 } else { 16 }),
+            pyramid: storage_buffer(gpu, "rsm_weight_pyramid_buffer", if sampling { total as u64 * 4 } else { 16 }),
+            level_offsets: wgpu::util::DeviceExt::create_buffer_init(&gpu.device, &wgpu::util::BufferInitDescriptor {
+                label: Some("rsm_level_offset_buffer"),
+                contents: bytemuck::cast_slice(&offsets),
+                usage: wgpu::BufferUsages::STORAGE,
+            }),
+            levels: offsets.len() as u32,
+            sampling,
+        }
+    }
+}
+
+/// A, B, C, D, E of the shader.
+pub const CHAINS: u64 = 5;
+
+/// The five moment mip chains in one buffer (chain c at c·chain_len vec4s).
+pub struct MomentChains {
+    pub buffer: wgpu::Buffer,
+    pub chain_len: u32,
+}
+
+impl MomentChains {
+    pub fn new(gpu: &Gpu, rsm_size: u32) -> Self {
+        let (_, chain_len) = pyramid_layout(rsm_size);
+        Self { buffer: storage_buffer(gpu, "vsgl_moment_chain_buffer", CHAINS * chain_len as u64 * 16), chain_len }
+    }
+
+    /// Bytes needed for an RSM of side `rsm_size`.
+    pub fn bytes(rsm_size: u32) -> u64 {
+        CHAINS * pyramid_layout(rsm_size).1 as u64 * 16
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    #[test]
+    fn layout_of_8() {
+        assert_eq!(super::pyramid_layout(8), (vec![0, 64, 80, 84], 85));
+    }
+}

@@ -1,0 +1,151 @@
+//! The headless device: adapter choice, the device and queue, error scopes, waiting.
+//!
+//! No window and no surface. Adapters are ranked discrete GPU → integrated → virtual → CPU
+//! (lavapipe); `VSGL_ADAPTER` or an explicit filter picks one by name substring.
+
+use crate::error::{Error, Result};
+use std::sync::Arc;
+
+/// What `vsgl.adapters()` lists.
+#[derive(Clone, Debug)]
+pub struct AdapterSummary {
+    pub name: String,
+    pub backend: String,
+    pub device_type: String,
+    pub driver: String,
+    pub timestamps: bool,
+    /// wgpu's SUBGROUP feature (subgroup arithmetic in compute shaders).
+    pub subgroups: bool,
+}
+
+const INSTALL_HINT: &str = "no usable GPU or CPU adapter was found by wgpu (Vulkan). \
+On Debian/Ubuntu install a Vulkan driver and loader: \
+`apt-get install mesa-vulkan-drivers libvulkan1` (lavapipe, a CPU Vulkan driver, is enough).";
+
+fn instance() -> wgpu::Instance {
+    let mut desc = wgpu::InstanceDescriptor::new_without_display_handle();
+    // Vulkan on Linux/Windows, Metal on macOS, DX12 on Windows. GL is left out: headless EGL
+    // is unreliable and lacks the compute features the passes use.
+    desc.backends = wgpu::Backends::VULKAN | wgpu::Backends::METAL | wgpu::Backends::DX12;
+    desc.flags = wgpu::InstanceFlags::empty();
+    wgpu::Instance::new(desc)
+}
+
+fn rank(t: wgpu::DeviceType) -> u32 {
+    match t {
+        wgpu::DeviceType::DiscreteGpu => 0,
+        wgpu::DeviceType::IntegratedGpu => 1,
+        wgpu::DeviceType::VirtualGpu => 2,
+        wgpu::DeviceType::Cpu => 3,
+        wgpu::DeviceType::Other => 4,
+    }
+}
+
+fn summary(a: &wgpu::Adapter) -> AdapterSummary {
+    let info = a.get_info();
+    AdapterSummary {
+        name: info.name.clone(),
+        backend: format!("{:?}", info.backend).to_lowercase(),
+        device_type: format!("{:?}", info.device_type),
+        driver: format!("{} {}", info.driver, info.driver_info).trim().to_string(),
+        timestamps: a.features().contains(wgpu::Features::TIMESTAMP_QUERY),
+        subgroups: a.features().contains(wgpu::Features::SUBGROUP),
+    }
+}
+
+fn ranked_adapters(inst: &wgpu::Instance) -> Vec<wgpu::Adapter> {
+    let mut v = pollster::block_on(inst.enumerate_adapters(wgpu::Backends::all()));
+    v.sort_by_key(|a| rank(a.get_info().device_type));
+    v
+}
+
+/// Every adapter wgpu sees, best first.
+pub fn adapters() -> Vec<AdapterSummary> {
+    ranked_adapters(&instance()).iter().map(summary).collect()
+}
+
+/// Device, queue and what the adapter can do. Cheap to share (`Arc`).
+pub struct Gpu {
+    pub device: wgpu::Device,
+    pub queue: wgpu::Queue,
+    pub adapter: AdapterSummary,
+    /// Whether passes can carry timestamp writes.
+    pub timestamps: bool,
+    pub limits: wgpu::Limits,
+    /// Pipelines compiled by [`PipelineVariants`] so far (each variant once).
+    pub variants_compiled: std::sync::atomic::AtomicUsize,
+}
+
+impl Gpu {
+    /// Opens the best adapter, or the first whose name contains `filter` (case-insensitive);
+    /// `filter = None` falls back to the `VSGL_ADAPTER` environment variable.
+    pub fn new(filter: Option<&str>) -> Result<Arc<Self>> {
+        let inst = instance();
+        let all = ranked_adapters(&inst);
+        let env = std::env::var("VSGL_ADAPTER").ok().filter(|s| !s.is_empty());
+        let (filter, from_env) = match filter {
+            Some(f) => (Some(f.to_string()), false),
+            None => (env, true),
+        };
+        let adapter = match &filter {
+            Some(f) => {
+                let needle = f.to_lowercase();
+                all.into_iter().find(|a| a.get_info().name.to_lowercase().contains(&needle)).ok_or_else(|| {
+                    let names: Vec<String> = adapters().into_iter().map(|a| a.name).collect();
+                    let source = if from_env { "VSGL_ADAPTER" } else { "adapter" };
+                    Error::NoAdapter(format!(
+                        "{source}={f:?} matches no adapter; available: {}",
+                        if names.is_empty() { format!("none ({INSTALL_HINT})") } else { names.join(", ") }
+                    ))
+                })?
+            }
+            None => all.into_iter().next().ok_or_else(|| Error::NoAdapter(INSTALL_HINT.into()))?,
+        };
+        let summary = summary(&adapter);
+        let mut features = wgpu::Features::empty();
+        if summary.timestamps {
+            features |= wgpu::Features::TIMESTAMP_QUERY;
+        }
+        if summary.subgroups {
+            features |= wgpu::Features::SUBGROUP;
+        }
+        let limits = adapter.limits();
+        let (device, queue) = pollster::block_on(adapter.request_device(&wgpu::DeviceDescriptor {
+            label: Some("vsgl_device"),
+            required_features: features,
+            required_limits: limits.clone(),
+            experimental_features: wgpu::ExperimentalFeatures::disabled(),
+            memory_hints: wgpu::MemoryHints::Performance,
+            trace: wgpu::Trace::Off,
+        }))
+        .map_err(|e| Error::NoAdapter(format!("adapter {:?} refused a device: {e}", summary.name)))?;
+        // Errors are caught by scopes around each frame; anything that escapes is logged, never
+        // a panic across the Python boundary.
+        device.on_uncaptured_error(Arc::new(|e: wgpu::Error| log::error!("uncaptured wgpu error: {e}")));
+        Ok(Arc::new(Self { device, queue, timestamps: summary.timestamps, adapter: summary, limits, variants_compiled: Default::default() }))
+    }
+
+    /// Blocks until the queue is idle.
+    pub fn wait(&self, context: &str) -> Result<()> {
+        self.device
+            .poll(wgpu::PollType::wait_indefinitely())
+            .map(|_| ())
+            .map_err(|e| Error::Validation { context: context.into(), message: format!("device poll failed: {e}") })
+    }
+
+    /// Runs `f` inside validation and out-of-memory error scopes and reports the first error.
+    pub fn scoped<T>(&self, context: &str, f: impl FnOnce() -> Result<T>) -> Result<T> {
+        let oom = self.device.push_error_scope(wgpu::ErrorFilter::OutOfMemory);
+        let val = self.device.push_error_scope(wgpu::ErrorFilter::Validation);
+        let r = f();
+        let v = pollster::block_on(val.pop());
+        let o = pollster::block_on(oom.pop());
+        if let Some(e) = o {
+            return Err(Error::OutOfMemory { context: format!("{context}: {e}") });
+        }
+        if let Some(e) = v {
+            return Err(Error::Validation { context: context.into(), message: e.to_string() });
+        }
+        r
+    }
+}

@@ -1,0 +1,20 @@
+//! The GPU wing: everything about talking to wgpu that is not a pass — the device
+//! ([`device`]), shader modules and pipeline variants ([`pipelines`]), recording dispatches
+//! ([`dispatch`]), the per-renderer cache of passes ([`pass_cache`]), buffers and readback ([`buffers`]), per-pass timestamps ([`timer`]) and the
+//! per-frame log of allocations and variants ([`frame_log`]). Passes and methods build on it;
+//! it depends on neither.
+
+pub mod buffers;
+pub mod device;
+pub mod dispatch;
+pub mod frame_log;
+pub mod pass_cache;
+pub mod pipelines;
+pub mod timer;
+
+pub use buffers::{storage_buffer, uniform_buffer};
+pub use device::{adapters, AdapterSummary, Gpu};
+pub use pass_cache::{Pass, PassCache};
+pub use dispatch::{entries, for_each_chunk, groups, run_compute};
+pub use pipelines::{storage_binding, uniform_binding, PipelineVariants};
+pub use timer::PassTimer;

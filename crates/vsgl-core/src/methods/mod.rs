@@ -1,0 +1,204 @@
+//! The methods of a render (`method=`), one module each, behind one trait and one registry.
+//!
+//! A method declares what it is ([`MethodInfo`]: name, one line of description, the keyword
+//! options it takes, the AOVs it makes, whether the frame's shadow-mapped direct pass runs for
+//! it) and records its part of the frame ([`Method::record`]) into a [`FrameContext`] that the
+//! frame script (`crate::renderer`) has filled with the shared targets. Adding a method is one
+//! new module here plus one line in [`REGISTRY`]; nothing else names methods.
+
+pub mod options;
+mod rsm_lights;
+
+mod direct;
+mod pathtrace;
+mod reference;
+mod vpl;
+mod vsgl;
+mod vsgl2;
+
+use crate::error::{Error, Result};
+use crate::frame::uniforms::LightRaw;
+use crate::frame::{GBuffer, IndirectTargets, VisibilityTargets};
+use crate::gpu::{Gpu, PassCache, PassTimer};
+use crate::plan::ShaderFeatures;
+use crate::scene::Scene;
+use crate::upload::GpuScene;
+pub use options::{OptionKind, OptionSpec, OptionValue, Options};
+
+/// Every method, in the order `vsgl.METHODS` lists them.
+pub const REGISTRY: &[&MethodInfo] = &[&direct::INFO, &vpl::INFO, &vsgl::INFO, &vsgl2::INFO, &reference::INFO, &pathtrace::INFO];
+
+/// How a method's frame gets its direct light.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum DirectLight {
+    /// The frame's shadow maps and direct pass (rasterized visibility).
+    ShadowMapped,
+    /// The method computes direct light itself (e.g. shadow rays) into the direct target.
+    ByMethod,
+}
+
+/// What a method is, for the registry, validation, `describe_method` and the docs.
+pub struct MethodInfo {
+    pub name: &'static str,
+    /// One line for `vsgl.describe_method` and `--help`.
+    pub summary: &'static str,
+    /// The keyword options it takes (besides the frame's `plan` and `aovs`).
+    pub options: &'static [OptionSpec],
+    pub direct_light: DirectLight,
+    /// Whether it makes the indirect AOVs (indirect, indirect_diffuse, indirect_specular).
+    pub indirect: bool,
+    /// AOVs only some methods make (e.g. `stderr`).
+    pub extra_aovs: &'static [&'static str],
+    /// Builds the method's frame settings from validated options.
+    pub configure: fn(&Options) -> Result<Box<dyn Method>>,
+}
+
+impl MethodInfo {
+    /// Whether a frame of this method makes AOV `name` (one of `renderer::AOV_NAMES`).
+    pub fn makes_aov(&self, name: &str) -> bool {
+        match name {
+            "indirect" | "indirect_diffuse" | "indirect_specular" => self.indirect,
+            _ if OPTIONAL_AOVS.contains(&name) => self.extra_aovs.contains(&name),
+            _ => true,
+        }
+    }
+
+    /// Whether it takes option `name`.
+    pub fn takes(&self, name: &str) -> bool {
+        self.options.iter().any(|o| o.name == name)
+    }
+
+    /// Several lines: the summary, then each option with its allowed values and default.
+    pub fn describe(&self) -> String {
+        let mut s = format!("{}: {}", self.name, self.summary);
+        if self.options.is_empty() {
+            s.push_str("\n  (no options)");
+        }
+        for o in self.options {
+            s.push_str(&format!("\n  {}={} ({}): {}", o.name, python_literal(&o.default), o.allowed(), o.help));
+        }
+        s
+    }
+
+    /// Validated options of a frame of this method (see [`Options::parse`]).
+    pub fn parse_options(&self, given: &[(String, OptionValue)]) -> Result<Options> {
+        Options::parse(self.name, self.options, given, &every_option_name())
+    }
+}
+
+/// AOVs that only the methods listing them in `extra_aovs` make.
+const OPTIONAL_AOVS: &[&str] = &["stderr"];
+
+fn python_literal(v: &OptionValue) -> String {
+    match v {
+        OptionValue::Bool(true) => "True".into(),
+        OptionValue::Bool(false) => "False".into(),
+        OptionValue::Str(s) => format!("{s:?}"),
+        v => v.display(),
+    }
+}
+
+/// The method called `name`, or an error listing the valid ones.
+pub fn info(name: &str) -> Result<&'static MethodInfo> {
+    REGISTRY.iter().copied().find(|m| m.name == name).ok_or_else(|| {
+        Error::invalid("method", format!("unknown method {name:?}; valid methods: {}", names().join(", ")))
+    })
+}
+
+/// The method names, in registry order.
+pub fn names() -> Vec<&'static str> {
+    REGISTRY.iter().map(|m| m.name).collect()
+}
+
+/// Every option any method takes, once each, in first-declared order.
+pub fn every_option_name() -> Vec<&'static str> {
+    let mut all: Vec<&'static str> = Vec::new();
+    for o in REGISTRY.iter().flat_map(|m| m.options) {
+        if !all.contains(&o.name) {
+            all.push(o.name);
+        }
+    }
+    all
+}
+
+/// Which methods make AOV `name`, in words ("every method but \"direct\"", "method=\"pathtrace\"").
+pub fn aov_makers(name: &str) -> String {
+    let makers: Vec<&str> = REGISTRY.iter().filter(|m| m.makes_aov(name)).map(|m| m.name).collect();
+    let others: Vec<String> = REGISTRY.iter().filter(|m| !m.makes_aov(name)).map(|m| format!("{:?}", m.name)).collect();
+    match (makers.len(), others.len()) {
+        (_, 0) => "every method".into(),
+        (m, o) if o < m => format!("every method but {}", others.join(", ")),
+        _ => makers.iter().map(|m| format!("method={m:?}")).collect::<Vec<_>>().join(", "),
+    }
+}
+
+/// One frame of a method, configured from its options.
+pub trait Method: Send + Sync {
+    /// Checks what depends on the adapter (limits, features) before anything is recorded.
+    fn check(&self, _gpu: &Gpu) -> Result<()> {
+        Ok(())
+    }
+
+    /// Records the method's passes: indirect light into `ctx.indirect` (and, for
+    /// [`DirectLight::ByMethod`], direct light into `ctx.direct`), with a reason in
+    /// `ctx.skipped` for each pass it leaves out.
+    fn record(&self, ctx: &mut FrameContext<'_>) -> Result<()>;
+
+    /// `frame.settings` rows of the method, after the frame's own.
+    fn settings(&self, gpu: &Gpu) -> Result<Vec<(String, String)>>;
+}
+
+/// The RSM of the first light, read back for `Frame.rsm`: side and (name, channels, data).
+pub type CapturedRsm = (u32, Vec<(String, usize, Vec<f32>)>);
+
+/// What the frame script hands a method, and what the method leaves for the readback.
+pub struct FrameContext<'a> {
+    pub gpu: &'a Gpu,
+    /// Every pass, created on first use and kept by the renderer.
+    pub passes: &'a PassCache,
+    pub enc: wgpu::CommandEncoder,
+    pub timer: &'a mut PassTimer,
+    pub scene: &'a Scene,
+    pub gpu_scene: &'a GpuScene,
+    /// World position of the frame's origin (the camera); GPU positions are relative to it.
+    pub origin: glam::DVec3,
+    /// The scene's bounds diagonal: the length scale of every bias and clamp.
+    pub extent: f64,
+    pub features: ShaderFeatures,
+    pub size: (u32, u32),
+    pub frame_uniforms: &'a wgpu::Buffer,
+    /// The lights as the GPU sees them, and the storage buffer holding all of them.
+    pub lights: &'a [LightRaw],
+    pub light_buffer: &'a wgpu::Buffer,
+    pub visibility: &'a VisibilityTargets,
+    pub gbuffer: &'a GBuffer,
+    pub direct: &'a wgpu::Buffer,
+    pub indirect: &'a IndirectTargets,
+    /// (pass or part, reason) for what the method leaves out.
+    pub skipped: Vec<(String, String)>,
+    /// The first light's VSGLs (`Frame.vsgls`).
+    pub vsgls: Option<wgpu::Buffer>,
+    pub captured_rsm: Option<CapturedRsm>,
+    /// Per-pixel standard error (`stderr` AOV).
+    pub stderr: Option<wgpu::Buffer>,
+    /// Extra `frame.settings` rows the method learnt while recording.
+    pub settings: Vec<(String, String)>,
+}
+
+impl FrameContext<'_> {
+    /// A fresh encoder for this frame.
+    pub fn new_encoder(gpu: &Gpu) -> wgpu::CommandEncoder {
+        gpu.device.create_command_encoder(&wgpu::CommandEncoderDescriptor { label: Some("frame_encoder") })
+    }
+
+    /// Submits what is recorded so far (long work is split so no submission trips a watchdog,
+    /// and readbacks in the middle of a frame need it) and continues in a fresh encoder.
+    pub fn submit_so_far(&mut self) {
+        let done = std::mem::replace(&mut self.enc, Self::new_encoder(self.gpu));
+        self.gpu.queue.submit([done.finish()]);
+    }
+
+    pub fn skip(&mut self, what: &str, why: impl Into<String>) {
+        self.skipped.push((what.to_string(), why.into()));
+    }
+}

@@ -1,0 +1,269 @@
+//! Keyword options of the methods: each method declares the options it takes as
+//! [`OptionSpec`]s (name, type, range, default, one line of help), and [`Options::parse`]
+//! validates what a caller gave against them, once, in one place. An option the chosen method
+//! does not take is an error that names it and lists what the method does take.
+
+use crate::error::{Error, Result};
+use std::borrow::Cow;
+
+/// A value of a keyword option, as a caller gives it (Python int, float, bool or str).
+#[derive(Clone, Debug, PartialEq)]
+pub enum OptionValue {
+    Int(i64),
+    Float(f64),
+    Bool(bool),
+    Str(Cow<'static, str>),
+}
+
+impl OptionValue {
+    /// The value as `frame.settings` shows it.
+    pub fn display(&self) -> String {
+        match self {
+            OptionValue::Int(v) => v.to_string(),
+            OptionValue::Float(v) => v.to_string(),
+            OptionValue::Bool(v) => v.to_string(),
+            OptionValue::Str(v) => v.to_string(),
+        }
+    }
+
+    fn type_name(&self) -> &'static str {
+        match self {
+            OptionValue::Int(_) => "an integer",
+            OptionValue::Float(_) => "a float",
+            OptionValue::Bool(_) => "a bool",
+            OptionValue::Str(_) => "a string",
+        }
+    }
+}
+
+impl From<i64> for OptionValue {
+    fn from(v: i64) -> Self {
+        OptionValue::Int(v)
+    }
+}
+impl From<u32> for OptionValue {
+    fn from(v: u32) -> Self {
+        OptionValue::Int(v as i64)
+    }
+}
+impl From<f64> for OptionValue {
+    fn from(v: f64) -> Self {
+        OptionValue::Float(v)
+    }
+}
+impl From<bool> for OptionValue {
+    fn from(v: bool) -> Self {
+        OptionValue::Bool(v)
+    }
+}
+impl From<&'static str> for OptionValue {
+    fn from(v: &'static str) -> Self {
+        OptionValue::Str(Cow::Borrowed(v))
+    }
+}
+impl From<String> for OptionValue {
+    fn from(v: String) -> Self {
+        OptionValue::Str(Cow::Owned(v))
+    }
+}
+
+/// The type and the allowed values of an option.
+#[derive(Clone, Copy, Debug)]
+pub enum OptionKind {
+    /// An integer in `min..=max`, a power of two when `power_of_two`.
+    Int { min: i64, max: i64, power_of_two: bool },
+    /// A finite float `> min` (`min_exclusive`) or `>= min`.
+    Float { min: f64, min_exclusive: bool },
+    Bool,
+    /// One of these strings.
+    Choice(&'static [&'static str]),
+}
+
+/// One keyword option of a method.
+#[derive(Clone, Debug)]
+pub struct OptionSpec {
+    pub name: &'static str,
+    pub kind: OptionKind,
+    pub default: OptionValue,
+    /// One line for `describe_method` and the docstrings.
+    pub help: &'static str,
+    /// Said after a rejected value (e.g. which values are planned).
+    pub note: &'static str,
+}
+
+impl OptionSpec {
+    /// The allowed values in words, as error messages and `describe_method` give them.
+    pub fn allowed(&self) -> String {
+        match self.kind {
+            OptionKind::Int { min, max, power_of_two: false } => format!("in {min}..={max}"),
+            OptionKind::Int { min, max, power_of_two: true } => format!("a power of two in {min}..={max}"),
+            OptionKind::Float { min, min_exclusive: true } => format!("finite and > {min}"),
+            OptionKind::Float { min, min_exclusive: false } => format!("finite and >= {min}"),
+            OptionKind::Bool => "True or False".into(),
+            OptionKind::Choice(c) => match c {
+                [one] => format!("{one:?}"),
+                _ => format!("one of {}", c.iter().map(|s| format!("{s:?}")).collect::<Vec<_>>().join(", ")),
+            },
+        }
+    }
+
+    /// `value` converted to this option's type and checked against its range.
+    fn check(&self, value: &OptionValue) -> Result<OptionValue> {
+        let bad = |got: String| {
+            let note = if self.note.is_empty() { String::new() } else { format!(" ({})", self.note) };
+            Error::invalid(self.name, format!("must be {}{note}, got {got}", self.allowed()))
+        };
+        let wrong_type = || Error::invalid(self.name, format!("must be {}, got {} ({})", self.allowed(), value.type_name(), value.display()));
+        match (self.kind, value) {
+            (OptionKind::Int { min, max, power_of_two }, OptionValue::Int(v)) => {
+                if (min..=max).contains(v) && (!power_of_two || (*v as u64).is_power_of_two()) {
+                    Ok(OptionValue::Int(*v))
+                } else {
+                    Err(bad(v.to_string()))
+                }
+            }
+            (OptionKind::Float { min, min_exclusive }, OptionValue::Float(_) | OptionValue::Int(_)) => {
+                let v = match value {
+                    OptionValue::Float(f) => *f,
+                    OptionValue::Int(i) => *i as f64,
+                    _ => unreachable!("matched above"),
+                };
+                let above = if min_exclusive { v > min } else { v >= min };
+                if v.is_finite() && above { Ok(OptionValue::Float(v)) } else { Err(bad(v.to_string())) }
+            }
+            (OptionKind::Bool, OptionValue::Bool(b)) => Ok(OptionValue::Bool(*b)),
+            (OptionKind::Choice(choices), OptionValue::Str(s)) => {
+                if choices.contains(&s.as_ref()) { Ok(value.clone()) } else { Err(bad(format!("{s:?}"))) }
+            }
+            _ => Err(wrong_type()),
+        }
+    }
+}
+
+/// A method's options after validation: every option it takes, given or defaulted.
+#[derive(Clone, Debug)]
+pub struct Options {
+    values: Vec<(&'static str, OptionValue)>,
+}
+
+impl Options {
+    /// Validates `given` against `specs` (the options of `method`): unknown names, types and
+    /// ranges; options not given take their defaults. `every_option` is the union over all
+    /// methods, so an option of another method is named as such.
+    pub fn parse(method: &str, specs: &[OptionSpec], given: &[(String, OptionValue)], every_option: &[&str]) -> Result<Self> {
+        for (name, _) in given {
+            if !specs.iter().any(|s| s.name == name) {
+                let takes: Vec<&str> = specs.iter().map(|s| s.name).collect();
+                let takes = if takes.is_empty() { "no options".to_string() } else { format!("only {}", takes.join(", ")) };
+                let what = if every_option.contains(&name.as_str()) { "is not an option of" } else { "is no option of any method, nor of" };
+                return Err(Error::invalid(name.clone(), format!("{name:?} {what} method={method:?}, which takes {takes}")));
+            }
+            if given.iter().filter(|(n, _)| n == name).count() > 1 {
+                return Err(Error::invalid(name.clone(), "given more than once"));
+            }
+        }
+        let mut values = Vec::with_capacity(specs.len());
+        for spec in specs {
+            let value = match given.iter().find(|(n, _)| n == spec.name) {
+                Some((_, v)) => spec.check(v)?,
+                None => spec.default.clone(),
+            };
+            values.push((spec.name, value));
+        }
+        Ok(Self { values })
+    }
+
+    fn get(&self, name: &str) -> Result<&OptionValue> {
+        self.values
+            .iter()
+            .find(|(n, _)| *n == name)
+            .map(|(_, v)| v)
+            .ok_or_else(|| Error::invalid(name.to_string(), "is not an option of this method (a method read an option it does not declare)"))
+    }
+
+    pub fn u32(&self, name: &str) -> Result<u32> {
+        match self.get(name)? {
+            OptionValue::Int(v) => u32::try_from(*v).map_err(|_| Error::invalid(name.to_string(), format!("does not fit 32 bits: {v}"))),
+            v => Err(Error::invalid(name.to_string(), format!("expected an integer, got {}", v.display()))),
+        }
+    }
+
+    pub fn f32(&self, name: &str) -> Result<f32> {
+        match self.get(name)? {
+            OptionValue::Float(v) => Ok(*v as f32),
+            OptionValue::Int(v) => Ok(*v as f32),
+            v => Err(Error::invalid(name.to_string(), format!("expected a float, got {}", v.display()))),
+        }
+    }
+
+    pub fn bool(&self, name: &str) -> Result<bool> {
+        match self.get(name)? {
+            OptionValue::Bool(v) => Ok(*v),
+            v => Err(Error::invalid(name.to_string(), format!("expected a bool, got {}", v.display()))),
+        }
+    }
+
+    pub fn str(&self, name: &str) -> Result<&str> {
+        match self.get(name)? {
+            OptionValue::Str(v) => Ok(v.as_ref()),
+            v => Err(Error::invalid(name.to_string(), format!("expected a string, got {}", v.display()))),
+        }
+    }
+
+    /// (name, value as shown in `frame.settings`), in declaration order.
+    pub fn rows(&self) -> Vec<(String, String)> {
+        self.values.iter().map(|(n, v)| (n.to_string(), v.display())).collect()
+    }
+}
+
+/// Options that several methods take, defined once so a name means the same everywhere.
+pub mod common {
+    use super::{OptionKind, OptionSpec, OptionValue};
+    use std::borrow::Cow;
+
+    const fn int(name: &'static str, min: i64, max: i64, default: i64, help: &'static str) -> OptionSpec {
+        OptionSpec { name, kind: OptionKind::Int { min, max, power_of_two: false }, default: OptionValue::Int(default), help, note: "" }
+    }
+    const fn choice(name: &'static str, choices: &'static [&'static str], help: &'static str) -> OptionSpec {
+        OptionSpec { name, kind: OptionKind::Choice(choices), default: OptionValue::Str(Cow::Borrowed(choices[0])), help, note: "" }
+    }
+
+    pub const SHADOW_SIZE: OptionSpec = int("shadow_size", 16, 8192, 1024, "side of each light's shadow map in texels");
+    pub const NUM_LIGHTS: OptionSpec = int("num_lights", 1, 1 << 20, 256, "virtual lights per light source");
+    /// The RSM side of the methods that build mip pyramids over it (a power of two).
+    pub const RSM_SIZE: OptionSpec = OptionSpec {
+        name: "rsm_size",
+        kind: OptionKind::Int { min: 32, max: 4096, power_of_two: true },
+        default: OptionValue::Int(256),
+        help: "side of each light's reflective shadow map in texels",
+        note: "",
+    };
+    pub const SAMPLING: OptionSpec = choice("sampling", &["stratified", "random"], "how RSM texels are drawn: stratified or independent random numbers");
+    pub const SEED: OptionSpec = int("seed", 0, u32::MAX as i64, 0, "seed of the random numbers (same seed, same image)");
+    pub const VPL_CLAMP: OptionSpec = OptionSpec {
+        name: "vpl_clamp",
+        kind: OptionKind::Float { min: 0.0, min_exclusive: false },
+        default: OptionValue::Float(0.0),
+        help: "lower bound of the VPL distance as a fraction of the scene's bounds diagonal (0 = unbiased)",
+        note: "",
+    };
+    pub const VISIBILITY: OptionSpec = OptionSpec {
+        name: "visibility",
+        kind: OptionKind::Choice(&["none"]),
+        default: OptionValue::Str(Cow::Borrowed("none")),
+        help: "visibility of virtual lights",
+        note: "only \"none\" is available in this build: virtual lights are unshadowed",
+    };
+    pub const CAPTURE_RSM: OptionSpec = OptionSpec {
+        name: "capture_rsm",
+        kind: OptionKind::Bool,
+        default: OptionValue::Bool(false),
+        help: "keep the first light's RSM for Frame.rsm(name)",
+        note: "",
+    };
+    pub const DIFFUSE: OptionSpec = choice(
+        "diffuse",
+        &["papers", "accurate", "sg_product"],
+        "diffuse SG shading: the papers' clamped form, the unclamped SG-cosine product, or an SG product",
+    );
+}

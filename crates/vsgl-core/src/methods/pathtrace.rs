@@ -1,0 +1,64 @@
+//! `method="pathtrace"`: the one-bounce ground truth with exact visibility — shadow rays for
+//! direct light, `spp` BRDF-sampled bounces per pixel through the scene's BVH, progressive, with
+//! the standard error of the mean as the `stderr` AOV.
+
+use super::{options::common, DirectLight, FrameContext, Method, MethodInfo, OptionKind, OptionSpec, OptionValue, Options};
+use crate::error::Result;
+use crate::gpu::Gpu;
+use crate::passes::pathtrace::{PathTraceInputs, PathTracePass};
+
+pub const INFO: MethodInfo = MethodInfo {
+    name: "pathtrace",
+    summary: "one-bounce ground truth by path tracing (exact visibility, progressive, stderr AOV)",
+    options: OPTIONS,
+    direct_light: DirectLight::ByMethod,
+    indirect: true,
+    extra_aovs: &["stderr"],
+    configure: |o| Ok(Box::new(PathTrace { options: o.clone(), spp: o.u32("spp")?, seed: o.u32("seed")? })),
+};
+
+const OPTIONS: &[OptionSpec] = &[
+    OptionSpec {
+        name: "spp",
+        kind: OptionKind::Int { min: 1, max: 65536, power_of_two: false },
+        default: OptionValue::Int(64),
+        help: "bounce samples per pixel",
+        note: "",
+    },
+    common::SEED,
+];
+
+struct PathTrace {
+    options: Options,
+    spp: u32,
+    seed: u32,
+}
+
+impl Method for PathTrace {
+    fn record(&self, ctx: &mut FrameContext<'_>) -> Result<()> {
+        let pass = ctx.passes.get::<PathTracePass>()?;
+        let input = PathTraceInputs {
+            scene: ctx.scene,
+            origin: ctx.origin,
+            frame: ctx.frame_uniforms,
+            lights: ctx.light_buffer,
+            gscene: ctx.gpu_scene,
+            gbuffer: ctx.gbuffer,
+            ids: &ctx.visibility.ids,
+            features: ctx.features,
+        };
+        let gpu = ctx.gpu;
+        let new_encoder = || FrameContext::new_encoder(gpu);
+        let out = pass.record(gpu, &mut ctx.enc, &new_encoder, ctx.timer, &input, ctx.indirect, ctx.direct, self.spp, self.seed, ctx.size)?;
+        if !out.bvh_built {
+            ctx.skip("bvh_build", "the BVH built for this scene upload is reused");
+        }
+        ctx.stderr = Some(out.stderr);
+        ctx.skip("rsm", "method=\"pathtrace\" traces rays instead of virtual lights");
+        Ok(())
+    }
+
+    fn settings(&self, _gpu: &Gpu) -> Result<Vec<(String, String)>> {
+        Ok(self.options.rows())
+    }
+}

@@ -1,0 +1,89 @@
+//! `method="reference"`: every texel of a high-resolution RSM as a VPL, no visibility (the
+//! papers' own reference), in batches so no submission runs long enough to trip a watchdog.
+
+use super::rsm_lights::{check_rsm_size, for_each_light, RsmSettings};
+use super::{options::common, DirectLight, FrameContext, Method, MethodInfo, OptionSpec, OptionValue, Options};
+use crate::error::Result;
+use crate::gpu::{storage_buffer, Gpu};
+use crate::passes::vpl_sample::{VplSamplePass, VPL_BYTES};
+use crate::passes::vpl_shading::VplShadingPass;
+
+pub const INFO: MethodInfo = MethodInfo {
+    name: "reference",
+    summary: "every texel of a high-resolution reflective shadow map as a VPL, unshadowed (the papers' reference)",
+    options: OPTIONS,
+    direct_light: DirectLight::ShadowMapped,
+    indirect: true,
+    extra_aovs: &[],
+    configure: |o| Ok(Box::new(Reference::new(o)?)),
+};
+
+const OPTIONS: &[OptionSpec] = &[
+    common::SHADOW_SIZE,
+    // A larger default than the sampling methods: the reference must resolve what they miss.
+    OptionSpec { default: OptionValue::Int(1024), ..common::RSM_SIZE },
+    common::VPL_CLAMP,
+    common::VISIBILITY,
+    common::CAPTURE_RSM,
+];
+
+/// Most VPL batches the reference splits its work into (each is one timed pass).
+const MAX_BATCHES: u64 = 1024;
+/// Pixel·VPL evaluations per submission: small enough that no batch runs long enough to trip
+/// a GPU watchdog (~10 ms on an H100), unless that would exceed the batch cap.
+const BATCH_EVALUATIONS: u64 = 1 << 31;
+
+struct Reference {
+    options: Options,
+    rsm_size: u32,
+    vpl_clamp: f32,
+    capture_rsm: bool,
+}
+
+impl Reference {
+    fn new(o: &Options) -> Result<Self> {
+        Ok(Self { options: o.clone(), rsm_size: o.u32("rsm_size")?, vpl_clamp: o.f32("vpl_clamp")?, capture_rsm: o.bool("capture_rsm")? })
+    }
+}
+
+impl Method for Reference {
+    fn check(&self, gpu: &Gpu) -> Result<()> {
+        check_rsm_size(gpu, self.rsm_size)
+    }
+
+    fn record(&self, ctx: &mut FrameContext<'_>) -> Result<()> {
+        let (sample, shading) = (ctx.passes.get::<VplSamplePass>()?, ctx.passes.get::<VplShadingPass>()?);
+        let n = self.rsm_size;
+        let texels = n as u64 * n as u64;
+        let capacity = texels.min(1 << 20);
+        let vpls = storage_buffer(ctx.gpu, "vpl_buffer", capacity * VPL_BYTES);
+        let min_distance2 = (self.vpl_clamp as f64 * ctx.extent).powi(2) as f32;
+        let rsm = RsmSettings { size: n, sampling: false, capture: self.capture_rsm };
+        let lit = for_each_light(ctx, &rsm, |ctx, light| {
+            let (gpu, feat) = (ctx.gpu, ctx.features);
+            let pixels = ctx.size.0 as u64 * ctx.size.1 as u64;
+            let per_batch = (BATCH_EVALUATIONS / pixels.max(1)).max(texels.div_ceil(MAX_BATCHES)).clamp(64, capacity);
+            let mut first = 0u64;
+            while first < texels {
+                let count = per_batch.min(texels - first);
+                sample.record_every_texel(gpu, &mut ctx.enc, ctx.timer, light.light.as_entire_binding(), light.rsm, first as u32, count as u32, &vpls, feat);
+                shading.record(gpu, &mut ctx.enc, ctx.timer, ctx.frame_uniforms, &vpls, count as u32, min_distance2, ctx.gbuffer, ctx.indirect, feat, ctx.size);
+                first += count;
+                if first < texels && count * pixels >= BATCH_EVALUATIONS / 2 {
+                    // Submit this batch on its own so no submission runs for long.
+                    ctx.submit_so_far();
+                    gpu.wait("reference batch")?;
+                }
+            }
+            Ok(())
+        })?;
+        if lit {
+            ctx.skip("pdf_mips", "the reference uses every RSM texel, no importance sampling");
+        }
+        Ok(())
+    }
+
+    fn settings(&self, _gpu: &Gpu) -> Result<Vec<(String, String)>> {
+        Ok(self.options.rows())
+    }
+}

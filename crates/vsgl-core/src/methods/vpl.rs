@@ -1,0 +1,87 @@
+//! `method="vpl"`: N virtual point lights per light, importance-sampled from its RSM by
+//! hierarchical sample warping over the weight pyramid (the papers' baseline; Dachsbacher and
+//! Stamminger 2005 for the RSM).
+
+use super::rsm_lights::{check_rsm_size, for_each_light, RsmSettings};
+use super::{options::common, DirectLight, FrameContext, Method, MethodInfo, OptionSpec, Options};
+use crate::error::Result;
+use crate::gpu::{storage_buffer, Gpu};
+use crate::passes::pdf_mips::PdfMipsPass;
+use crate::passes::vpl_sample::{Sampling, VplSamplePass, VPL_BYTES};
+use crate::passes::vpl_shading::VplShadingPass;
+
+pub const INFO: MethodInfo = MethodInfo {
+    name: "vpl",
+    summary: "num_lights virtual point lights per light, importance-sampled from its reflective shadow map (the papers' baseline)",
+    options: OPTIONS,
+    direct_light: DirectLight::ShadowMapped,
+    indirect: true,
+    extra_aovs: &[],
+    configure: |o| Ok(Box::new(Vpl::new(o)?)),
+};
+
+const OPTIONS: &[OptionSpec] = &[
+    common::SHADOW_SIZE,
+    common::NUM_LIGHTS,
+    common::RSM_SIZE,
+    common::SAMPLING,
+    common::SEED,
+    common::VPL_CLAMP,
+    common::VISIBILITY,
+    common::CAPTURE_RSM,
+];
+
+struct Vpl {
+    options: Options,
+    num_lights: u32,
+    rsm_size: u32,
+    sampling: Sampling,
+    seed: u32,
+    vpl_clamp: f32,
+    capture_rsm: bool,
+}
+
+/// `sampling=` as the sampling pass takes it.
+pub(super) fn sampling(o: &Options) -> Result<Sampling> {
+    Ok(if o.str("sampling")? == "random" { Sampling::Random } else { Sampling::Stratified })
+}
+
+impl Vpl {
+    fn new(o: &Options) -> Result<Self> {
+        Ok(Self {
+            options: o.clone(),
+            num_lights: o.u32("num_lights")?,
+            rsm_size: o.u32("rsm_size")?,
+            sampling: sampling(o)?,
+            seed: o.u32("seed")?,
+            vpl_clamp: o.f32("vpl_clamp")?,
+            capture_rsm: o.bool("capture_rsm")?,
+        })
+    }
+}
+
+impl Method for Vpl {
+    fn check(&self, gpu: &Gpu) -> Result<()> {
+        check_rsm_size(gpu, self.rsm_size)
+    }
+
+    fn record(&self, ctx: &mut FrameContext<'_>) -> Result<()> {
+        let (pdf_mips, sample, shading) = (ctx.passes.get::<PdfMipsPass>()?, ctx.passes.get::<VplSamplePass>()?, ctx.passes.get::<VplShadingPass>()?);
+        let vpls = storage_buffer(ctx.gpu, "vpl_buffer", self.num_lights as u64 * VPL_BYTES);
+        // Distances below the clamp count as the clamp (0: unbiased).
+        let min_distance2 = (self.vpl_clamp as f64 * ctx.extent).powi(2) as f32;
+        let rsm = RsmSettings { size: self.rsm_size, sampling: true, capture: self.capture_rsm };
+        for_each_light(ctx, &rsm, |ctx, light| {
+            let (gpu, feat) = (ctx.gpu, ctx.features);
+            pdf_mips.record(gpu, &mut ctx.enc, ctx.timer, light.rsm);
+            sample.record_importance(gpu, &mut ctx.enc, ctx.timer, light.light.as_entire_binding(), light.rsm, self.num_lights, self.sampling, self.seed, &vpls, feat);
+            shading.record(gpu, &mut ctx.enc, ctx.timer, ctx.frame_uniforms, &vpls, self.num_lights, min_distance2, ctx.gbuffer, ctx.indirect, feat, ctx.size);
+            Ok(())
+        })?;
+        Ok(())
+    }
+
+    fn settings(&self, _gpu: &Gpu) -> Result<Vec<(String, String)>> {
+        Ok(self.options.rows())
+    }
+}

@@ -1,0 +1,192 @@
+//! `method="vsgl"`: N virtual spherical Gaussian lights per light by filtered importance
+//! sampling of the mipmapped RSM (Tokuyoshi 2015 with the 2016 integral kernel), shaded with
+//! interleaving and a geometry-aware filter.
+
+use super::rsm_lights::{check_rsm_size, for_each_light, RsmSettings};
+use super::{options::common, DirectLight, FrameContext, Method, MethodInfo, OptionKind, OptionSpec, OptionValue, Options};
+use crate::error::{Error, Result};
+use crate::frame::{IndirectTargets, MomentChains};
+use crate::gpu::{storage_buffer, Gpu};
+use crate::passes::denoise::DenoisePass;
+use crate::passes::moment_mips::MomentMipsPass;
+use crate::passes::pdf_mips::PdfMipsPass;
+use crate::passes::vpl_sample::Sampling;
+use crate::passes::vsgl_gen::{GenSettings, Kernel, VsglGenPass, VSGL_BYTES};
+use crate::passes::vsgl_moments::VsglMomentsPass;
+use crate::passes::vsgl_shading::{DiffuseMode, VsglShadingPass};
+use std::borrow::Cow;
+
+pub const INFO: MethodInfo = MethodInfo {
+    name: "vsgl",
+    summary: "num_lights VSGLs per light by filtered importance sampling of the mipmapped RSM (2015/2016 papers), interleaved and denoised",
+    options: OPTIONS,
+    direct_light: DirectLight::ShadowMapped,
+    indirect: true,
+    extra_aovs: &[],
+    configure: |o| Ok(Box::new(Vsgl::new(o)?)),
+};
+
+const OPTIONS: &[OptionSpec] = &[
+    common::SHADOW_SIZE,
+    common::NUM_LIGHTS,
+    common::RSM_SIZE,
+    common::SAMPLING,
+    common::SEED,
+    OptionSpec {
+        name: "kernel",
+        kind: OptionKind::Choice(&["integral", "density"]),
+        default: OptionValue::Str(Cow::Borrowed("integral")),
+        help: "kernel size rule: \"integral\" (2016, bisection to mass K/N) or \"density\" (2015)",
+        note: "",
+    },
+    OptionSpec {
+        name: "K",
+        kind: OptionKind::Float { min: 0.0, min_exclusive: true },
+        default: OptionValue::Float(1.0),
+        help: "probability mass K/N of each kernel (2016 paper); larger K is smoother and more biased",
+        note: "",
+    },
+    OptionSpec {
+        name: "bisection_steps",
+        kind: OptionKind::Int { min: 1, max: 32, power_of_two: false },
+        default: OptionValue::Int(12),
+        help: "bisection iterations of the integral kernel",
+        note: "",
+    },
+    OptionSpec {
+        name: "interleave",
+        kind: OptionKind::Int { min: 1, max: 16, power_of_two: false },
+        default: OptionValue::Int(8),
+        help: "interleaved sampling tile side k: each pixel evaluates num_lights/k² VSGLs",
+        note: "",
+    },
+    OptionSpec {
+        name: "denoise",
+        kind: OptionKind::Bool,
+        default: OptionValue::Bool(true),
+        help: "run the geometry-aware filter after interleaved shading",
+        note: "",
+    },
+    common::DIFFUSE,
+    common::VISIBILITY,
+    common::CAPTURE_RSM,
+];
+
+struct Vsgl {
+    options: Options,
+    num_lights: u32,
+    rsm_size: u32,
+    sampling: Sampling,
+    seed: u32,
+    kernel: Kernel,
+    k: f32,
+    bisection_steps: u32,
+    interleave: u32,
+    denoise: bool,
+    diffuse: DiffuseMode,
+    capture_rsm: bool,
+}
+
+/// `diffuse=` as the shading pass takes it.
+pub(super) fn diffuse_mode(o: &Options) -> Result<DiffuseMode> {
+    Ok(match o.str("diffuse")? {
+        "accurate" => DiffuseMode::Accurate,
+        "sg_product" => DiffuseMode::SgProduct,
+        _ => DiffuseMode::Papers,
+    })
+}
+
+impl Vsgl {
+    fn new(o: &Options) -> Result<Self> {
+        Ok(Self {
+            options: o.clone(),
+            num_lights: o.u32("num_lights")?,
+            rsm_size: o.u32("rsm_size")?,
+            sampling: super::vpl::sampling(o)?,
+            seed: o.u32("seed")?,
+            kernel: if o.str("kernel")? == "density" { Kernel::Density } else { Kernel::Integral },
+            k: o.f32("K")?,
+            bisection_steps: o.u32("bisection_steps")?,
+            interleave: o.u32("interleave")?,
+            denoise: o.bool("denoise")?,
+            diffuse: diffuse_mode(o)?,
+            capture_rsm: o.bool("capture_rsm")?,
+        })
+    }
+
+    /// Interleaved shading goes into a noisy target that the filter resolves.
+    fn filtered(&self) -> bool {
+        self.interleave > 1 && self.denoise
+    }
+}
+
+impl Method for Vsgl {
+    fn check(&self, gpu: &Gpu) -> Result<()> {
+        check_rsm_size(gpu, self.rsm_size)?;
+        let limit = gpu.limits.max_storage_buffer_binding_size as u64;
+        let bytes = MomentChains::bytes(self.rsm_size);
+        if bytes > limit {
+            let n = self.rsm_size;
+            return Err(Error::invalid("rsm_size", format!("the VSGL moment mips of a {n}² RSM ({bytes} bytes) exceed this adapter's storage binding limit of {limit} bytes")));
+        }
+        Ok(())
+    }
+
+    fn record(&self, ctx: &mut FrameContext<'_>) -> Result<()> {
+        let passes = ctx.passes;
+        let (pdf_mips, moments, moment_mips) = (passes.get::<PdfMipsPass>()?, passes.get::<VsglMomentsPass>()?, passes.get::<MomentMipsPass>()?);
+        let (gen, shading) = (passes.get::<VsglGenPass>()?, passes.get::<VsglShadingPass>()?);
+        let filter = self.filtered();
+        let (w, h) = ctx.size;
+        let pixel_bytes = w as u64 * h as u64 * 16;
+        // Without specular materials the specular targets are never written: a 16-byte
+        // placeholder keeps the bind group layouts of the full variants.
+        let specular_bytes = if ctx.features.specular { pixel_bytes } else { 16 };
+        let noisy = IndirectTargets {
+            diffuse: storage_buffer(ctx.gpu, "indirect_noisy_diffuse_buffer", if filter { pixel_bytes } else { 16 }),
+            specular: storage_buffer(ctx.gpu, "indirect_noisy_specular_buffer", if filter { specular_bytes } else { 16 }),
+        };
+        let mut chains: Option<MomentChains> = None;
+        let rsm = RsmSettings { size: self.rsm_size, sampling: true, capture: self.capture_rsm };
+        let lit = for_each_light(ctx, &rsm, |ctx, light| {
+            let (gpu, feat) = (ctx.gpu, ctx.features);
+            let chains = chains.get_or_insert_with(|| MomentChains::new(gpu, self.rsm_size));
+            pdf_mips.record(gpu, &mut ctx.enc, ctx.timer, light.rsm);
+            moments.record(gpu, &mut ctx.enc, ctx.timer, light.rsm, chains, feat);
+            moment_mips.record(gpu, &mut ctx.enc, ctx.timer, self.rsm_size, chains);
+            let buf = storage_buffer(gpu, "vsgl_buffer", self.num_lights as u64 * VSGL_BYTES);
+            let settings = GenSettings {
+                count: self.num_lights,
+                stratified: self.sampling == Sampling::Stratified,
+                seed: self.seed,
+                kernel: self.kernel,
+                k: self.k,
+                bisection_steps: self.bisection_steps,
+                light_offset: light.raw.position,
+            };
+            gen.record(gpu, &mut ctx.enc, ctx.timer, light.rsm, chains, &settings, &buf);
+            let target = if filter { &noisy } else { ctx.indirect };
+            shading.record(gpu, &mut ctx.enc, ctx.timer, ctx.frame_uniforms, &buf, self.num_lights, self.interleave, self.diffuse, ctx.gbuffer, target, feat, ctx.size);
+            if light.index == 0 {
+                ctx.vsgls = Some(buf);
+            }
+            Ok(())
+        })?;
+        if !lit {
+            return Ok(());
+        }
+        if filter {
+            let denoise = passes.get::<DenoisePass>()?;
+            denoise.record(ctx.gpu, &mut ctx.enc, ctx.timer, ctx.frame_uniforms, self.interleave, ctx.gbuffer, &noisy, ctx.indirect, ctx.features, ctx.size);
+        } else if self.interleave == 1 {
+            ctx.skip("denoise", "interleave=1: every pixel evaluates every VSGL");
+        } else {
+            ctx.skip("denoise", "denoise=False");
+        }
+        Ok(())
+    }
+
+    fn settings(&self, _gpu: &Gpu) -> Result<Vec<(String, String)>> {
+        Ok(self.options.rows())
+    }
+}

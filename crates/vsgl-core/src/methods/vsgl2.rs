@@ -1,0 +1,100 @@
+//! `method="vsgl2"`: two VSGLs per light (one diffuse, one specular) from a parallel sum over
+//! the whole RSM (Tokuyoshi 2015 poster): no pyramid, no sampling, no interleaving.
+
+use super::rsm_lights::{check_rsm_size, for_each_light, RsmSettings};
+use super::{options::common, DirectLight, FrameContext, Method, MethodInfo, OptionKind, OptionSpec, OptionValue, Options};
+use crate::error::Result;
+use crate::gpu::{storage_buffer, Gpu};
+use crate::passes::vsgl2_reduce::{Vsgl2Reduce, Vsgl2Reduction, VSGL2_COUNT};
+use crate::passes::vsgl_gen::VSGL_BYTES;
+use crate::passes::vsgl_shading::{DiffuseMode, VsglShadingPass};
+use std::borrow::Cow;
+
+pub const INFO: MethodInfo = MethodInfo {
+    name: "vsgl2",
+    summary: "two VSGLs per light (diffuse + specular) by a parallel sum over the whole RSM (2015 poster)",
+    options: OPTIONS,
+    direct_light: DirectLight::ShadowMapped,
+    indirect: true,
+    extra_aovs: &[],
+    configure: |o| Ok(Box::new(Vsgl2::new(o)?)),
+};
+
+const OPTIONS: &[OptionSpec] = &[
+    common::SHADOW_SIZE,
+    // The parallel sum tiles any side; only the mip-based methods need a power of two.
+    OptionSpec { kind: OptionKind::Int { min: 32, max: 4096, power_of_two: false }, ..common::RSM_SIZE },
+    common::DIFFUSE,
+    OptionSpec {
+        name: "vsgl2_reduction",
+        kind: OptionKind::Choice(&["auto", "subgroup", "shared_memory"]),
+        default: OptionValue::Str(Cow::Borrowed("auto")),
+        help: "how workgroups add: subgroup arithmetic where the adapter has it (auto), or a shared-memory tree",
+        note: "",
+    },
+    common::VISIBILITY,
+    common::CAPTURE_RSM,
+];
+
+struct Vsgl2 {
+    options: Options,
+    rsm_size: u32,
+    diffuse: DiffuseMode,
+    reduction: Vsgl2Reduction,
+    capture_rsm: bool,
+}
+
+impl Vsgl2 {
+    fn new(o: &Options) -> Result<Self> {
+        let reduction = match o.str("vsgl2_reduction")? {
+            "subgroup" => Vsgl2Reduction::Subgroup,
+            "shared_memory" => Vsgl2Reduction::SharedMemory,
+            _ => Vsgl2Reduction::Auto,
+        };
+        Ok(Self { options: o.clone(), rsm_size: o.u32("rsm_size")?, diffuse: super::vsgl::diffuse_mode(o)?, reduction, capture_rsm: o.bool("capture_rsm")? })
+    }
+}
+
+impl Method for Vsgl2 {
+    fn check(&self, gpu: &Gpu) -> Result<()> {
+        Vsgl2Reduce::resolve(gpu, self.reduction)?;
+        check_rsm_size(gpu, self.rsm_size)
+    }
+
+    fn record(&self, ctx: &mut FrameContext<'_>) -> Result<()> {
+        let (reduce, shading) = (ctx.passes.get::<Vsgl2Reduce>()?, ctx.passes.get::<VsglShadingPass>()?);
+        let reduction = Vsgl2Reduce::resolve(ctx.gpu, self.reduction)?;
+        let rsm = RsmSettings { size: self.rsm_size, sampling: false, capture: self.capture_rsm };
+        let lit = for_each_light(ctx, &rsm, |ctx, light| {
+            let (gpu, feat) = (ctx.gpu, ctx.features);
+            let buf = storage_buffer(gpu, "vsgl2_buffer", VSGL2_COUNT as u64 * VSGL_BYTES);
+            reduce.record(gpu, &mut ctx.enc, ctx.timer, light.rsm, light.raw.position, &buf, feat, reduction)?;
+            shading.record(gpu, &mut ctx.enc, ctx.timer, ctx.frame_uniforms, &buf, VSGL2_COUNT, 1, self.diffuse, ctx.gbuffer, ctx.indirect, feat, ctx.size);
+            if light.index == 0 {
+                ctx.vsgls = Some(buf);
+            }
+            Ok(())
+        })?;
+        if lit {
+            let why = "method=\"vsgl2\": two VSGLs from a parallel sum over the whole RSM";
+            ctx.skip("pdf_mips", format!("{why}, no importance sampling"));
+            ctx.skip("moment_mips", format!("{why}, no mipmapped moments"));
+            ctx.skip("vsgl_sampling", format!("{why}, no kernels to place"));
+            ctx.skip("denoise", format!("{why}: every pixel evaluates both VSGLs (no interleaving)"));
+        }
+        Ok(())
+    }
+
+    fn settings(&self, gpu: &Gpu) -> Result<Vec<(String, String)>> {
+        let resolved = Vsgl2Reduce::resolve(gpu, self.reduction)?;
+        let mut rows = self.options.rows();
+        for (name, value) in rows.iter_mut() {
+            if name == "vsgl2_reduction" {
+                // What ran, not what was asked ("auto" resolves per adapter).
+                *value = resolved.name().into();
+            }
+        }
+        rows.push(("vsgl2_temporary_bytes".into(), Vsgl2Reduce::temporary_bytes(self.rsm_size).to_string()));
+        Ok(rows)
+    }
+}

@@ -1,0 +1,282 @@
+//! The renderer and the frame script: upload the scene, then visibility → shadow maps →
+//! material → direct light → the method's own passes → readback. The script names no method:
+//! what differs between methods is in `crate::methods`, what a frame reads back in
+//! [`readback`], its settings in [`options`]. Layers and data flow: docs/architecture.md.
+
+mod frame;
+mod options;
+mod readback;
+
+pub use frame::Frame;
+pub use options::{RenderOptions, AOV_NAMES};
+
+use crate::error::{Error, Result};
+use crate::frame::uniforms::{frame_uniforms, light_raw};
+use crate::frame::{GBuffer, IndirectTargets, VisibilityTargets};
+use crate::gpu::{frame_log::log_frame, storage_buffer, uniform_buffer, Gpu, PassCache, PassTimer};
+use crate::methods::{options::common, DirectLight, FrameContext, Method, MethodInfo, OptionValue, Options};
+use crate::passes::{direct::DirectPass, material::MaterialPass, shadow_map::ShadowMapPass, visibility::VisibilityPass};
+use crate::plan::{Plan, ShaderFeatures};
+use crate::scene::{Camera, Scene};
+use crate::upload::GpuScene;
+use readback::{read_aovs, AovSources};
+use std::sync::{Arc, Mutex};
+use std::time::Instant;
+use wgpu::util::DeviceExt;
+
+/// Query pairs one frame may time: the reference's batches are the most numerous.
+const TIMER_CAPACITY: u32 = 2048;
+
+pub struct Renderer {
+    pub gpu: Arc<Gpu>,
+    pub width: u32,
+    pub height: u32,
+    /// Every pass a frame has needed so far, created on first use.
+    passes: PassCache,
+    /// The last scene uploaded and what it was uploaded from: reused while the key matches.
+    scene_cache: Mutex<Option<(SceneUploadKey, Arc<GpuScene>)>>,
+}
+
+/// What [`GpuScene::upload`] reads: the scene instance, its geometry version, and the frame
+/// origin (positions are uploaded relative to the camera, so a moved camera re-uploads).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+struct SceneUploadKey {
+    scene: u64,
+    geometry_version: u64,
+    origin_bits: [u64; 3],
+}
+
+impl SceneUploadKey {
+    fn new(scene: &Scene, origin: glam::DVec3) -> Self {
+        Self { scene: scene.id.get(), geometry_version: scene.geometry_version, origin_bits: origin.to_array().map(f64::to_bits) }
+    }
+}
+
+impl Renderer {
+    pub fn new(gpu: Arc<Gpu>, width: u32, height: u32) -> Result<Self> {
+        let max = gpu.limits.max_texture_dimension_2d;
+        for (name, v) in [("width", width), ("height", height)] {
+            if v == 0 || v > max {
+                return Err(Error::invalid(name, format!("must be in 1..={max} on this adapter, got {v}")));
+            }
+        }
+        let passes = PassCache::new(gpu.clone());
+        // The passes of every frame, so a broken install fails here rather than at the first
+        // render; the methods' passes are created when a frame first needs them.
+        gpu.scoped("pipeline creation", || {
+            passes.get::<VisibilityPass>()?;
+            passes.get::<ShadowMapPass>()?;
+            passes.get::<MaterialPass>()?;
+            passes.get::<DirectPass>()?;
+            Ok(())
+        })?;
+        Ok(Self { gpu, width, height, passes, scene_cache: Mutex::new(None) })
+    }
+
+    pub fn render(&self, scene: &Scene, camera: Option<&Camera>, opts: &RenderOptions) -> Result<Frame> {
+        let (info, options) = opts.resolve()?;
+        let method = (info.configure)(&options)?;
+        method.check(&self.gpu)?;
+        let camera = match camera.or(scene.cameras.first()) {
+            Some(c) => *c,
+            None => default_camera(scene)?,
+        };
+        let job = FrameJob { scene, camera: &camera, opts, info, options: &options, method: &*method };
+        let (frame, log) = log_frame(|| self.gpu.scoped("render", || self.render_inner(&job)));
+        let (frame, features) = frame?;
+        // What ran is what the passes logged as they began, with their plan variants named.
+        let passes = log.passes.iter().map(|p| features.pass_name(p)).collect();
+        Ok(Frame { memory_bytes: log.allocations, variants: log.variants, passes, ..frame })
+    }
+
+    /// The scene's GPU copy for a frame at `origin`: the cached one when nothing it was made
+    /// from has changed (then `true`), else a fresh upload that replaces it. One scene is
+    /// kept, so alternating between two scenes re-uploads each time.
+    fn uploaded_scene(&self, scene: &Scene, origin: glam::DVec3) -> Result<(Arc<GpuScene>, bool)> {
+        let key = SceneUploadKey::new(scene, origin);
+        if let Some((cached_key, gscene)) = self.scene_cache.lock().unwrap_or_else(|e| e.into_inner()).as_ref() {
+            if *cached_key == key {
+                return Ok((gscene.clone(), true));
+            }
+        }
+        let gscene = Arc::new(GpuScene::upload(&self.gpu, scene, origin)?);
+        *self.scene_cache.lock().unwrap_or_else(|e| e.into_inner()) = Some((key, gscene.clone()));
+        Ok((gscene, false))
+    }
+
+    /// Drops the cached scene upload (its GPU memory is freed once no frame uses it).
+    pub fn clear_scene_cache(&self) {
+        *self.scene_cache.lock().unwrap_or_else(|e| e.into_inner()) = None;
+    }
+
+    /// The frame script. Returns the frame without its log-derived fields, and the plan's
+    /// shader features (to name the variants of the passes that ran).
+    fn render_inner(&self, job: &FrameJob<'_>) -> Result<(Frame, ShaderFeatures)> {
+        let (gpu, scene, camera, info) = (&*self.gpu, job.scene, job.camera, job.info);
+        let (w, h) = (self.width, self.height);
+        let wall = Instant::now();
+        let plan = Plan::new(scene, job.opts.plan == "full");
+        let feat = plan.features;
+        let mut skipped: Vec<(String, String)> = plan.skipped.clone();
+
+        let origin = camera.eye;
+        let (gscene, scene_reused) = self.uploaded_scene(scene, origin)?;
+        let extent = gscene.extent;
+        // Methods without shadow maps still fill the lights' shadow fields (with the default).
+        let shadow_size = if info.takes("shadow_size") { job.options.u32("shadow_size")? } else { default_shadow_size() };
+        let lights = scene.lights.iter().enumerate().map(|(i, l)| light_raw(l, i, origin, extent, shadow_size)).collect::<Result<Vec<_>>>()?;
+        let uniforms = frame_uniforms(camera, w, h, lights.len() as u32, gscene.texture_layer_size, extent, shadow_size);
+        let frame_buf = uniform_buffer(gpu, "frame_uniform_buffer", &uniforms);
+        let light_bytes: Vec<u8> = if lights.is_empty() { vec![0; 128] } else { bytemuck::cast_slice(&lights).to_vec() };
+        let light_buf = gpu.device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
+            label: Some("spot_light_buffer"),
+            contents: &light_bytes,
+            usage: wgpu::BufferUsages::STORAGE,
+        });
+
+        let mut timer = PassTimer::new(gpu, TIMER_CAPACITY);
+        let mut enc = FrameContext::new_encoder(gpu);
+        let vis = VisibilityTargets::new(gpu, w, h);
+        self.passes.get::<VisibilityPass>()?.record(gpu, &mut enc, &mut timer, "visibility", &frame_buf, &gscene.raster_vertices, gscene.raster_vertex_count, &vis);
+
+        let shadow_mapped = info.direct_light == DirectLight::ShadowMapped;
+        let shadow_needed = !lights.is_empty() && shadow_mapped;
+        // Unneeded: the smallest placeholder layer, so the binding exists.
+        let shadow_tex = ShadowMapPass::target(gpu, if shadow_needed { shadow_size } else { 16 }, lights.len() as u32);
+        let shadow_map = self.passes.get::<ShadowMapPass>()?;
+        if shadow_needed {
+            let vps: Vec<_> = lights.iter().map(|l| l.view_proj).collect();
+            shadow_map.record(gpu, &mut enc, &mut timer, &shadow_tex, &vps, &gscene.raster_vertices, gscene.raster_vertex_count);
+        } else {
+            // Clear the one placeholder layer so the binding is defined.
+            shadow_map.record(gpu, &mut enc, &mut PassTimer::new_disabled(), &shadow_tex, &[], &gscene.raster_vertices, 0);
+            let why = if lights.is_empty() { "the scene has no spot light".to_string() } else { format!("method={:?} traces shadow rays", info.name) };
+            skipped.push(("shadow_map".into(), why));
+        }
+
+        let gbuffer = GBuffer::new(gpu, w, h);
+        self.passes.get::<MaterialPass>()?.record(gpu, &mut enc, &mut timer, "material", &frame_buf, &vis.ids, &gscene, feat, &gbuffer, (w, h));
+
+        let direct_out = storage_buffer(gpu, "direct_radiance_buffer", w as u64 * h as u64 * 16);
+        if shadow_mapped {
+            let shadow_view = shadow_tex.create_view(&wgpu::TextureViewDescriptor {
+                label: Some("shadow_map_array_view"),
+                dimension: Some(wgpu::TextureViewDimension::D2Array),
+                ..Default::default()
+            });
+            self.passes.get::<DirectPass>()?.record(gpu, &mut enc, &mut timer, &frame_buf, &light_buf, &shadow_view, &gbuffer, &direct_out, feat, (w, h));
+        }
+
+        // Indirect targets; without specular materials the specular one is never bound for
+        // writing: a 16-byte placeholder keeps the bind group layouts of the full variants.
+        let pixel_bytes = if info.indirect { w as u64 * h as u64 * 16 } else { 16 };
+        let indirect = IndirectTargets {
+            diffuse: storage_buffer(gpu, "indirect_diffuse_buffer", pixel_bytes),
+            specular: storage_buffer(gpu, "indirect_specular_buffer", if feat.specular { pixel_bytes } else { 16 }),
+        };
+        let mut ctx = FrameContext {
+            gpu,
+            passes: &self.passes,
+            enc,
+            timer: &mut timer,
+            scene,
+            gpu_scene: &gscene,
+            origin,
+            extent,
+            features: feat,
+            size: (w, h),
+            frame_uniforms: &frame_buf,
+            lights: &lights,
+            light_buffer: &light_buf,
+            visibility: &vis,
+            gbuffer: &gbuffer,
+            direct: &direct_out,
+            indirect: &indirect,
+            skipped: Vec::new(),
+            vsgls: None,
+            captured_rsm: None,
+            stderr: None,
+            settings: Vec::new(),
+        };
+        job.method.record(&mut ctx)?;
+        let FrameContext { mut enc, skipped: method_skipped, vsgls, captured_rsm, stderr, settings: method_settings, .. } = ctx;
+        skipped.extend(method_skipped);
+
+        timer.resolve(&mut enc);
+        gpu.queue.submit([enc.finish()]);
+        let sources = AovSources { direct: &direct_out, indirect: &indirect, gbuffer: &gbuffer, stderr: stderr.as_ref(), specular: feat.specular };
+        let aovs = read_aovs(gpu, job.opts, info, &sources, w as usize * h as usize)?;
+        let vsgls = match &vsgls {
+            Some(b) => Some(bytemuck::cast_slice::<u8, f32>(&gpu.read_buffers(&[b])?[0]).to_vec()),
+            None => None,
+        };
+        let wall_ms = wall.elapsed().as_secs_f64() * 1e3;
+        let mut timings = timer.read(gpu)?;
+        let clock = if timings.is_empty() {
+            timings.push(("total".into(), wall_ms));
+            "cpu-wall"
+        } else {
+            let total: f64 = timings.iter().map(|(_, t)| t).sum();
+            timings.push(("total".into(), total));
+            "gpu-timestamp"
+        };
+        let mut settings = vec![
+            ("method".into(), info.name.to_string()),
+            ("width".into(), w.to_string()),
+            ("height".into(), h.to_string()),
+            ("plan".into(), job.opts.plan.clone()),
+            ("adapter".into(), gpu.adapter.name.clone()),
+            ("scene_upload".into(), if scene_reused { "reused" } else { "uploaded" }.into()),
+        ];
+        settings.extend(job.method.settings(gpu)?);
+        settings.extend(method_settings);
+        let frame = Frame {
+            width: w,
+            height: h,
+            aovs,
+            timings_ms: timings,
+            timings_clock: clock.into(),
+            passes: Vec::new(),
+            skipped,
+            settings,
+            rsm: captured_rsm,
+            vsgls,
+            memory_bytes: Vec::new(),
+            variants: Vec::new(),
+        };
+        Ok((frame, feat))
+    }
+}
+
+/// One render's inputs, resolved.
+struct FrameJob<'a> {
+    scene: &'a Scene,
+    camera: &'a Camera,
+    opts: &'a RenderOptions,
+    info: &'static MethodInfo,
+    options: &'a Options,
+    method: &'a dyn Method,
+}
+
+/// The shadow map side of methods that take no `shadow_size`.
+fn default_shadow_size() -> u32 {
+    match common::SHADOW_SIZE.default {
+        OptionValue::Int(v) => v as u32,
+        _ => 1024,
+    }
+}
+
+/// A camera that frames the scene bounds when the scene has none: from the front (+Z) and
+/// above, so flat scenes such as a ground plane are not seen edge-on.
+pub fn default_camera(scene: &Scene) -> Result<Camera> {
+    let b = scene.bounds();
+    if b.is_empty() {
+        return Err(Error::invalid("camera", "the scene has no camera and no geometry to frame; pass camera="));
+    }
+    let c = b.center();
+    let r = 0.5 * b.diagonal().max(1e-12);
+    let fov = 45f32.to_radians();
+    let dist = r / (fov as f64 * 0.5).sin();
+    let from = glam::DVec3::new(0.0, 0.6, 1.0).normalize();
+    Camera::look_at(c + from * dist, c, glam::DVec3::Y, fov).map_err(|e| Error::invalid("camera", e))
+}

@@ -1,0 +1,65 @@
+//! The settings of one render: the method, the frame's own options (`plan`, `aovs`) and the
+//! method's keyword options, validated once against the method registry.
+
+use crate::error::{Error, Result};
+use crate::methods::{self, MethodInfo, OptionValue, Options};
+
+/// Every AOV a frame can hold, in the order a frame lists them.
+pub const AOV_NAMES: &[&str] = &["image", "indirect", "indirect_diffuse", "indirect_specular", "direct", "albedo", "normal", "depth", "stderr"];
+
+/// Settings of one render (the keyword arguments of `Renderer.render`).
+#[derive(Clone, Debug)]
+pub struct RenderOptions {
+    /// A name from [`methods::REGISTRY`].
+    pub method: String,
+    /// `"auto"` leaves out what the scene does not need; `"full"` runs every variant.
+    pub plan: String,
+    /// The AOVs to read back (names from [`AOV_NAMES`]); `None`: every AOV the method makes.
+    /// Readback and the RGB conversion are most of a frame's wall time at high resolution, so
+    /// a loop that only shows `image` should ask for it alone.
+    pub aovs: Option<Vec<String>>,
+    /// The method's keyword options as given (validated by [`RenderOptions::resolve`]).
+    pub options: Vec<(String, OptionValue)>,
+}
+
+impl Default for RenderOptions {
+    fn default() -> Self {
+        Self::new("direct")
+    }
+}
+
+impl RenderOptions {
+    pub fn new(method: &str) -> Self {
+        Self { method: method.into(), plan: "auto".into(), aovs: None, options: Vec::new() }
+    }
+
+    /// Sets one keyword option of the method (`RenderOptions::new("vsgl").set("num_lights", 64u32)`).
+    pub fn set(mut self, name: &str, value: impl Into<OptionValue>) -> Self {
+        self.options.retain(|(n, _)| n != name);
+        self.options.push((name.into(), value.into()));
+        self
+    }
+
+    /// The method and its validated options, after checking the frame's own settings.
+    pub fn resolve(&self) -> Result<(&'static MethodInfo, Options)> {
+        let info = methods::info(&self.method)?;
+        if self.plan != "auto" && self.plan != "full" {
+            return Err(Error::invalid("plan", format!("must be \"auto\" or \"full\", got {:?}", self.plan)));
+        }
+        for name in self.aovs.iter().flatten() {
+            if !AOV_NAMES.contains(&name.as_str()) {
+                return Err(Error::invalid("aovs", format!("unknown AOV {name:?}; valid: {}", AOV_NAMES.join(", "))));
+            }
+            if !info.makes_aov(name) {
+                return Err(Error::invalid("aovs", format!("{name:?} is not made by method={:?}, only by {}", self.method, methods::aov_makers(name))));
+            }
+        }
+        let options = info.parse_options(&self.options)?;
+        Ok((info, options))
+    }
+
+    /// Whether the frame reads back AOV `name` (asked for, or all asked for and made).
+    pub fn wants_aov(&self, info: &MethodInfo, name: &str) -> bool {
+        info.makes_aov(name) && self.aovs.as_ref().is_none_or(|a| a.iter().any(|n| n == name))
+    }
+}

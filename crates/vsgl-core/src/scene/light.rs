@@ -1,0 +1,78 @@
+//! Light sources: the three punctual types of glTF's KHR_lights_punctual as one enum, so every
+//! layer (scene, loader, GPU twins, methods, bindings) handles a light type in one `match`.
+//! Only spot lights render so far; a frame with another type says so (see `docs/architecture.md`).
+
+use glam::{DVec3, Vec3};
+
+/// A spot light (KHR_lights_punctual conventions: intensity in candela, smooth cone falloff).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct SpotLight {
+    /// World position (f64 so scenes far from the origin keep their precision).
+    pub position: DVec3,
+    /// Unit direction the light points at.
+    pub direction: DVec3,
+    pub intensity: f32,
+    pub color: Vec3,
+    /// Half-angles in radians, 0 ≤ inner < outer ≤ π/2.
+    pub inner_cone: f32,
+    pub outer_cone: f32,
+}
+
+/// A point light (KHR_lights_punctual: intensity in candela, inverse-square falloff).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct PointLight {
+    pub position: DVec3,
+    pub intensity: f32,
+    pub color: Vec3,
+}
+
+/// A directional light (KHR_lights_punctual: illuminance in lux, no falloff).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct DirectionalLight {
+    /// Unit direction the light travels in.
+    pub direction: DVec3,
+    pub intensity: f32,
+    pub color: Vec3,
+}
+
+/// Any light source of a scene.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum Light {
+    Spot(SpotLight),
+    Point(PointLight),
+    Directional(DirectionalLight),
+}
+
+impl Light {
+    /// "spot", "point" or "directional" (glTF's names).
+    pub fn kind(&self) -> &'static str {
+        match self {
+            Light::Spot(_) => "spot",
+            Light::Point(_) => "point",
+            Light::Directional(_) => "directional",
+        }
+    }
+
+    pub fn as_spot(&self) -> Option<&SpotLight> {
+        match self {
+            Light::Spot(s) => Some(s),
+            _ => None,
+        }
+    }
+}
+
+impl From<SpotLight> for Light {
+    fn from(l: SpotLight) -> Self {
+        Light::Spot(l)
+    }
+}
+impl From<PointLight> for Light {
+    fn from(l: PointLight) -> Self {
+        Light::Point(l)
+    }
+}
+impl From<DirectionalLight> for Light {
+    fn from(l: DirectionalLight) -> Self {
+        Light::Directional(l)
+    }
+}

@@ -1,0 +1,95 @@
+"""Fingerprints of every method on every built-in scene: a bit-level check for refactors.
+
+Renders each (scene, method) with small, fixed settings and records the SHA-256 of every AOV's
+bytes together with the frame's passes, skipped passes and settings rows. A refactor that must
+not change behaviour (docs/architecture.md) is checked by writing fingerprints before it and
+comparing after it on the same machine and driver:
+
+    .venv/bin/python scripts/image_fingerprints.py --out /tmp/before.json
+    ... change the code, rebuild ...
+    .venv/bin/python scripts/image_fingerprints.py --compare /tmp/before.json
+
+The comparison exits non-zero and lists every difference. Fingerprints are only comparable on
+the same adapter and driver (float rounding differs between GPUs), so none is committed.
+"""
+
+from __future__ import annotations
+
+import argparse
+import hashlib
+import json
+import sys
+
+import numpy as np
+
+import vsgl
+
+# Small settings per method, so the whole sweep runs in about a minute on lavapipe.
+SETTINGS: dict[str, dict] = {
+    "direct": {"shadow_size": 256},
+    "vpl": {"shadow_size": 256, "num_lights": 64, "rsm_size": 64, "seed": 2},
+    "reference": {"shadow_size": 256, "rsm_size": 64},
+    "vsgl": {"shadow_size": 256, "num_lights": 64, "rsm_size": 64, "interleave": 4},
+    "vsgl2": {"shadow_size": 256, "rsm_size": 48},
+    "pathtrace": {"spp": 4, "seed": 1},
+}
+# Rows of frame.settings that name the machine rather than the image.
+UNSTABLE_SETTINGS = {"adapter", "scene_upload"}
+
+
+def fingerprint(renderer: vsgl.Renderer, scene_name: str, method: str) -> dict:
+    scene = vsgl.scenes.load(scene_name)
+    frame = renderer.render(scene, method=method, **SETTINGS[method])
+    aovs = {}
+    for name in frame.aovs:
+        arr = np.ascontiguousarray(frame.aov(name))
+        aovs[name] = {"sha256": hashlib.sha256(arr.tobytes()).hexdigest(), "shape": list(arr.shape), "mean": float(arr.mean())}
+    return {
+        "aovs": aovs,
+        "passes": list(frame.passes),
+        "skipped": dict(frame.skipped),
+        "settings": {k: v for k, v in frame.settings.items() if k not in UNSTABLE_SETTINGS},
+    }
+
+
+def main() -> int:
+    ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
+    ap.add_argument("--out", help="write fingerprints to this JSON file")
+    ap.add_argument("--compare", help="compare against fingerprints written earlier; exit 1 on any difference")
+    ap.add_argument("--size", default="48x32", help="WxH of each render (default 48x32)")
+    args = ap.parse_args()
+    w, h = (int(x) for x in args.size.split("x"))
+    renderer = vsgl.Renderer(width=w, height=h)
+    methods = list(getattr(vsgl, "METHODS", SETTINGS))
+    result = {}
+    for scene_name in vsgl.scenes.names():
+        for method in methods:
+            result[f"{scene_name}/{method}"] = fingerprint(renderer, scene_name, method)
+    doc = {"adapter": renderer.adapter["name"], "size": [w, h], "frames": result}
+    if args.out:
+        with open(args.out, "w") as f:
+            json.dump(doc, f, indent=1, sort_keys=True)
+        print(f"wrote {len(result)} fingerprints to {args.out}")
+    if args.compare:
+        with open(args.compare) as f:
+            before = json.load(f)
+        problems = []
+        if before["adapter"] != doc["adapter"] or before["size"] != doc["size"]:
+            problems.append(f"not comparable: {before['adapter']} {before['size']} vs {doc['adapter']} {doc['size']}")
+        for key in sorted(set(before["frames"]) | set(result)):
+            a, b = before["frames"].get(key), result.get(key)
+            if a is None or b is None:
+                problems.append(f"{key}: only in {'after' if a is None else 'before'}")
+                continue
+            for part in ("aovs", "passes", "skipped", "settings"):
+                if a[part] != b[part]:
+                    problems.append(f"{key}: {part} differ:\n  before {a[part]}\n  after  {b[part]}")
+        for p in problems:
+            print(p)
+        print(f"{len(result)} frames compared, {len(problems)} differences")
+        return 1 if problems else 0
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())
