@@ -3,6 +3,8 @@
 from __future__ import annotations
 
 import os
+import pathlib
+import re
 import subprocess
 import sys
 import threading
@@ -101,7 +103,8 @@ def test_frame_aovs_and_metadata(renderer):
 @pytest.mark.parametrize("method", ["direct", "vsgl", "vsgl2", "pathtrace"])
 def test_aovs_reads_back_only_what_is_asked_and_the_same_values(renderer, method):
     scene = vsgl.scenes.cornell_box()
-    kw = dict(method=method, num_lights=16, rsm_size=32, spp=2)
+    small = dict(num_lights=16, rsm_size=32, spp=2)
+    kw = dict(method=method, **{k: v for k, v in small.items() if k in vsgl.method_options(method)})
     full = renderer.render(scene, **kw)
     for asked in (["image"], ["indirect_specular", "depth"], ["albedo", "image", "normal"], []):
         if method == "direct":
@@ -225,3 +228,69 @@ def test_scene_stats_and_repr():
     assert "gold_sphere" in s.node_names
     (lo, hi) = s.bounds
     assert lo[1] == pytest.approx(0.0) and hi[1] == pytest.approx(2.0)
+
+
+def test_methods_registry_is_the_one_list():
+    assert vsgl.METHODS[0] == "direct" and set(vsgl.METHODS) >= {"vpl", "vsgl", "vsgl2", "reference", "pathtrace"}
+    for name in vsgl.METHODS:
+        text = vsgl.describe_method(name)
+        assert text.startswith(f"{name}: ")
+        for option, default in vsgl.method_options(name).items():
+            assert f"{option}=" in text, (name, option)
+    with pytest.raises(vsgl.ArgumentError, match="valid methods"):
+        vsgl.describe_method("photon_mapping")
+
+
+def test_stub_literal_and_render_docstring_list_every_method_and_option():
+    stub = (pathlib.Path(vsgl.__file__).parent / "_vsgl.pyi").read_text()
+    literal = re.search(r"MethodName = Literal\[([^\]]*)\]", stub)
+    assert literal is not None
+    assert tuple(re.findall(r'"([a-z0-9_]+)"', literal.group(1))) == vsgl.METHODS
+    doc = vsgl.Renderer.render.__doc__
+    for name in vsgl.METHODS:
+        assert f'"{name}"' in doc, name
+        for option in vsgl.method_options(name):
+            assert option in doc, (name, option)
+
+
+def test_bad_arguments_are_argument_errors_both_ways(renderer):
+    assert issubclass(vsgl.ArgumentError, vsgl.VsglError) and issubclass(vsgl.ArgumentError, ValueError)
+    scene = vsgl.scenes.cornell_box()
+    for kwargs in (dict(shadow_size=3), dict(method="vsgl", interleave=0), dict(method="nope")):
+        with pytest.raises(vsgl.VsglError):
+            renderer.render(scene, **kwargs)
+        with pytest.raises(vsgl.ArgumentError):
+            renderer.render(scene, **kwargs)
+    with pytest.raises(vsgl.ArgumentError, match="intensity"):
+        vsgl.SpotLight(position=(0, 1, 0), direction=(0, -1, 0), intensity=-1.0)
+
+
+@pytest.mark.parametrize(
+    "method,option",
+    [("direct", "num_lights"), ("vsgl2", "num_lights"), ("pathtrace", "rsm_size"), ("reference", "seed"), ("vsgl", "vpl_clamp"), ("vpl", "spp")],
+)
+def test_an_option_the_method_does_not_take_is_rejected_by_name(renderer, method, option):
+    with pytest.raises(vsgl.ArgumentError, match=rf"{option}.*not an option of method=\"{method}\""):
+        renderer.render(vsgl.scenes.cornell_box(), method=method, **{option: 1})
+
+
+def test_option_types_are_checked(renderer):
+    with pytest.raises(vsgl.ArgumentError, match="num_lights"):
+        renderer.render(vsgl.scenes.cornell_box(), method="vpl", num_lights="many")
+    with pytest.raises(vsgl.ArgumentError, match="denoise"):
+        renderer.render(vsgl.scenes.cornell_box(), method="vsgl", denoise=1)
+    # None means the method's default.
+    f = renderer.render(vsgl.scenes.cornell_box(), method="vsgl2", rsm_size=None, aovs=["image"])
+    assert f.settings["rsm_size"] == str(vsgl.method_options("vsgl2")["rsm_size"])
+
+
+def test_cli_prints_no_mesa_runtime_dir_warning(tmp_path):
+    env = {k: v for k, v in os.environ.items() if k != "XDG_RUNTIME_DIR"}
+    out = subprocess.run(
+        [sys.executable, "-m", "vsgl", "render", "cornell_box", "--method", "direct", "--size", "32x24", "-o", str(tmp_path / "a.png")],
+        capture_output=True, text=True, env=env, timeout=300,
+    )
+    assert out.returncode == 0, out.stderr
+    assert "XDG_RUNTIME_DIR" not in out.stderr, out.stderr
+    methods = subprocess.run([sys.executable, "-m", "vsgl", "methods"], capture_output=True, text=True, env=env, timeout=300)
+    assert methods.returncode == 0 and all(m in methods.stdout for m in vsgl.METHODS)

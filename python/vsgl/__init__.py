@@ -9,7 +9,22 @@ A Rust renderer on wgpu (the whole GPU pipeline in WGSL) used from Python::
     frame.save("out.png")
 """
 
-from vsgl._vsgl import (
+import atexit as _atexit
+import os as _os
+import shutil as _shutil
+import tempfile as _tempfile
+
+# Mesa's Vulkan drivers warn "XDG_RUNTIME_DIR is invalid or not set" on every device when the
+# machine has no user session (CI, containers, ssh). Headless rendering needs no runtime dir, so
+# a private one (mode 0700) is set before the device is created, unless the user set one.
+if not _os.environ.get("XDG_RUNTIME_DIR"):
+    _runtime_dir = _tempfile.mkdtemp(prefix="vsgl-runtime-")
+    _os.environ["XDG_RUNTIME_DIR"] = _runtime_dir
+    _atexit.register(_shutil.rmtree, _runtime_dir, ignore_errors=True)
+
+from vsgl._vsgl import (  # noqa: E402  (after the environment set-up above)
+    METHODS,
+    ArgumentError,
     Camera,
     Frame,
     GpuError,
@@ -22,10 +37,14 @@ from vsgl._vsgl import (
     VsglError,
     __version__,
     adapters,
+    describe_method,
+    method_options,
 )
 from vsgl import scenes
 
 __all__ = [
+    "METHODS",
+    "ArgumentError",
     "Camera",
     "Frame",
     "GpuError",
@@ -38,5 +57,7 @@ __all__ = [
     "VsglError",
     "__version__",
     "adapters",
+    "describe_method",
+    "method_options",
     "scenes",
 ]

@@ -1,4 +1,4 @@
-"""Command line: ``python -m vsgl render|bench|stability|adapters``."""
+"""Command line: ``python -m vsgl render|methods|bench|stability|adapters``."""
 
 from __future__ import annotations
 
@@ -28,14 +28,12 @@ def _render(args: argparse.Namespace) -> int:
     t0 = time.perf_counter()
     renderer = vsgl.Renderer(width=width, height=height, adapter=args.adapter)
     t1 = time.perf_counter()
-    options = dict(shadow_size=args.shadow_size, plan=args.plan)
-    if args.method in ("vpl", "vsgl"):
-        options.update(num_lights=args.lights, seed=args.seed)
-    if args.method in ("vpl", "vsgl", "vsgl2", "reference") and args.rsm_size:
-        options.update(rsm_size=args.rsm_size)
-    if args.method == "vsgl":
-        options.update(kernel=args.kernel, interleave=args.interleave)
-    frame = renderer.render(scene, method=args.method, **options)
+    # Pass each flag only to a method that takes it (the registry says which).
+    flags = dict(shadow_size=args.shadow_size, num_lights=args.lights, seed=args.seed, rsm_size=args.rsm_size,
+                 kernel=args.kernel, interleave=args.interleave, spp=args.spp)
+    takes = vsgl.method_options(args.method)
+    options = {k: v for k, v in flags.items() if k in takes and v is not None}
+    frame = renderer.render(scene, method=args.method, plan=args.plan, **options)
     t2 = time.perf_counter()
     frame.save(args.output, exposure=args.exposure)
     image = frame.image
@@ -92,7 +90,17 @@ def _size(text: str) -> tuple[int, int]:
     return w, h
 
 
+def _methods(args: argparse.Namespace) -> int:
+    import vsgl
+
+    for name in vsgl.METHODS:
+        print(vsgl.describe_method(name))
+    return 0
+
+
 def main(argv: list[str] | None = None) -> int:
+    import vsgl
+
     parser = argparse.ArgumentParser(prog="python -m vsgl", description=__doc__)
     sub = parser.add_subparsers(dest="command", required=True)
 
@@ -100,12 +108,13 @@ def main(argv: list[str] | None = None) -> int:
     render.add_argument("scene", nargs="?", default="cornell_box", help="built-in scene name or .gltf/.glb path (default: cornell_box)")
     render.add_argument("-o", "--output", default="out.png", help="output image, .png or .npy (default: out.png)")
     render.add_argument("--size", type=_size, default=(320, 180), help="WIDTHxHEIGHT (default: 320x180)")
-    render.add_argument("--method", default="vsgl", help="direct, vpl, vsgl, vsgl2 or reference (default: vsgl)")
+    render.add_argument("--method", default="vsgl", choices=list(vsgl.METHODS), help="the method (default: vsgl); `python -m vsgl methods` describes each")
     render.add_argument("--lights", type=int, default=1024, help="VPLs or VSGLs per spot light (default: 1024)")
     render.add_argument("--rsm-size", type=int, default=None, help="RSM side, power of two; any 32..4096 for vsgl2 (default: 256; reference 1024)")
     render.add_argument("--kernel", default="integral", choices=["integral", "density"], help="VSGL kernel size rule (default: integral)")
     render.add_argument("--interleave", type=int, default=8, help="VSGL interleaving tile side (default: 8)")
     render.add_argument("--seed", type=int, default=0, help="sampling seed (default: 0)")
+    render.add_argument("--spp", type=int, default=64, help="samples per pixel of pathtrace (default: 64)")
     render.add_argument("--reference-rsm", type=int, default=128, help="RSM side of the reference the error is measured against (default: 128; the library default 1024 takes minutes on a CPU adapter)")
     render.add_argument("--no-error", action="store_true", help="skip rendering the reference and the error report")
     render.add_argument("--shadow-size", type=int, default=1024, help="shadow map side (default: 1024)")
@@ -114,6 +123,9 @@ def main(argv: list[str] | None = None) -> int:
     render.add_argument("--adapter", default=None, help="adapter name substring (default: best, or $VSGL_ADAPTER)")
     render.add_argument("--explain", action="store_true", help="print the pass plan and what was left out, with reasons")
     render.set_defaults(run=_render)
+
+    methods = sub.add_parser("methods", help="list the methods and the options each takes")
+    methods.set_defaults(run=_methods)
 
     adapters = sub.add_parser("adapters", help="list the adapters wgpu sees")
     adapters.set_defaults(run=_adapters)

@@ -1,7 +1,7 @@
 """Type stubs of the native extension (checked against the built module by mypy.stubtest)."""
 
 import os
-from typing import Any, Sequence
+from typing import Any, Literal, Sequence
 
 import numpy as np
 import numpy.typing as npt
@@ -32,6 +32,11 @@ class SceneError(VsglError): ...
 class NoAdapterError(VsglError): ...
 class ShaderError(VsglError): ...
 class GpuError(VsglError): ...
+class ArgumentError(VsglError, ValueError): ...
+
+# The method registry (vsgl.METHODS); tests/test_api.py checks that this Literal lists it.
+MethodName = Literal["direct", "vpl", "vsgl", "vsgl2", "reference", "pathtrace"]
+METHODS: tuple[str, ...]
 
 @final
 class SpotLight:
@@ -140,29 +145,16 @@ class Renderer:
         self,
         scene: Scene,
         camera: Camera | None = None,
-        method: str = "direct",
+        method: MethodName = "direct",
         *,
-        shadow_size: int = 1024,
-        plan: str = "auto",
-        num_lights: int = 256,
-        rsm_size: int | None = None,
-        sampling: str = "stratified",
-        seed: int = 0,
-        vpl_clamp: float = 0.0,
-        visibility: str = "none",
-        capture_rsm: bool = False,
-        spp: int = 64,
-        kernel: str = "integral",
-        K: float = 1.0,
-        bisection_steps: int = 12,
-        interleave: int = 8,
-        denoise: bool = True,
-        diffuse: str = "papers",
-        vsgl2_reduction: str = "auto",
+        plan: Literal["auto", "full"] = "auto",
         aovs: Sequence[str] | None = None,
+        **options: int | float | bool | str | None,
     ) -> Frame: ...
 
 def adapters() -> list[dict[str, Any]]: ...
+def describe_method(name: str) -> str: ...
+def method_options(name: str) -> dict[str, int | float | bool | str]: ...
 def builtin_scene_names() -> list[str]: ...
 def builtin_scene(name: str) -> Scene: ...
 def stability_suite(adapter: str | None = None, bound_scale: float = 1.0) -> list[dict[str, Any]]: ...

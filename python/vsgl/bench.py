@@ -160,9 +160,9 @@ def run(
         raise ValueError(f"frames: must be >= 1, got {frames}")
     if reference not in ("reference", "pathtrace"):
         raise ValueError(f"reference: must be \"reference\" or \"pathtrace\", got {reference!r}")
-    unknown = [m for m in methods if m not in ("vpl", "vsgl", "vsgl2", "reference", "direct")]
+    unknown = [m for m in methods if m not in vsgl.METHODS]
     if unknown:
-        raise ValueError(f"methods: unknown {unknown}; valid: vpl, vsgl, vsgl2, reference, direct")
+        raise ValueError(f"methods: unknown {unknown}; valid: {', '.join(vsgl.METHODS)}")
     bad_plans = [p for p in plans if p not in ("auto", "full")]
     if bad_plans or not plans:
         raise ValueError(f"plans: expected a non-empty list of \"auto\" and \"full\", got {list(plans)}")
@@ -374,7 +374,7 @@ def _strs(text: str) -> list[str]:
 def main(argv: list[str] | None = None) -> int:
     p = argparse.ArgumentParser(prog="python -m vsgl bench", description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     p.add_argument("--scene", type=_strs, default=["cornell_box"], help="comma-separated built-in names or .gltf/.glb paths (default: cornell_box)")
-    p.add_argument("--methods", type=_strs, default=["vpl", "vsgl"], help="comma-separated: vpl, vsgl, vsgl2, reference, direct (default: vpl,vsgl)")
+    p.add_argument("--methods", type=_strs, default=["vpl", "vsgl"], help="comma-separated names from vsgl.METHODS (default: vpl,vsgl)")
     p.add_argument("--lights", type=_ints, default=[16, 64, 256], help="comma-separated VPL/VSGL counts (default: 16,64,256)")
     p.add_argument("--size", default="256x256", help="WIDTHxHEIGHT (default: 256x256)")
     p.add_argument("--rsm-sizes", type=_ints, default=[256], help="comma-separated RSM sides (default: 256)")

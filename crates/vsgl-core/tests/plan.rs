@@ -26,7 +26,7 @@ fn variants_are_compiled_once_and_only_when_a_plan_needs_them() {
     let renderer = Renderer::new(gpu.clone(), 16, 16).expect("renderer");
     let compiled = || gpu.variants_compiled.load(Ordering::Relaxed);
     assert_eq!(compiled(), 0, "no variant is compiled before a frame asks for one");
-    let opts = RenderOptions { method: "vsgl".into(), num_lights: 16, rsm_size: Some(32), ..Default::default() };
+    let opts = RenderOptions::new("vsgl").set("num_lights", 16u32).set("rsm_size", 32u32);
     let diffuse = builtin::by_name("diffuse_cornell").unwrap();
     let glossy = builtin::by_name("cornell_box").unwrap();
 
@@ -59,9 +59,17 @@ fn every_pass_binds_the_variant_its_plan_asks_for() {
     let mut checked = 0;
     for scene_name in ["diffuse_cornell", "cornell_box"] {
         let scene = builtin::by_name(scene_name).unwrap();
-        for method in ["direct", "vpl", "vsgl", "vsgl2", "reference", "pathtrace"] {
+        for method in vsgl_core::methods::names() {
             for plan in ["auto", "full"] {
-                let opts = RenderOptions { method: method.into(), plan: plan.into(), num_lights: 16, rsm_size: Some(32), spp: 2, ..Default::default() };
+                // Each method gets the small settings it takes.
+                let info = vsgl_core::methods::info(method).expect("registered method");
+                let mut opts = RenderOptions::new(method);
+                opts.plan = plan.into();
+                for (name, value) in [("num_lights", 16u32), ("rsm_size", 32), ("spp", 2)] {
+                    if info.takes(name) {
+                        opts = opts.set(name, value);
+                    }
+                }
                 let frame = renderer.render(&scene, None, &opts).expect("frame");
                 let features = Plan::new(&scene, plan == "full").features;
                 let wanted = [("HAS_SPECULAR", features.specular), ("HAS_TEXTURES", features.textures), ("HAS_NORMAL_MAPS", features.normal_maps)];
