@@ -1,5 +1,5 @@
 //! The stability suite: every WGSL function of `wgsl/common/{math,sg,ggx,vsgl}.wgsl`, evaluated in
-//! f32 on the GPU through [`crate::harness`] and in f64 by its oracle twin on the *same* f32
+//! f32 on the GPU through [`crate::verify::harness`] and in f64 by its oracle twin on the *same* f32
 //! inputs, over case families that include the extremes of issue 3 (sharpness 1e-6…1e9,
 //! roughness 1e-4…1, cosines down to 1e-6 and exactly 0, axes equal / opposite / 1e-7 rad apart,
 //! variance down to 1e-12 of d² and exactly 0, positions 1e5 m from the origin relative to a
@@ -53,8 +53,8 @@
 
 use crate::error::Result;
 use crate::gpu::Gpu;
-use crate::harness::{Harness, HarnessFunction as F, Input, Output, Output64, INPUT_WIDTH};
-use crate::oracle;
+use crate::verify::harness::{Harness, HarnessFunction as F, Input, Output, Output64, INPUT_WIDTH};
+use crate::verify::oracle;
 use crate::rng::SplitMix64;
 use glam::DVec3;
 use std::f64::consts::PI;
@@ -1503,7 +1503,7 @@ fn vsgl_families(f: &mut Vec<Family>) {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::harness::OUTPUT_WIDTH;
+    use crate::verify::harness::OUTPUT_WIDTH;
 
     /// The oracle's own output, rounded to f32, as a stand-in for a perfect GPU.
     fn perfect(family: &Family) -> Vec<Output> {
