@@ -10,7 +10,7 @@ import pytest
 
 import vsgl
 
-# Constants of wgsl/common/sg.wgsl (the f64 twin in crates/vsgl-core/src/oracle reads them too).
+# Constants of wgsl/common/sg.wgsl (the f64 twin in crates/vsgl-core/src/verify/oracle reads them too).
 LAMBERT_LOBE_SG_SHARPNESS = 2.2925
 TOKSVIG_SHARPNESS_MAX = 1.0e5
 SG_SHARPNESS_MAX = 1.0e9

@@ -1,7 +1,7 @@
 // Numerically stable scalar primitives shared by the SG code: expm1, expm1_over_x, erf,
 // mulsign, safe_normalize and an orthonormal basis. Every function is pure (arguments in,
 // value out) so a test harness can call it from a compute shader.
-// The f64 twin of each function is in crates/vsgl-core/src/oracle/math.rs.
+// The f64 twin of each function is in crates/vsgl-core/src/verify/oracle/math.rs.
 #include "common/constants.wgsl"
 
 // Largest argument given to exp(): exp(88) = 1.65e38 < FLT_MAX, so nothing overflows to Inf

@@ -9,7 +9,7 @@
 //   [Tok16s] supplement of Tokuyoshi 2016, "Modified Filtered Importance Sampling for Virtual
 //            Spherical Gaussian Lights", §2–4      (seeds/003_b58593b681968dfd.txt)
 //   [XSD13]  Xu et al. 2013, "Anisotropic Spherical Gaussians", ACM TOG 32(6)
-// Every function is pure. The f64 twin of each one is in crates/vsgl-core/src/oracle/sg.rs,
+// Every function is pure. The f64 twin of each one is in crates/vsgl-core/src/verify/oracle/sg.rs,
 // and docs/numerics.md lists every clamp below with its reason.
 #include "common/constants.wgsl"
 #include "common/math.wgsl"

@@ -6,7 +6,7 @@
 // Positions: every position here is relative to a caller-chosen local origin (e.g. the light
 // position), never absolute world coordinates: σ² = E[‖y‖²] − ‖μ‖² cancels catastrophically
 // 1e5 m from the origin in f32 (DESIGN.md "Numerics").
-// Every function is pure; the f64 twins are in crates/vsgl-core/src/oracle/vsgl.rs.
+// Every function is pure; the f64 twins are in crates/vsgl-core/src/verify/oracle/vsgl.rs.
 #include "common/constants.wgsl"
 #include "common/math.wgsl"
 #include "common/sg.wgsl"

@@ -1,8 +1,8 @@
 // Test harness: evaluates one pure function of wgsl/common/{math,sg,ggx,vsgl}.wgsl on every
 // record of a storage buffer, so tests can compare the GPU's f32 results with the f64 oracle
-// (crates/vsgl-core/src/oracle) element by element. Driven by crates/vsgl-core/src/harness.rs,
-// which documents the record layout of every function (HarnessFunction); the ids in the switch
-// below are that enum's discriminants.
+// (crates/vsgl-core/src/verify/oracle) element by element. Driven by
+// crates/vsgl-core/src/verify/harness.rs, which documents the record layout of every function
+// (HarnessFunction); the ids in the switch below are that enum's discriminants.
 // Records: INPUT_WIDTH f32 in, OUTPUT_WIDTH f32 out; unused output slots are written as 0.
 // The function is chosen by a uniform (one pipeline for all functions, so the shader is
 // compiled once per device).

@@ -4,18 +4,16 @@
 pub mod error;
 pub mod frame;
 pub mod gpu;
-pub mod harness;
 pub mod image_io;
 pub mod methods;
-pub mod oracle;
 pub mod passes;
 pub mod plan;
 pub mod renderer;
 pub mod rng;
 pub mod scene;
 pub mod shader_lib;
-pub mod stability;
 pub mod upload;
+pub mod verify;
 
 pub use error::{Error, Result};
 pub use renderer::{Frame, RenderOptions, Renderer};

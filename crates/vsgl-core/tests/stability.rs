@@ -6,7 +6,7 @@
 
 use std::time::Instant;
 use vsgl_core::gpu::Gpu;
-use vsgl_core::stability::{self, StabilityRow};
+use vsgl_core::verify::stability::{self, StabilityRow};
 use vsgl_core::Error;
 
 fn gpu_or_skip() -> Option<std::sync::Arc<Gpu>> {
@@ -49,7 +49,7 @@ fn every_function_is_within_its_bound_on_the_default_adapter() {
     println!("adapter: {} ({}), {} rows in {:.2?}", gpu.adapter.name, gpu.adapter.device_type, rows.len(), elapsed);
     print_table(&rows);
     // Every harness function appears in the table.
-    for f in vsgl_core::harness::HarnessFunction::ALL {
+    for f in vsgl_core::verify::harness::HarnessFunction::ALL {
         assert!(rows.iter().any(|r| r.function.starts_with(&format!("{}.", f.name()))), "{} missing", f.name());
     }
     let failed: Vec<&StabilityRow> = rows.iter().filter(|r| !r.pass).collect();

@@ -17,7 +17,7 @@ pub fn stability_suite(py: Python<'_>, adapter: Option<String>, bound_scale: f64
         return Err(argument_error(format!("bound_scale: must be positive and finite, got {bound_scale}")));
     }
     let rows = py
-        .detach(|| vsgl_core::stability::run_on_adapter(adapter.as_deref(), bound_scale))
+        .detach(|| vsgl_core::verify::stability::run_on_adapter(adapter.as_deref(), bound_scale))
         .map_err(to_py)?;
     rows.iter()
         .map(|r| {

@@ -12,7 +12,7 @@
 //!
 //! ```no_run
 //! use vsgl_core::gpu::Gpu;
-//! use vsgl_core::harness::{evaluate, HarnessFunction};
+//! use vsgl_core::verify::harness::{evaluate, HarnessFunction};
 //! let gpu = Gpu::new(None)?;
 //! let mut x = [0.0f32; 16];
 //! x[0] = 1e-3; // sg_integral(λ = 1e-3)
@@ -24,7 +24,7 @@
 
 use crate::error::{Error, Result};
 use crate::gpu::{groups, Gpu};
-use crate::oracle;
+use crate::verify::oracle;
 use glam::DVec3;
 use wgpu::util::DeviceExt;
 

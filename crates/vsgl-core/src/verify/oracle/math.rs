@@ -78,8 +78,8 @@ pub fn orthonormal_basis(z: DVec3) -> DMat3 {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::oracle::quadrature::integrate_1d;
-    use crate::oracle::wgsl_text::{const_value, fractions, function_body};
+    use crate::verify::oracle::quadrature::integrate_1d;
+    use crate::verify::oracle::wgsl_text::{const_value, fractions, function_body};
 
     #[test]
     fn erf_matches_quadrature() {

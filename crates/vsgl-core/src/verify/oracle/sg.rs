@@ -273,8 +273,8 @@ pub fn sg_asg_product_integral_over_asg_integral(sg_axis: DVec3, sg_sharpness: f
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::oracle::quadrature::{clamped_cosine_reference, integrate_sphere, SphereRule};
-    use crate::oracle::wgsl_text::{fractions, function_body};
+    use crate::verify::oracle::quadrature::{clamped_cosine_reference, integrate_sphere, SphereRule};
+    use crate::verify::oracle::wgsl_text::{fractions, function_body};
     use std::f64::consts::FRAC_PI_2;
 
     /// Unit vector at polar angle θ from +z, azimuth φ.

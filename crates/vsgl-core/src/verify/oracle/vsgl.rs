@@ -110,10 +110,10 @@ pub fn vsgl_specular(radiance: Sg, normal: DVec3, w_o: DVec3, alpha: f64) -> f64
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::oracle::ggx::ggx_brdf_over_rs;
-    use crate::oracle::quadrature::{clamped_cosine_reference, integrate_sphere};
+    use crate::verify::oracle::ggx::ggx_brdf_over_rs;
+    use crate::verify::oracle::quadrature::{clamped_cosine_reference, integrate_sphere};
     use crate::rng::SplitMix64;
-    use crate::oracle::sg::{ggx_lobe_sg, sg_evaluate, sg_toksvig_mean_direction, TOKSVIG_SHARPNESS_MAX};
+    use crate::verify::oracle::sg::{ggx_lobe_sg, sg_evaluate, sg_toksvig_mean_direction, TOKSVIG_SHARPNESS_MAX};
 
     fn dir(theta: f64, phi: f64) -> DVec3 {
         DVec3::new(theta.sin() * phi.cos(), theta.sin() * phi.sin(), theta.cos())

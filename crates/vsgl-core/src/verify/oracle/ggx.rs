@@ -68,7 +68,7 @@ pub fn lambert_brdf_over_rd(n: DVec3, l: DVec3) -> f64 {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::oracle::quadrature::integrate_sphere;
+    use crate::verify::oracle::quadrature::integrate_sphere;
     use std::f64::consts::FRAC_PI_2;
 
     #[test]

@@ -1,0 +1,325 @@
+//! Families of `wgsl/common/vsgl.wgsl`: VSGL generation (lobe and position from moments, with
+//! clusters 1e5 m from the world origin), vsgl_incoming_radiance, and diffuse and specular
+//! shading from a radiance SG.
+
+use super::error_model::{dot_scale, fl, floor_tiny, floor_unit, perturbation, rel_sg_integral};
+use super::grids::{
+    a, alphas, axes, out3, rec, tilt, v3, COSINES, GRAZING_COSINES, INTENSITIES, NEAR_ANGLES,
+    SHARPNESS,
+};
+use super::lobes::{toksvig_amplitude_bound, toksvig_sharpness_bound};
+use super::sg::{bound_sg_product_integral, clamped_cosine_abs_bound};
+use super::{check, Family, FloorFn, FLT_MAX, FLT_MIN, ULP};
+use crate::rng::SplitMix64;
+use crate::verify::harness::{HarnessFunction as F, Input, Output64};
+use crate::verify::oracle;
+use glam::DVec3;
+use std::f64::consts::PI;
+use std::ops::Range;
+
+/// vsgl_lobe_from_moments: ξ̄ = Σ/W (2.5 ULP per component) then the Toksvig inverse, so r = ‖ξ̄‖
+/// errs by 2.5 + 5.25 ULP and λ, the amplitude W/A(λ) (+½ ULP) follow as in
+/// sg_from_toksvig_mean_direction; the axis errs by 2.5 + 6 ULP. No power (W ≤ 0): exact zeros.
+fn bound_lobe_from_moments(i: &Input, r: &Output64, part: usize) -> f64 {
+    let w = a(i, 0);
+    if w.is_nan() || w <= 0.0 {
+        return 0.0;
+    }
+    let rr = (v3(i, 1) / w).length();
+    match part {
+        0 => 8.5 * ULP,
+        1 => toksvig_sharpness_bound(rr, 7.75 * ULP, r[3]),
+        _ => {
+            let amp = if r[4] >= FLT_MAX { r[4] } else { r[4] / w };
+            w * toksvig_amplitude_bound(rr, 7.75 * ULP, r[3], amp) + 0.5 * ULP * r[4]
+        }
+    }
+}
+
+/// vsgl_position_from_moments: 1/W (2.5) then products (½): the mean and M₂ = Σw‖y‖²/W err by 3 ULP
+/// (relative); σ² = M₂ − ‖μ‖² errs by ≤ 3.5·M₂ + 7.5·‖μ‖² ≤ 11 ULP × M₂ (absolute), i.e. its
+/// condition number is M₂/σ², bounded by 1e6 through the VSGL_VARIANCE_MIN_FRACTION clamp (whose
+/// own value errs by 3.5 ULP). This is why positions must be relative to a local origin: M₂/σ² is
+/// (distance to the local origin / cluster radius)², 1e14 for a 1 cm cluster 1e5 m from the world
+/// origin.
+fn bound_position_variance(i: &Input, r: &Output64) -> f64 {
+    let w = a(i, 0);
+    if w.is_nan() || w <= 0.0 {
+        return 0.0;
+    }
+    let m2 = (a(i, 4) / w).max(0.0);
+    11.0 * ULP * m2 + 3.5 * ULP * r[3] + FLT_MIN
+}
+
+/// vsgl_incoming_radiance: t = μ − y_p (½ ULP), d² (1.5), the σ² clamp d²/1e9 (3), λσ = d²/σ² (2.5),
+/// ξμ = normalize(t) (6), sg_product of (−ξv, λv) and (ξμ, λσ): the log-amplitude's 10.25 ULP, exp's
+/// 2|ℓ| ULP; c = 20 ULP per input (the longest chain, on ℓ). c₀: the coefficient c_v/(2πσ²) (3.5) and
+/// exp's 3 ULP for the amplitude, 6 ULP absolute for the axis, 5.5 ULP for λ_in. Condition numbers:
+/// the product's (λv + λσ)/λ_in (a lobe pointing away from the shading point), |ℓ|, and
+/// ‖μ‖/‖μ − y_p‖ (the perturbation moves μ and y_p by ULPs of their own size; the GPU's t is in fact
+/// rounded relative to itself, so this part is conservative).
+fn bound_incoming(i: &Input, r: &Output64, slots: Range<usize>, c0_abs: f64, c0_rel: f64) -> f64 {
+    let norm = slots.clone().map(|j| r[j] * r[j]).sum::<f64>().sqrt();
+    // exp(ℓ) may flush to 0 before it is multiplied by the coefficient c_v/(2πσ²)
+    let flush = if slots.start == 4 { FLT_MIN * (a(i, 4) / (2.0 * PI * a(i, 8).max(FLT_MIN))).min(FLT_MAX) } else { 0.0 };
+    perturbation(F::VsglIncomingRadiance, i, slots, 20.0, &[0, 5, 9]) + c0_abs * ULP + c0_rel * ULP * norm + flush + FLT_MIN
+}
+fn floor_incoming_amplitude(i: &Input, _: &Output64) -> f64 {
+    let to_mean = v3(i, 5) - v3(i, 9);
+    let var = a(i, 8).max(to_mean.length_squared() / oracle::SG_SHARPNESS_MAX).max(FLT_MIN);
+    fl(1e-30 * a(i, 4) / (2.0 * PI * var))
+}
+
+/// Radiance SG inputs: slots 0–4 (axis, sharpness, amplitude c_in), normal 5–7.
+fn radiance_parts(i: &Input) -> (DVec3, f64, f64, DVec3) {
+    (v3(i, 0), a(i, 3), a(i, 4), v3(i, 5))
+}
+/// vsgl_diffuse = c·(1/π)·A(λ)·max(ξ·n, 0): A's bound, 1/π (½) and three products (1.5); the cosine
+/// errs by 1.5 ULP·Σ|ξᵢnᵢ| absolute (grazing lobes: condition Σ|ξᵢnᵢ|/(ξ·n)), which also covers a
+/// flipped max(·, 0) decision.
+fn bound_vsgl_diffuse(i: &Input, r: &Output64) -> f64 {
+    let (xi, lambda, c, n) = radiance_parts(i);
+    r[0] * (rel_sg_integral(lambda) + 2.0 * ULP) + c / PI * oracle::sg_integral(lambda) * 1.5 * ULP * dot_scale(xi, n) + FLT_MIN
+}
+/// vsgl_diffuse_approx: the same with 2π/max(λ, ½) (3 ULP).
+fn bound_vsgl_diffuse_approx(i: &Input, r: &Output64) -> f64 {
+    let (xi, lambda, c, n) = radiance_parts(i);
+    r[0] * 5.0 * ULP + c / PI * oracle::sg_integral_approx(lambda) * 1.5 * ULP * dot_scale(xi, n) + FLT_MIN
+}
+/// vsgl_diffuse_accurate = c/π·sg_clamped_cosine_integral: that bound × c/π, + 1.5 ULP.
+fn bound_vsgl_diffuse_accurate(i: &Input, r: &Output64) -> f64 {
+    let (xi, lambda, c, n) = radiance_parts(i);
+    let value = r[0] * PI / c.max(FLT_MIN);
+    c / PI * clamped_cosine_abs_bound(xi, lambda, n, value) + 1.5 * ULP * r[0]
+}
+/// vsgl_diffuse_sg_product = c·(1/A(λd))·sg_product_integral(ξ, λ, n, λd): that bound × c/A(λd), plus
+/// 1/A(λd) (A's bound + 2.5 + ½ for the constant) and the products (1).
+fn bound_vsgl_diffuse_sg_product(i: &Input, r: &Output64) -> f64 {
+    let (xi, lambda, c, n) = radiance_parts(i);
+    let ld = oracle::LAMBERT_LOBE_SG_SHARPNESS;
+    let amp = 1.0 / oracle::sg_integral(ld);
+    let inner = rec(&[xi.x, xi.y, xi.z, lambda, n.x, n.y, n.z, ld]);
+    let pi_value = F::SgProductIntegral.oracle(&inner);
+    c * amp * bound_sg_product_integral(&inner, &pi_value) + r[0] * (rel_sg_integral(ld) + 4.0 * ULP)
+}
+/// vsgl_specular: ggx_lobe_asg (4 ULP), G2 (Smith Λ's 8 ULP through α), the convolved bandwidths
+/// (3.5) and exp (2): c = 10 ULP per input; c₀ = 3 (exp) + 10 (two inverseSqrt(1 + ν/η)) + 3.5 (G2's
+/// sums and division) ≈ 16. Condition numbers: grazing n·l and n·v (G2 and the frame), the
+/// sharpness of the convolved ASG times the frame's absolute error, |exponent|.
+fn bound_vsgl_specular(i: &Input, r: &Output64) -> f64 {
+    perturbation(F::VsglSpecular, i, 0..1, 10.0, &[0, 5, 8]) + 16.0 * ULP * r[0] + FLT_MIN * a(i, 4)
+}
+
+pub(super) fn vsgl_families(f: &mut Vec<Family>) {
+    // vsgl_lobe_from_moments: single lobes and mixtures × powers 1e-8…1e8; zero power.
+    let (mut broad, mut sharp, mut zero) = (Vec::new(), Vec::new(), Vec::new());
+    for ax in axes() {
+        for &w in &INTENSITIES[1..] {
+            for &l in &SHARPNESS {
+                let m = w * oracle::sg_toksvig_mean_direction(ax, l);
+                (if l <= 1e3 { &mut broad } else { &mut sharp }).push(rec(&[w, m.x, m.y, m.z]));
+            }
+            let m = w * 0.5 * (oracle::sg_toksvig_mean_direction(ax, 100.0) + oracle::sg_toksvig_mean_direction(tilt(ax, 0.3, 2.0), 10.0));
+            broad.push(rec(&[w, m.x, m.y, m.z]));
+        }
+        zero.push(rec(&[0.0, 0.0, 0.0, 0.0]));
+        zero.push(rec(&[0.0, ax.x, ax.y, ax.z]));
+        zero.push(rec(&[-1.0, ax.x, ax.y, ax.z]));
+    }
+    let lobe_checks = || {
+        vec![
+            check("axis", 0..3, floor_unit, |i, r| bound_lobe_from_moments(i, r, 0)),
+            check("sharpness", 3..4, floor_tiny, |i, r| bound_lobe_from_moments(i, r, 1)),
+            check("amplitude", 4..5, floor_tiny, |i, r| bound_lobe_from_moments(i, r, 2)),
+        ]
+    };
+    for (name, ins) in [("λ <= 1e3, power 1e-8…1e8", broad), ("λ > 1e3 (Toksvig clamp), power 1e-8…1e8", sharp), ("zero power", zero)] {
+        f.push(Family { function: F::VsglLobeFromMoments, name, inputs: ins, checks: lobe_checks() });
+    }
+    // vsgl_position_from_moments: VPL clusters summed in f32 as a GPU would, relative to a local
+    // origin (the light) — near it, and 1e5 m from the world origin — and degenerate clusters.
+    let mut rng = SplitMix64(0x5eed);
+    let (mut near, mut far, mut degenerate) = (Vec::new(), Vec::new(), Vec::new());
+    let world = DVec3::new(1e5, -1e5, 1e5);
+    for &dist in &[0.0, 0.1, 1.0, 10.0, 100.0] {
+        for &radius_fraction in &[1e-6, 1e-4, 1e-2, 0.3, 1.0] {
+            for &power in &INTENSITIES[1..] {
+                let light = world + dist * rng.unit_vector();
+                let radius = radius_fraction * dist.max(1.0);
+                let (mut w, mut sy, mut sy2) = (0f32, glam::Vec3::ZERO, 0f32);
+                for _ in 0..64 {
+                    let p = world + radius * rng.unit_vector() * rng.next_f64().sqrt();
+                    let y = (p - light).as_vec3(); // position relative to the local origin, in f32
+                    let pw = (power * (0.5 + rng.next_f64())) as f32;
+                    w += pw;
+                    sy += pw * y;
+                    sy2 += pw * y.length_squared();
+                }
+                let r = rec(&[w as f64, sy.x as f64, sy.y as f64, sy.z as f64, sy2 as f64]);
+                (if dist <= 10.0 * radius { &mut near } else { &mut far }).push(r);
+            }
+        }
+    }
+    for &power in &INTENSITIES[1..] {
+        for y in [DVec3::ZERO, DVec3::new(2.0, 0.0, 0.0), DVec3::new(1e-3, -3.0, 7.0)] {
+            // every VPL at one point: σ² = 0 exactly (up to the f32 moments)
+            let (w, s1, s2) = (64.0 * power, 64.0 * power * y, 64.0 * power * y.length_squared());
+            degenerate.push(rec(&[w, s1.x, s1.y, s1.z, s2]));
+        }
+    }
+    degenerate.push(rec(&[0.0, 0.0, 0.0, 0.0, 0.0]));
+    degenerate.push(rec(&[0.0, 1.0, 2.0, 3.0, 4.0]));
+    let pos_checks = || {
+        vec![
+            check("mean", 0..3, floor_tiny, |i, r| if a(i, 0) > 0.0 { 3.0 * ULP * out3(r, 0).length() } else { 0.0 }),
+            check("variance", 3..4, floor_tiny, bound_position_variance),
+        ]
+    };
+    for (name, ins) in [
+        ("clusters within 10 radii of the local origin", near),
+        ("clusters 1e5 m from the world origin, local origin 0.1…100 m away", far),
+        ("all VPLs at one point (σ² = 0), zero power", degenerate),
+    ] {
+        f.push(Family { function: F::VsglPositionFromMoments, name, inputs: ins, checks: pos_checks() });
+    }
+    // vsgl_incoming_radiance: σ²/d² 0, 1e-12…1e3 × λv × lobe directions × intensities; the shading
+    // point at the mean; positions from world coordinates 1e5 m away, relative to the light.
+    let (mut toward, mut away, mut at_mean, mut offset) = (Vec::new(), Vec::new(), Vec::new(), Vec::new());
+    let ratios = [0.0, 1e-12, 1e-9, 1e-6, 1e-3, 1.0, 1e3];
+    let lambdas_v = [0.0, 1e-6, 0.5, 10.0, 1e3, 1e5];
+    for (k, &mean) in [DVec3::new(0.5, -0.3, 2.0), DVec3::new(-3.0, 1.0, 0.2)].iter().enumerate() {
+        let y_p = DVec3::new(0.1, 0.2, 0.0);
+        let to_p = (y_p - mean).normalize(); // the VSGL lobe emits toward the shading point along +to_p
+        for &ratio in &ratios {
+            let var = ratio * (mean - y_p).length_squared();
+            for &lv in &lambdas_v {
+                for (j, t) in [0.0, 1e-7, 1e-3, 0.5, 2.0, PI].iter().enumerate() {
+                    let axis = tilt(to_p, *t, 0.7 * (j + k) as f64);
+                    for &c in &INTENSITIES {
+                        let r = rec(&[axis.x, axis.y, axis.z, lv, c, mean.x, mean.y, mean.z, var, y_p.x, y_p.y, y_p.z]);
+                        (if *t <= 0.5 { &mut toward } else { &mut away }).push(r);
+                    }
+                }
+            }
+        }
+    }
+    for &var in &[0.0, 1e-6, 1.0] {
+        for &lv in &lambdas_v {
+            for &c in &[0.0, 1.0, 1e8] {
+                let m = DVec3::new(0.4, 1.5, -0.7);
+                at_mean.push(rec(&[0.0, 0.0, 1.0, lv, c, m.x, m.y, m.z, var, m.x, m.y, m.z]));
+            }
+        }
+    }
+    let light = world + DVec3::new(0.3, 2.5, -0.4);
+    for &(mean_w, p_w) in &[
+        (world + DVec3::new(1.0, 0.0, 0.5), world + DVec3::new(-0.5, 0.1, 0.2)),
+        (world + DVec3::new(0.01, 0.0, 0.0), world + DVec3::new(0.0, 0.01, 0.0)),
+        (world + DVec3::new(30.0, -5.0, 2.0), world + DVec3::new(-2.0, 0.0, 0.0)),
+    ] {
+        let (mean, y_p) = (mean_w - light, p_w - light); // relative to the local origin, in f64
+        for &ratio in &ratios {
+            let var = ratio * (mean - y_p).length_squared();
+            for &lv in &lambdas_v {
+                let axis = tilt((y_p - mean).normalize(), 0.3, 1.0);
+                for &c in &INTENSITIES {
+                    offset.push(rec(&[axis.x, axis.y, axis.z, lv, c, mean.x, mean.y, mean.z, var, y_p.x, y_p.y, y_p.z]));
+                }
+            }
+        }
+    }
+    let incoming_checks = || {
+        vec![
+            check("axis", 0..3, floor_unit, |i, r| bound_incoming(i, r, 0..3, 6.0, 0.0)),
+            check("sharpness", 3..4, floor_tiny, |i, r| bound_incoming(i, r, 3..4, 0.0, 5.5)),
+            check("amplitude", 4..5, floor_incoming_amplitude, |i, r| bound_incoming(i, r, 4..5, 0.0, 6.5)),
+        ]
+    };
+    for (name, ins) in [
+        ("lobe toward y_p; σ²/d² 0, 1e-12…1e3; λv 0…1e5; I 0, 1e-8…1e8", toward),
+        ("lobe away from y_p (the SG product cancels), same grids", away),
+        ("shading point at the mean (d = 0)", at_mean),
+        ("scene 1e5 m from the origin, light as local origin", offset),
+    ] {
+        f.push(Family { function: F::VsglIncomingRadiance, name, inputs: ins, checks: incoming_checks() });
+    }
+    // Diffuse and specular shading from a radiance SG: λ_in × lobe/normal angle × c_in.
+    let shade = |cosines: &[f64]| {
+        let mut ins = Vec::new();
+        for n in axes() {
+            for &l in SHARPNESS.iter().step_by(2).chain(&[1e9]) {
+                for (j, &c) in cosines.iter().enumerate() {
+                    let xi = tilt(n, c.clamp(-1.0, 1.0).acos(), 0.4 + j as f64);
+                    for &amp in &[0.0, 1e-8, 1.0, 1e8, 1e20] {
+                        ins.push(rec(&[xi.x, xi.y, xi.z, l, amp, n.x, n.y, n.z]));
+                    }
+                }
+            }
+        }
+        ins
+    };
+    let above = COSINES.to_vec();
+    let grazing: Vec<f64> = GRAZING_COSINES.iter().flat_map(|&c| [c, -c]).collect();
+    let below: Vec<f64> = [-0.01, -0.3, -1.0].to_vec();
+    // Floors: relative (1e-30 of the scale c·A(λ)/π) above the horizon; the scale itself at grazing
+    // and below, where the cosine is known only to ±1.5 ULP absolute.
+    let relative: FloorFn = |i, _| fl(1e-30 * a(i, 4) * oracle::sg_integral(a(i, 3)) / PI);
+    let absolute: FloorFn = |i, _| fl(a(i, 4) * oracle::sg_integral(a(i, 3)) / PI);
+    for (name, cos, scale) in [("ξ·n 0.01…1", above, relative), ("grazing |ξ·n| <= 3e-3 (incl. 0)", grazing, absolute), ("ξ·n < 0", below, absolute)] {
+        let ins = shade(&cos);
+        f.push(Family { function: F::VsglDiffuse, name, inputs: ins.clone(), checks: vec![check("value", 0..1, scale, bound_vsgl_diffuse)] });
+        f.push(Family {
+            function: F::VsglDiffuseApprox,
+            name,
+            inputs: ins.clone(),
+            checks: vec![check("value", 0..1, scale, bound_vsgl_diffuse_approx)],
+        });
+        f.push(Family {
+            function: F::VsglDiffuseAccurate,
+            name,
+            inputs: ins.clone(),
+            checks: vec![check("value", 0..1, absolute, bound_vsgl_diffuse_accurate)],
+        });
+        f.push(Family {
+            function: F::VsglDiffuseSgProduct,
+            name,
+            inputs: ins,
+            checks: vec![check("value", 0..1, scale, bound_vsgl_diffuse_sg_product)],
+        });
+    }
+    // vsgl_specular: views normal…grazing × light lobes at the mirror direction and off it.
+    let (mut normal_view, mut oblique, mut grazing) = (Vec::new(), Vec::new(), Vec::new());
+    for n in axes() {
+        for (j, &t) in NEAR_ANGLES.iter().chain(&[0.3, 1.0, 1.4]).chain(&GRAZING_COSINES.map(f64::acos)).enumerate() {
+            let w_o = tilt(n, t, 0.6 * j as f64 + 0.2);
+            let mirror = 2.0 * w_o.dot(n) * n - w_o;
+            for al in alphas().into_iter().step_by(2) {
+                for &l in &[1e-6, 1.0, 1e2, 1e4, 1e6, 1e9] {
+                    for off in [0.0, 1e-7, 0.5 * al, 2.0 * al] {
+                        let xi = tilt(mirror, off, 1.0 + j as f64);
+                        let r = rec(&[xi.x, xi.y, xi.z, l, 1.0, n.x, n.y, n.z, w_o.x, w_o.y, w_o.z, al]);
+                        if t <= 1e-3 {
+                            normal_view.push(r);
+                        } else if t < 1.5 {
+                            oblique.push(r);
+                        } else {
+                            grazing.push(r);
+                        }
+                    }
+                }
+            }
+        }
+    }
+    for (name, ins) in [
+        ("normal view (θo 0…1e-3 rad)", normal_view),
+        ("oblique view, light at and off the mirror direction", oblique),
+        ("grazing view n·ω_o <= 3e-3 (incl. 0)", grazing),
+    ] {
+        f.push(Family {
+            function: F::VsglSpecular,
+            name,
+            inputs: ins,
+            checks: vec![check("value", 0..1, |i, _| fl(1e-30 * a(i, 4)), bound_vsgl_specular)],
+        });
+    }
+}
