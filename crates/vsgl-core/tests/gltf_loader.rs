@@ -5,7 +5,7 @@ use std::time::Instant;
 
 use glam::{DVec3, Vec3};
 use serde_json::{json, Value};
-use vsgl_core::scene::gltf_loader::load;
+use vsgl_core::scene::gltf::load;
 use vsgl_core::scene::{Scene, TextureUsage};
 use vsgl_core::Error;
 
