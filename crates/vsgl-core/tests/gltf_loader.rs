@@ -5,7 +5,7 @@ use std::time::Instant;
 
 use glam::{DVec3, Vec3};
 use serde_json::{json, Value};
-use vsgl_core::scene::gltf_loader::load;
+use vsgl_core::scene::gltf::load;
 use vsgl_core::scene::{Scene, TextureUsage};
 use vsgl_core::Error;
 
@@ -544,7 +544,7 @@ fn spot_light_and_perspective_camera() {
     assert_eq!(scene.stats().triangles, 0, "the mesh is on no node");
 
     assert_eq!(scene.lights.len(), 2);
-    let l = scene.lights[0];
+    let l = *scene.lights[0].as_spot().expect("a spot light");
     assert!(dclose(l.position, DVec3::new(0.0, 5.0, 0.0)));
     assert!(
         (l.direction - DVec3::new(0.0, -1.0, 0.0)).length() < 1e-6,
@@ -554,7 +554,7 @@ fn spot_light_and_perspective_camera() {
     assert_eq!(l.intensity, 450.0);
     assert_eq!(l.color, Vec3::new(1.0, 0.5, 0.0));
     assert_eq!((l.inner_cone, l.outer_cone), (0.3, 0.5));
-    let d = scene.lights[1];
+    let d = *scene.lights[1].as_spot().expect("a spot light");
     assert!(
         dclose(d.position, DVec3::new(0.0, 0.0, 1.0)),
         "under the rig node: {d:?}"
@@ -1160,6 +1160,7 @@ fn real_scenes_load_with_documented_triangle_counts() {
         if file.starts_with("LightsSpot") {
             assert_eq!(scene.lights.len(), 3);
             for l in &scene.lights {
+                let l = l.as_spot().expect("a spot light");
                 assert_eq!(l.intensity, 450.0);
                 assert!((l.position.y - 5.0).abs() < 1e-3, "{l:?}");
                 assert!(

@@ -164,7 +164,7 @@ impl PyScene {
     /// Loads a glTF 2.0 file (`.gltf` or `.glb`). Raises `SceneError` naming the file and element.
     #[staticmethod]
     fn load(py: Python<'_>, path: std::path::PathBuf) -> PyResult<Self> {
-        let scene = py.detach(|| vsgl_core::scene::gltf_loader::load(&path)).map_err(to_py)?;
+        let scene = py.detach(|| vsgl_core::scene::gltf::load(&path)).map_err(to_py)?;
         Ok(Self { inner: scene })
     }
     /// Triangle, mesh, material, texture and light counts and the features the scene uses.

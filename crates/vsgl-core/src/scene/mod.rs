@@ -5,7 +5,7 @@
 //! was precomputed: the papers' scenes are fully dynamic.
 
 pub mod builtin;
-pub mod gltf_loader;
+pub mod gltf;
 mod light;
 
 pub use light::{DirectionalLight, Light, PointLight, SpotLight};
