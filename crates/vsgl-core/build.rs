@@ -20,7 +20,10 @@ fn collect(dir: &Path, root: &Path, out: &mut Vec<String>) {
 }
 
 fn main() {
-    let root = Path::new(env!("CARGO_MANIFEST_DIR")).join("../../wgsl");
+    // Read at run time, not baked in with env!(): a build script compiled for another checkout
+    // of the same crate (a git worktree sharing the target folder) must not read that one's wgsl/.
+    let manifest_dir = env::var("CARGO_MANIFEST_DIR").expect("cargo sets CARGO_MANIFEST_DIR");
+    let root = Path::new(&manifest_dir).join("../../wgsl");
     println!("cargo:rerun-if-changed={}", root.display());
     let mut rows = Vec::new();
     collect(&root, &root, &mut rows);
