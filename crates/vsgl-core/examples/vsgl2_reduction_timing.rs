@@ -13,7 +13,7 @@
 use std::time::Instant;
 use vsgl_core::gpu::{Gpu, PassTimer};
 use vsgl_core::frame::Rsm;
-use vsgl_core::passes::storage_buffer;
+use vsgl_core::gpu::storage_buffer;
 use vsgl_core::passes::vsgl_gen::VSGL_BYTES;
 use vsgl_core::passes::vsgl2_reduce::{Vsgl2Reduce, Vsgl2Reduction, VSGL2_COUNT};
 use vsgl_core::plan::ShaderFeatures;
