@@ -1,7 +1,12 @@
-"""Per-pass GPU timings of the current build on the best adapter: median and spread over timed
-frames after warm-up, for each built-in scene at one resolution. Writes JSON to $OUT (or .).
+"""Per-pass GPU timings of the current build on the best adapter: median, interquartile range
+and spread over timed frames after warm-up, for each built-in scene at one resolution. Writes
+JSON to $OUT (or .).
 
-    python scripts/gpu_timings.py --size 1920x1088 --frames 20
+    python scripts/gpu_timings.py --size 1920x1088 --frames 20 --warm-seconds 10
+
+`--warm-seconds` renders the configuration back to back for that long before timing it, so the
+GPU leaves its idle clock (DESIGN.md, "Clocks": an H200 idles at 345 MHz between short frames);
+where `nvidia-smi` exists its SM clock is read before and after the timed frames.
 """
 
 from __future__ import annotations
@@ -9,12 +14,27 @@ from __future__ import annotations
 import argparse
 import json
 import os
+import shutil
 import statistics
+import subprocess
 import time
 
 import numpy as np
 
 import vsgl
+
+
+def sm_clock_mhz() -> str:
+    """The SM clock as nvidia-smi reports it (read only), or "" where there is none."""
+    if not shutil.which("nvidia-smi"):
+        return ""
+    out = subprocess.run(["nvidia-smi", "--query-gpu=clocks.sm", "--format=csv,noheader,nounits"], capture_output=True, text=True)
+    return out.stdout.strip()
+
+
+def quartiles(v: list[float]) -> tuple[float, float]:
+    q = statistics.quantiles(v, n=4) if len(v) >= 2 else [v[0], v[0], v[0]]
+    return q[0], q[2]
 
 
 def main() -> None:
@@ -28,6 +48,8 @@ def main() -> None:
     ap.add_argument("--rsm-size", type=int, default=256)
     ap.add_argument("--interleave", type=int, default=8)
     ap.add_argument("--aovs", default="all", help='comma-separated AOVs to read back, or "all" (default)')
+    ap.add_argument("--tag", default="", help="suffix of the JSON file name")
+    ap.add_argument("--warm-seconds", type=float, default=0.0, help="render back to back this long before timing (default: 0)")
     args = ap.parse_args()
     w, h = (int(x) for x in args.size.split("x"))
     r = vsgl.Renderer(width=w, height=h)
@@ -42,6 +64,12 @@ def main() -> None:
             opts.update(interleave=args.interleave)
         for _ in range(args.warmup):
             r.render(scene, method=method, **opts)
+        t_end = time.perf_counter() + args.warm_seconds
+        warm_frames = 0
+        while time.perf_counter() < t_end:
+            r.render(scene, method=method, aovs=[], **{k: v for k, v in opts.items() if k != "aovs"})
+            warm_frames += 1
+        clock_before = sm_clock_mhz()
         per_pass: dict[str, list[float]] = {}
         walls = []
         for _ in range(args.frames):
@@ -51,13 +79,18 @@ def main() -> None:
             for k, v in f.timings_ms.items():
                 per_pass.setdefault(k, []).append(v)
         assert all(np.isfinite(f.aov(a)).all() for a in f.aovs)
-        row = {k: {"median": statistics.median(v), "min": min(v), "max": max(v)} for k, v in per_pass.items()}
-        row["wall_incl_upload_readback"] = {"median": statistics.median(walls), "min": min(walls), "max": max(walls)}
-        report["scenes"][f"{name}/{method}"] = {"clock": f.timings_clock, "passes": f.passes, "settings": dict(f.settings), "ms": row}
+        clock_after = sm_clock_mhz()
+        stats = lambda v: {"median": statistics.median(v), "q1": quartiles(v)[0], "q3": quartiles(v)[1], "min": min(v), "max": max(v)}  # noqa: E731
+        row = {k: stats(v) for k, v in per_pass.items()}
+        row["wall_incl_upload_readback"] = stats(walls)
+        report["scenes"][f"{name}/{method}"] = {
+            "clock": f.timings_clock, "passes": f.passes, "settings": dict(f.settings), "ms": row,
+            "warm_seconds": args.warm_seconds, "warm_frames": warm_frames, "sm_clock_mhz_before": clock_before, "sm_clock_mhz_after": clock_after,
+        }
         cells = "  ".join(f"{k}={v['median']:.3f}[{v['min']:.3f},{v['max']:.3f}]" for k, v in row.items())
-        print(f"{name}/{method:8s} {cells}")
+        print(f"{name}/{method:8s} warm {warm_frames} frames, SM {clock_before}->{clock_after} MHz  {cells}")
     out = os.environ.get("OUT", ".")
-    with open(os.path.join(out, "gpu_timings.json"), "w") as fh:
+    with open(os.path.join(out, f"gpu_timings{args.tag}.json"), "w") as fh:
         json.dump(report, fh, indent=1)
 
 

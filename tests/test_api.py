@@ -243,7 +243,7 @@ def test_methods_registry_is_the_one_list():
 
 def test_stub_literal_and_render_docstring_list_every_method_and_option():
     stub = (pathlib.Path(vsgl.__file__).parent / "_vsgl.pyi").read_text()
-    literal = re.search(r"MethodName = Literal\[([^\]]*)\]", stub)
+    literal = re.search(r"_MethodName = Literal\[([^\]]*)\]", stub)
     assert literal is not None
     assert tuple(re.findall(r'"([a-z0-9_]+)"', literal.group(1))) == vsgl.METHODS
     doc = vsgl.Renderer.render.__doc__

@@ -8,6 +8,8 @@ import numpy.typing as npt
 from typing import final
 
 __all__ = [
+    "METHODS",
+    "ArgumentError",
     "Camera",
     "Frame",
     "GpuError",
@@ -22,6 +24,8 @@ __all__ = [
     "adapters",
     "builtin_scene",
     "builtin_scene_names",
+    "describe_method",
+    "method_options",
     "stability_suite",
 ]
 
@@ -34,8 +38,9 @@ class ShaderError(VsglError): ...
 class GpuError(VsglError): ...
 class ArgumentError(VsglError, ValueError): ...
 
-# The method registry (vsgl.METHODS); tests/test_api.py checks that this Literal lists it.
-MethodName = Literal["direct", "vpl", "vsgl", "vsgl2", "reference", "pathtrace"]
+# The method registry (vsgl.METHODS); tests/test_api.py checks that this Literal lists it
+# (private: a typing alias only, nothing of that name exists at run time).
+_MethodName = Literal["direct", "vpl", "vsgl", "vsgl2", "reference", "pathtrace"]
 METHODS: tuple[str, ...]
 
 @final
@@ -145,7 +150,7 @@ class Renderer:
         self,
         scene: Scene,
         camera: Camera | None = None,
-        method: MethodName = "direct",
+        method: _MethodName = "direct",
         *,
         plan: Literal["auto", "full"] = "auto",
         aovs: Sequence[str] | None = None,
