@@ -28,6 +28,67 @@ pub fn compose(path: &str) -> Result<String> {
     Ok(out)
 }
 
+/// Maps a 1-based line of a composed shader back to `(file, line)` using the
+/// `// ---- begin <path>` / `// ---- end <path>` markers that `shader_lib::compose` writes and the
+/// original sources: an `#include` of a file already included emits nothing, so each file's own
+/// lines are followed with a cursor that skips such include lines.
+pub fn original_location(composed: &str, composed_line: usize) -> Option<(String, usize)> {
+    fn is_include(line: &str) -> bool {
+        line.trim_start().starts_with("#include")
+    }
+    // Stack of (file, its source lines, cursor = index of the next unconsumed source line).
+    let mut stack: Vec<(String, Vec<&'static str>, usize)> = Vec::new();
+    for (i, line) in composed.lines().enumerate() {
+        let here = if let Some(path) = line.strip_prefix("// ---- begin ") {
+            if let Some(top) = stack.last_mut() {
+                // Skip deduplicated includes up to the include line that produced this block.
+                while top.2 < top.1.len() && !(is_include(top.1[top.2]) && top.1[top.2].contains(path)) {
+                    top.2 += 1;
+                }
+                top.2 += 1;
+            }
+            let lines = source(path).map(|s| s.lines().collect()).unwrap_or_default();
+            stack.push((path.to_string(), lines, 0));
+            None
+        } else if line.starts_with("// ---- end ") {
+            stack.pop();
+            None
+        } else if let Some(top) = stack.last_mut() {
+            while top.2 < top.1.len() && is_include(top.1[top.2]) {
+                top.2 += 1;
+            }
+            top.2 += 1;
+            Some((top.0.clone(), top.2))
+        } else {
+            None
+        };
+        if i + 1 == composed_line {
+            return here;
+        }
+    }
+    None
+}
+
+/// Parses and validates the composed shader `src` of `path` with naga (the WGSL front end wgpu
+/// uses); an error names the original file and line of the composed line it points at.
+pub fn validate(path: &str, src: &str) -> Result<()> {
+    let at = |location: Option<naga::SourceLocation>| -> (String, u32) {
+        location
+            .and_then(|l| original_location(src, l.line_number as usize))
+            .map(|(file, line)| (file, line as u32))
+            .unwrap_or_else(|| (path.to_string(), 0))
+    };
+    let module = naga::front::wgsl::parse_str(src).map_err(|e| {
+        let (file, line) = at(e.location(src));
+        Error::ShaderCompile { file, line, message: format!("(composing {path}) {}", e.emit_to_string(src)) }
+    })?;
+    naga::valid::Validator::new(naga::valid::ValidationFlags::all(), naga::valid::Capabilities::all()).validate(&module).map_err(|e| {
+        let (file, line) = at(e.location(src));
+        Error::ShaderCompile { file, line, message: format!("(composing {path}) {}", e.emit_to_string(src)) }
+    })?;
+    Ok(())
+}
+
 fn expand(path: &str, from: Option<(&str, u32)>, seen: &mut HashSet<String>, out: &mut String, depth: u32) -> Result<()> {
     if !seen.insert(path.to_string()) {
         return Ok(());
@@ -58,6 +119,24 @@ fn expand(path: &str, from: Option<(&str, u32)>, seen: &mut HashSet<String>, out
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// A syntax error inside an included file is reported at that file's own line, not at the
+    /// line of the composed module.
+    #[test]
+    fn compile_errors_name_the_included_file_and_its_line() {
+        let composed = compose("passes/vsgl_shading.wgsl").unwrap();
+        let sg = source("common/sg.wgsl").unwrap();
+        let (sg_line, target) = sg.lines().enumerate().find(|(_, l)| l.starts_with("fn ")).unwrap();
+        assert!(validate("passes/vsgl_shading.wgsl", &composed).is_ok());
+        let broken = composed.replacen(target, "fn this is not wgsl(", 1);
+        match validate("passes/vsgl_shading.wgsl", &broken) {
+            Err(Error::ShaderCompile { file, line, message }) => {
+                assert_eq!((file.as_str(), line as usize), ("common/sg.wgsl", sg_line + 1), "{message}");
+                assert!(message.contains("passes/vsgl_shading.wgsl"), "{message}");
+            }
+            other => panic!("expected a compile error, got {other:?}"),
+        }
+    }
 
     #[test]
     fn missing_include_names_file_and_line() {

@@ -6,50 +6,9 @@
 use naga::valid::{Capabilities, ValidationFlags, Validator};
 use vsgl_core::shader_lib;
 
-/// Maps a 1-based line of a composed shader back to `(file, line)` using the
-/// `// ---- begin <path>` / `// ---- end <path>` markers that `shader_lib::compose` writes and the
-/// original sources: an `#include` of a file already included emits nothing, so each file's own
-/// lines are followed with a cursor that skips such include lines.
-fn original_location(composed: &str, composed_line: usize) -> Option<(String, usize)> {
-    fn is_include(line: &str) -> bool {
-        line.trim_start().starts_with("#include")
-    }
-    // Stack of (file, its source lines, cursor = index of the next unconsumed source line).
-    let mut stack: Vec<(String, Vec<&'static str>, usize)> = Vec::new();
-    for (i, line) in composed.lines().enumerate() {
-        let here = if let Some(path) = line.strip_prefix("// ---- begin ") {
-            if let Some(top) = stack.last_mut() {
-                // Skip deduplicated includes up to the include line that produced this block.
-                while top.2 < top.1.len() && !(is_include(top.1[top.2]) && top.1[top.2].contains(path)) {
-                    top.2 += 1;
-                }
-                top.2 += 1;
-            }
-            let lines = shader_lib::source(path).map(|s| s.lines().collect()).unwrap_or_default();
-            stack.push((path.to_string(), lines, 0));
-            None
-        } else if line.starts_with("// ---- end ") {
-            stack.pop();
-            None
-        } else if let Some(top) = stack.last_mut() {
-            while top.2 < top.1.len() && is_include(top.1[top.2]) {
-                top.2 += 1;
-            }
-            top.2 += 1;
-            Some((top.0.clone(), top.2))
-        } else {
-            None
-        };
-        if i + 1 == composed_line {
-            return here;
-        }
-    }
-    None
-}
-
 fn describe(path: &str, composed: &str, location: Option<naga::SourceLocation>, report: String) -> String {
     let origin = location
-        .and_then(|loc| original_location(composed, loc.line_number as usize).map(|(f, l)| (loc, f, l)))
+        .and_then(|loc| shader_lib::original_location(composed, loc.line_number as usize).map(|(f, l)| (loc, f, l)))
         .map(|(loc, f, l)| format!("{f}:{l}:{} (composed line {})", loc.line_position, loc.line_number))
         .unwrap_or_else(|| "unknown location".to_string());
     format!("{path}: at {origin}\n{report}")
@@ -119,7 +78,7 @@ fn composed_locations_map_back_to_files() {
         .find(|(_, l)| l.starts_with("fn sg_product("))
         .expect("sg_product composed");
     assert_eq!(
-        original_location(&composed, composed_line + 1),
+        shader_lib::original_location(&composed, composed_line + 1),
         Some(("common/sg.wgsl".to_string(), sg_line + 1))
     );
     let vsgl = shader_lib::source("common/vsgl.wgsl").expect("vsgl.wgsl is embedded");
@@ -134,7 +93,7 @@ fn composed_locations_map_back_to_files() {
         .find(|(_, l)| l.starts_with("fn vsgl_specular("))
         .expect("vsgl_specular composed");
     assert_eq!(
-        original_location(&composed, composed_line + 1),
+        shader_lib::original_location(&composed, composed_line + 1),
         Some(("common/vsgl.wgsl".to_string(), vsgl_line + 1))
     );
 }

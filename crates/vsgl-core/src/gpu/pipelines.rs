@@ -2,22 +2,15 @@
 //! `file:line`, automatic or explicit layouts, and plan-driven override-constant variants.
 
 use super::Gpu;
-use crate::error::{Error, Result};
+use crate::error::Result;
 
 impl Gpu {
     /// Compiles a composed WGSL shader, turning compilation errors into `Error::ShaderCompile`.
     pub fn shader(&self, path: &str) -> Result<wgpu::ShaderModule> {
         let src = crate::shader_lib::compose(path)?;
-        // Validate with naga first so a broken shader is an error naming the file, not a
-        // device-lost later.
-        let module = naga::front::wgsl::parse_str(&src).map_err(|e| Error::ShaderCompile {
-            file: path.into(),
-            line: e.location(&src).map(|l| l.line_number).unwrap_or(0),
-            message: e.emit_to_string(&src),
-        })?;
-        naga::valid::Validator::new(naga::valid::ValidationFlags::all(), naga::valid::Capabilities::all())
-            .validate(&module)
-            .map_err(|e| Error::ShaderCompile { file: path.into(), line: 0, message: e.emit_to_string(&src) })?;
+        // Validate with naga first so a broken shader is an error naming the file and line, not
+        // a device-lost later.
+        crate::shader_lib::validate(path, &src)?;
         Ok(self.device.create_shader_module(wgpu::ShaderModuleDescriptor {
             label: Some(path),
             source: wgpu::ShaderSource::Wgsl(src.into()),
