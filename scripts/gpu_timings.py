@@ -90,6 +90,7 @@ def main() -> None:
         cells = "  ".join(f"{k}={v['median']:.3f}[{v['min']:.3f},{v['max']:.3f}]" for k, v in row.items())
         print(f"{name}/{method:8s} warm {warm_frames} frames, SM {clock_before}->{clock_after} MHz  {cells}")
     out = os.environ.get("OUT", ".")
+    os.makedirs(out, exist_ok=True)
     with open(os.path.join(out, f"gpu_timings{args.tag}.json"), "w") as fh:
         json.dump(report, fh, indent=1)
 
