@@ -11,9 +11,8 @@
 //! (lavapipe) only the ratio between the two implementations means anything.
 
 use std::time::Instant;
-use vsgl_core::gpu::{Gpu, PassTimer};
+use vsgl_core::gpu::{storage_buffer, Gpu, PassTimer, Recorder};
 use vsgl_core::frame::Rsm;
-use vsgl_core::gpu::storage_buffer;
 use vsgl_core::passes::vsgl_gen::VSGL_BYTES;
 use vsgl_core::passes::vsgl2_reduce::{Vsgl2Reduce, Vsgl2Reduction, VSGL2_COUNT};
 use vsgl_core::plan::ShaderFeatures;
@@ -47,12 +46,12 @@ fn synthetic_rsm(gpu: &Gpu, n: u32, seed: u64) -> Rsm {
 /// Wall-clock milliseconds of `repeats` reductions of `rsm` recorded into one submission.
 fn time_sample(gpu: &Gpu, reduce: &Vsgl2Reduce, rsm: &Rsm, out: &wgpu::Buffer, reduction: Vsgl2Reduction, repeats: u32) -> f64 {
     let features = ShaderFeatures { textures: false, normal_maps: false, specular: true };
-    let mut enc = gpu.device.create_command_encoder(&wgpu::CommandEncoderDescriptor { label: Some("vsgl2_reduction_timing") });
     let mut timer = PassTimer::new_disabled();
+    let mut rec = Recorder::new(gpu, &mut timer);
     for _ in 0..repeats {
-        reduce.record(gpu, &mut enc, &mut timer, rsm, [0.0; 3], out, features, reduction).expect("record the reduction");
+        reduce.record(&mut rec, rsm, [0.0; 3], out, features, reduction).expect("record the reduction");
     }
-    let commands = enc.finish();
+    let commands = rec.finish().finish();
     let start = Instant::now();
     gpu.queue.submit([commands]);
     gpu.device.poll(wgpu::PollType::wait_indefinitely()).expect("wait for the reductions");

@@ -18,36 +18,82 @@ pub fn entries<'a>(resources: &[wgpu::BindingResource<'a>]) -> Vec<wgpu::BindGro
         .collect()
 }
 
-/// Records one timed compute dispatch: bind group `g` gets `groups[g]` in binding order
-/// (the pipeline's automatic layout), then `workgroups` are dispatched.
-pub fn run_compute(
-    gpu: &Gpu,
-    enc: &mut wgpu::CommandEncoder,
-    timer: &mut PassTimer,
-    label: &str,
-    pipeline: &wgpu::ComputePipeline,
-    groups: &[&[wgpu::BindingResource<'_>]],
-    workgroups: (u32, u32, u32),
-) {
-    let binds: Vec<wgpu::BindGroup> = groups
-        .iter()
-        .enumerate()
-        .map(|(g, resources)| {
-            gpu.device.create_bind_group(&wgpu::BindGroupDescriptor {
-                label: Some(label),
-                layout: &pipeline.get_bind_group_layout(g as u32),
-                entries: &entries(resources),
-            })
-        })
-        .collect();
-    let q = timer.begin(label);
-    let mut pass = enc.begin_compute_pass(&wgpu::ComputePassDescriptor { label: Some(label), timestamp_writes: timer.compute_writes(q) });
-    pass.set_pipeline(pipeline);
-    for (g, b) in binds.iter().enumerate() {
-        pass.set_bind_group(g as u32, b, &[]);
+/// Where a frame's GPU work is recorded: the device, the current command encoder and the
+/// frame's timer. Passes take one instead of the three; a frame that must submit part of its
+/// work early (long jobs, readbacks in the middle) continues in a fresh encoder.
+pub struct Recorder<'a> {
+    pub gpu: &'a Gpu,
+    pub enc: wgpu::CommandEncoder,
+    pub timer: &'a mut PassTimer,
+}
+
+impl<'a> Recorder<'a> {
+    pub fn new(gpu: &'a Gpu, timer: &'a mut PassTimer) -> Self {
+        Self { gpu, enc: Self::encoder(gpu), timer }
     }
-    if workgroups.0 > 0 && workgroups.1 > 0 && workgroups.2 > 0 {
-        pass.dispatch_workgroups(workgroups.0, workgroups.1, workgroups.2);
+
+    fn encoder(gpu: &Gpu) -> wgpu::CommandEncoder {
+        gpu.device.create_command_encoder(&wgpu::CommandEncoderDescriptor { label: Some("frame_encoder") })
+    }
+
+    /// Submits what is recorded so far and continues in a fresh encoder.
+    pub fn submit_so_far(&mut self) {
+        let done = std::mem::replace(&mut self.enc, Self::encoder(self.gpu));
+        self.gpu.queue.submit([done.finish()]);
+    }
+
+    /// Records `f`'s passes inside a debug group called `label` (what GPU debuggers show).
+    /// `f` must not submit: a group cannot span encoders.
+    pub fn in_debug_group<T>(&mut self, label: &str, f: impl FnOnce(&mut Self) -> T) -> T {
+        self.enc.push_debug_group(label);
+        let value = f(self);
+        self.enc.pop_debug_group();
+        value
+    }
+
+    /// Records one timed compute dispatch in its own debug group: bind group `g` gets
+    /// `groups[g]` in binding order (the pipeline's automatic layout), then `workgroups` are
+    /// dispatched.
+    pub fn compute(&mut self, label: &str, pipeline: &wgpu::ComputePipeline, groups: &[&[wgpu::BindingResource<'_>]], workgroups: (u32, u32, u32)) {
+        let binds: Vec<wgpu::BindGroup> = groups
+            .iter()
+            .enumerate()
+            .map(|(g, resources)| {
+                self.gpu.device.create_bind_group(&wgpu::BindGroupDescriptor {
+                    label: Some(label),
+                    layout: &pipeline.get_bind_group_layout(g as u32),
+                    entries: &entries(resources),
+                })
+            })
+            .collect();
+        self.in_debug_group(label, |rec| {
+            let q = rec.timer.begin(label);
+            let mut pass = rec.enc.begin_compute_pass(&wgpu::ComputePassDescriptor { label: Some(label), timestamp_writes: rec.timer.compute_writes(q) });
+            pass.set_pipeline(pipeline);
+            for (g, b) in binds.iter().enumerate() {
+                pass.set_bind_group(g as u32, b, &[]);
+            }
+            if workgroups.0 > 0 && workgroups.1 > 0 && workgroups.2 > 0 {
+                pass.dispatch_workgroups(workgroups.0, workgroups.1, workgroups.2);
+            }
+        });
+    }
+
+    /// Records `f`'s passes without timing or logging them (work that is not a pass of the
+    /// frame, such as clearing a placeholder target).
+    pub fn untimed<T>(&mut self, f: impl FnOnce(&mut Recorder<'_>) -> T) -> T {
+        let mut off = PassTimer::new_disabled();
+        // The spare encoder swapped in is dropped unused.
+        let enc = std::mem::replace(&mut self.enc, Self::encoder(self.gpu));
+        let mut inner = Recorder { gpu: self.gpu, enc, timer: &mut off };
+        let value = f(&mut inner);
+        self.enc = inner.enc;
+        value
+    }
+
+    /// The encoder, for the frame's final submission.
+    pub fn finish(self) -> wgpu::CommandEncoder {
+        self.enc
     }
 }
 

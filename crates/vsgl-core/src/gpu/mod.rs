@@ -15,6 +15,6 @@ pub mod timer;
 pub use buffers::{storage_buffer, uniform_buffer};
 pub use device::{adapters, AdapterSummary, Gpu};
 pub use pass_cache::{Pass, PassCache};
-pub use dispatch::{entries, for_each_chunk, groups, run_compute};
+pub use dispatch::{entries, for_each_chunk, groups, Recorder};
 pub use pipelines::{storage_binding, uniform_binding, PipelineVariants};
 pub use timer::PassTimer;

@@ -19,7 +19,7 @@ mod vsgl2;
 use crate::error::{Error, Result};
 use crate::frame::uniforms::LightRaw;
 use crate::frame::{GBuffer, IndirectTargets, VisibilityTargets};
-use crate::gpu::{Gpu, PassCache, PassTimer};
+use crate::gpu::{Gpu, PassCache, Recorder};
 use crate::plan::ShaderFeatures;
 use crate::scene::Scene;
 use crate::upload::GpuScene;
@@ -156,8 +156,8 @@ pub struct FrameContext<'a> {
     pub gpu: &'a Gpu,
     /// Every pass, created on first use and kept by the renderer.
     pub passes: &'a PassCache,
-    pub enc: wgpu::CommandEncoder,
-    pub timer: &'a mut PassTimer,
+    /// Where the method records its passes (device, encoder, timer).
+    pub rec: Recorder<'a>,
     pub scene: &'a Scene,
     pub gpu_scene: &'a GpuScene,
     /// World position of the frame's origin (the camera); GPU positions are relative to it.
@@ -186,16 +186,10 @@ pub struct FrameContext<'a> {
 }
 
 impl FrameContext<'_> {
-    /// A fresh encoder for this frame.
-    pub fn new_encoder(gpu: &Gpu) -> wgpu::CommandEncoder {
-        gpu.device.create_command_encoder(&wgpu::CommandEncoderDescriptor { label: Some("frame_encoder") })
-    }
-
     /// Submits what is recorded so far (long work is split so no submission trips a watchdog,
     /// and readbacks in the middle of a frame need it) and continues in a fresh encoder.
     pub fn submit_so_far(&mut self) {
-        let done = std::mem::replace(&mut self.enc, Self::new_encoder(self.gpu));
-        self.gpu.queue.submit([done.finish()]);
+        self.rec.submit_so_far();
     }
 
     pub fn skip(&mut self, what: &str, why: impl Into<String>) {

@@ -47,9 +47,7 @@ impl Method for PathTrace {
             ids: &ctx.visibility.ids,
             features: ctx.features,
         };
-        let gpu = ctx.gpu;
-        let new_encoder = || FrameContext::new_encoder(gpu);
-        let out = pass.record(gpu, &mut ctx.enc, &new_encoder, ctx.timer, &input, ctx.indirect, ctx.direct, self.spp, self.seed, ctx.size)?;
+        let out = pass.record(&mut ctx.rec, &input, ctx.indirect, ctx.direct, self.spp, self.seed, ctx.size)?;
         if !out.bvh_built {
             ctx.skip("bvh_build", "the BVH built for this scene upload is reused");
         }

@@ -52,9 +52,9 @@ pub fn for_each_light(ctx: &mut FrameContext<'_>, s: &RsmSettings, mut per_light
             usage: wgpu::BufferUsages::STORAGE,
         });
         let gs = ctx.gpu_scene;
-        visibility.record(gpu, &mut ctx.enc, ctx.timer, "rsm_visibility", &view_buf, &gs.raster_vertices, gs.raster_vertex_count, &rsm_visibility);
-        material.record(gpu, &mut ctx.enc, ctx.timer, "rsm_material", &view_buf, &rsm_visibility.ids, gs, ctx.features, &rsm.gbuffer, (n, n));
-        flux.record(gpu, &mut ctx.enc, ctx.timer, &view_buf, light.as_entire_binding(), &rsm, ctx.features);
+        visibility.record(&mut ctx.rec, "rsm_visibility", &view_buf, &gs.raster_vertices, gs.raster_vertex_count, &rsm_visibility);
+        material.record(&mut ctx.rec, "rsm_material", &view_buf, &rsm_visibility.ids, gs, ctx.features, &rsm.gbuffer, (n, n));
+        flux.record(&mut ctx.rec, &view_buf, light.as_entire_binding(), &rsm, ctx.features);
         per_light(ctx, &LightRsm { index, raw, light: &light, rsm: &rsm })?;
         if index == 0 && s.capture {
             // Read back before the next light overwrites the shared RSM buffers.

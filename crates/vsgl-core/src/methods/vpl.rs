@@ -72,10 +72,10 @@ impl Method for Vpl {
         let min_distance2 = (self.vpl_clamp as f64 * ctx.extent).powi(2) as f32;
         let rsm = RsmSettings { size: self.rsm_size, sampling: true, capture: self.capture_rsm };
         for_each_light(ctx, &rsm, |ctx, light| {
-            let (gpu, feat) = (ctx.gpu, ctx.features);
-            pdf_mips.record(gpu, &mut ctx.enc, ctx.timer, light.rsm);
-            sample.record_importance(gpu, &mut ctx.enc, ctx.timer, light.light.as_entire_binding(), light.rsm, self.num_lights, self.sampling, self.seed, &vpls, feat);
-            shading.record(gpu, &mut ctx.enc, ctx.timer, ctx.frame_uniforms, &vpls, self.num_lights, min_distance2, ctx.gbuffer, ctx.indirect, feat, ctx.size);
+            let feat = ctx.features;
+            pdf_mips.record(&mut ctx.rec, light.rsm);
+            sample.record_importance(&mut ctx.rec, light.light.as_entire_binding(), light.rsm, self.num_lights, self.sampling, self.seed, &vpls, feat);
+            shading.record(&mut ctx.rec, ctx.frame_uniforms, &vpls, self.num_lights, min_distance2, ctx.gbuffer, ctx.indirect, feat, ctx.size);
             Ok(())
         })?;
         Ok(())

@@ -151,9 +151,9 @@ impl Method for Vsgl {
         let lit = for_each_light(ctx, &rsm, |ctx, light| {
             let (gpu, feat) = (ctx.gpu, ctx.features);
             let chains = chains.get_or_insert_with(|| MomentChains::new(gpu, self.rsm_size));
-            pdf_mips.record(gpu, &mut ctx.enc, ctx.timer, light.rsm);
-            moments.record(gpu, &mut ctx.enc, ctx.timer, light.rsm, chains, feat);
-            moment_mips.record(gpu, &mut ctx.enc, ctx.timer, self.rsm_size, chains);
+            pdf_mips.record(&mut ctx.rec, light.rsm);
+            moments.record(&mut ctx.rec, light.rsm, chains, feat);
+            moment_mips.record(&mut ctx.rec, self.rsm_size, chains);
             let buf = storage_buffer(gpu, "vsgl_buffer", self.num_lights as u64 * VSGL_BYTES);
             let settings = GenSettings {
                 count: self.num_lights,
@@ -164,9 +164,9 @@ impl Method for Vsgl {
                 bisection_steps: self.bisection_steps,
                 light_offset: light.raw.position,
             };
-            gen.record(gpu, &mut ctx.enc, ctx.timer, light.rsm, chains, &settings, &buf);
+            gen.record(&mut ctx.rec, light.rsm, chains, &settings, &buf);
             let target = if filter { &noisy } else { ctx.indirect };
-            shading.record(gpu, &mut ctx.enc, ctx.timer, ctx.frame_uniforms, &buf, self.num_lights, self.interleave, self.diffuse, ctx.gbuffer, target, feat, ctx.size);
+            shading.record(&mut ctx.rec, ctx.frame_uniforms, &buf, self.num_lights, self.interleave, self.diffuse, ctx.gbuffer, target, feat, ctx.size);
             if light.index == 0 {
                 ctx.vsgls = Some(buf);
             }
@@ -177,7 +177,7 @@ impl Method for Vsgl {
         }
         if filter {
             let denoise = passes.get::<DenoisePass>()?;
-            denoise.record(ctx.gpu, &mut ctx.enc, ctx.timer, ctx.frame_uniforms, self.interleave, ctx.gbuffer, &noisy, ctx.indirect, ctx.features, ctx.size);
+            denoise.record(&mut ctx.rec, ctx.frame_uniforms, self.interleave, ctx.gbuffer, &noisy, ctx.indirect, ctx.features, ctx.size);
         } else if self.interleave == 1 {
             ctx.skip("denoise", "interleave=1: every pixel evaluates every VSGL");
         } else {

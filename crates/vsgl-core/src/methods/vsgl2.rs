@@ -68,8 +68,8 @@ impl Method for Vsgl2 {
         let lit = for_each_light(ctx, &rsm, |ctx, light| {
             let (gpu, feat) = (ctx.gpu, ctx.features);
             let buf = storage_buffer(gpu, "vsgl2_buffer", VSGL2_COUNT as u64 * VSGL_BYTES);
-            reduce.record(gpu, &mut ctx.enc, ctx.timer, light.rsm, light.raw.position, &buf, feat, reduction)?;
-            shading.record(gpu, &mut ctx.enc, ctx.timer, ctx.frame_uniforms, &buf, VSGL2_COUNT, 1, self.diffuse, ctx.gbuffer, ctx.indirect, feat, ctx.size);
+            reduce.record(&mut ctx.rec, light.rsm, light.raw.position, &buf, feat, reduction)?;
+            shading.record(&mut ctx.rec, ctx.frame_uniforms, &buf, VSGL2_COUNT, 1, self.diffuse, ctx.gbuffer, ctx.indirect, feat, ctx.size);
             if light.index == 0 {
                 ctx.vsgls = Some(buf);
             }

@@ -3,7 +3,7 @@
 
 use crate::error::Result;
 use crate::frame::{GBuffer, IndirectTargets};
-use crate::gpu::{groups, run_compute, storage_buffer, uniform_buffer, Gpu, PassTimer, PipelineVariants};
+use crate::gpu::{groups, storage_buffer, uniform_buffer, Gpu, PipelineVariants, Recorder};
 use crate::plan::ShaderFeatures;
 
 const WORKGROUP: u32 = 8;
@@ -27,7 +27,8 @@ impl DenoisePass {
 
     /// Filters `noisy` into `out` through an intermediate (demodulated, x-filtered) pair.
     #[allow(clippy::too_many_arguments)]
-    pub fn record(&self, gpu: &Gpu, enc: &mut wgpu::CommandEncoder, timer: &mut PassTimer, frame: &wgpu::Buffer, radius: u32, gbuffer: &GBuffer, noisy: &IndirectTargets, out: &IndirectTargets, features: ShaderFeatures, size: (u32, u32)) {
+    pub fn record(&self, rec: &mut Recorder<'_>, frame: &wgpu::Buffer, radius: u32, gbuffer: &GBuffer, noisy: &IndirectTargets, out: &IndirectTargets, features: ShaderFeatures, size: (u32, u32)) {
+        let gpu = rec.gpu;
         let pipeline = self.pipelines.get(gpu, &features.specular_flags());
         let bytes = size.0 as u64 * size.1 as u64 * 16;
         let across = IndirectTargets {
@@ -36,10 +37,7 @@ impl DenoisePass {
         };
         for (direction, input, output) in [(0u32, noisy, &across), (1u32, &across, out)] {
             let uniform = uniform_buffer(gpu, "denoise_params_uniform_buffer", &DenoiseParamsRaw { radius: radius as i32, direction, _pad: [0; 2] });
-            run_compute(
-                gpu,
-                enc,
-                timer,
+            rec.compute(
                 "denoise",
                 &pipeline,
                 &[

@@ -2,7 +2,7 @@
 
 use crate::error::Result;
 use crate::frame::GBuffer;
-use crate::gpu::{entries, groups, Gpu, PassTimer, PipelineVariants};
+use crate::gpu::{entries, groups, Gpu, PipelineVariants, Recorder};
 use crate::plan::ShaderFeatures;
 
 const WORKGROUP: u32 = 8;
@@ -31,9 +31,7 @@ impl DirectPass {
     #[allow(clippy::too_many_arguments)]
     pub fn record(
         &self,
-        gpu: &Gpu,
-        enc: &mut wgpu::CommandEncoder,
-        timer: &mut PassTimer,
+        rec: &mut Recorder<'_>,
         frame_uniforms: &wgpu::Buffer,
         lights: &wgpu::Buffer,
         shadow_maps: &wgpu::TextureView,
@@ -42,6 +40,7 @@ impl DirectPass {
         features: ShaderFeatures,
         size: (u32, u32),
     ) {
+        let gpu = rec.gpu;
         let pipeline = &self.pipelines.get(gpu, &features.specular_flags());
         let frame_bind = gpu.device.create_bind_group(&wgpu::BindGroupDescriptor {
             label: Some("direct_frame_bind_group"),
@@ -62,14 +61,16 @@ impl DirectPass {
                 out.as_entire_binding(),
             ]),
         });
-        let q = timer.begin("direct");
-        let mut pass = enc.begin_compute_pass(&wgpu::ComputePassDescriptor {
-            label: Some("direct_pass"),
-            timestamp_writes: timer.compute_writes(q),
+        rec.in_debug_group("direct", |rec| {
+            let q = rec.timer.begin("direct");
+            let mut pass = rec.enc.begin_compute_pass(&wgpu::ComputePassDescriptor {
+                label: Some("direct_pass"),
+                timestamp_writes: rec.timer.compute_writes(q),
+            });
+            pass.set_pipeline(pipeline);
+            pass.set_bind_group(0, &frame_bind, &[]);
+            pass.set_bind_group(1, &pass_bind, &[]);
+            pass.dispatch_workgroups(groups(size.0, WORKGROUP), groups(size.1, WORKGROUP), 1);
         });
-        pass.set_pipeline(pipeline);
-        pass.set_bind_group(0, &frame_bind, &[]);
-        pass.set_bind_group(1, &pass_bind, &[]);
-        pass.dispatch_workgroups(groups(size.0, WORKGROUP), groups(size.1, WORKGROUP), 1);
     }
 }

@@ -4,7 +4,7 @@
 
 use crate::frame::GBuffer;
 use crate::error::Result;
-use crate::gpu::{entries, groups, Gpu, PassTimer, PipelineVariants};
+use crate::gpu::{entries, groups, Gpu, PipelineVariants, Recorder};
 use crate::plan::ShaderFeatures;
 use crate::upload::GpuScene;
 
@@ -33,9 +33,7 @@ impl MaterialPass {
     #[allow(clippy::too_many_arguments)]
     pub fn record(
         &self,
-        gpu: &Gpu,
-        enc: &mut wgpu::CommandEncoder,
-        timer: &mut PassTimer,
+        rec: &mut Recorder<'_>,
         label: &str,
         frame_uniforms: &wgpu::Buffer,
         ids: &wgpu::TextureView,
@@ -44,6 +42,7 @@ impl MaterialPass {
         gbuffer: &GBuffer,
         size: (u32, u32),
     ) {
+        let gpu = rec.gpu;
         let pipeline = &self.pipelines.get(gpu, &[("HAS_TEXTURES", features.textures), ("HAS_NORMAL_MAPS", features.normal_maps)]);
         let frame_bind = gpu.device.create_bind_group(&wgpu::BindGroupDescriptor {
             label: Some("material_frame_bind_group"),
@@ -72,14 +71,16 @@ impl MaterialPass {
             layout: &pipeline.get_bind_group_layout(1),
             entries: &e,
         });
-        let q = timer.begin(label);
-        let mut pass = enc.begin_compute_pass(&wgpu::ComputePassDescriptor {
-            label: Some(label),
-            timestamp_writes: timer.compute_writes(q),
+        rec.in_debug_group(label, |rec| {
+            let q = rec.timer.begin(label);
+            let mut pass = rec.enc.begin_compute_pass(&wgpu::ComputePassDescriptor {
+                label: Some(label),
+                timestamp_writes: rec.timer.compute_writes(q),
+            });
+            pass.set_pipeline(pipeline);
+            pass.set_bind_group(0, &frame_bind, &[]);
+            pass.set_bind_group(1, &pass_bind, &[]);
+            pass.dispatch_workgroups(groups(size.0, WORKGROUP), groups(size.1, WORKGROUP), 1);
         });
-        pass.set_pipeline(pipeline);
-        pass.set_bind_group(0, &frame_bind, &[]);
-        pass.set_bind_group(1, &pass_bind, &[]);
-        pass.dispatch_workgroups(groups(size.0, WORKGROUP), groups(size.1, WORKGROUP), 1);
     }
 }

@@ -2,7 +2,7 @@
 
 use crate::error::Result;
 use crate::frame::MomentChains;
-use crate::gpu::{groups, run_compute, uniform_buffer, Gpu, PassTimer};
+use crate::gpu::{groups, uniform_buffer, Gpu, Recorder};
 
 const WORKGROUP: u32 = 8;
 
@@ -25,15 +25,13 @@ impl MomentMipsPass {
         Ok(Self { pipeline: gpu.compute_pipeline("moment_mips_pipeline", &module, "main") })
     }
 
-    pub fn record(&self, gpu: &Gpu, enc: &mut wgpu::CommandEncoder, timer: &mut PassTimer, rsm_size: u32, chains: &MomentChains) {
+    pub fn record(&self, rec: &mut Recorder<'_>, rsm_size: u32, chains: &MomentChains) {
+        let gpu = rec.gpu;
         let (offsets, _) = crate::frame::pyramid_layout(rsm_size);
         for level in 1..offsets.len() {
             let dst_size = rsm_size >> level;
             let uniform = uniform_buffer(gpu, "moment_mips_level_uniform_buffer", &LevelRaw { src_offset: offsets[level - 1], dst_offset: offsets[level], dst_size, chain_len: chains.chain_len });
-            run_compute(
-                gpu,
-                enc,
-                timer,
+            rec.compute(
                 "moment_mips",
                 &self.pipeline,
                 &[&[uniform.as_entire_binding(), chains.buffer.as_entire_binding()]],

@@ -6,7 +6,7 @@
 use crate::error::Result;
 use crate::frame::{GBuffer, IndirectTargets};
 use crate::gpu::frame_log::note_pass;
-use crate::gpu::{entries, groups, storage_binding, storage_buffer, uniform_binding, uniform_buffer, Gpu, PassTimer, PipelineVariants};
+use crate::gpu::{entries, groups, storage_binding, storage_buffer, uniform_binding, uniform_buffer, Gpu, PipelineVariants, Recorder};
 use crate::plan::ShaderFeatures;
 use crate::scene::Scene;
 use crate::upload::GpuScene;
@@ -123,14 +123,11 @@ impl PathTracePass {
     /// Builds the BVH, traces the direct light into `direct_out`, accumulates `spp` samples per
     /// pixel into `indirect` (means of the diffuse and specular parts) in batches, and resolves
     /// the standard error. Each batch after the first goes in its own submission, so no
-    /// submission runs long; `enc` is replaced by a fresh encoder when that happens.
+    /// submission runs long (the recorder continues in a fresh encoder).
     #[allow(clippy::too_many_arguments)]
     pub fn record(
         &self,
-        gpu: &Gpu,
-        enc: &mut wgpu::CommandEncoder,
-        new_encoder: &dyn Fn() -> wgpu::CommandEncoder,
-        timer: &mut PassTimer,
+        rec: &mut Recorder<'_>,
         input: &PathTraceInputs,
         indirect: &IndirectTargets,
         direct_out: &wgpu::Buffer,
@@ -138,6 +135,7 @@ impl PathTracePass {
         seed: u32,
         size: (u32, u32),
     ) -> Result<PathTraceOutput> {
+        let gpu = rec.gpu;
         let (w, h) = size;
         let (bvh, bvh_built) = input.gscene.bvh(gpu, input.scene, input.origin)?;
         if bvh_built {
@@ -149,7 +147,7 @@ impl PathTracePass {
         let stderr = storage_buffer(gpu, "pathtrace_stderr_buffer", pixels * 16);
         let workgroups = (groups(w, WORKGROUP), groups(h, WORKGROUP), 1);
 
-        let dispatch = |enc: &mut wgpu::CommandEncoder, timer: &mut PassTimer, label: &str, pipeline: &wgpu::ComputePipeline, params: PathParamsRaw| {
+        let dispatch = |rec: &mut Recorder<'_>, label: &str, pipeline: &wgpu::ComputePipeline, params: PathParamsRaw| {
             let uniform = uniform_buffer(gpu, "pathtrace_params_uniform_buffer", &params);
             let resources = [
                 input.frame.as_entire_binding(),
@@ -180,17 +178,19 @@ impl PathTracePass {
                 layout: &pipeline.get_bind_group_layout(0),
                 entries: &entries(&resources),
             });
-            let q = timer.begin(label);
-            let mut pass = enc.begin_compute_pass(&wgpu::ComputePassDescriptor { label: Some(label), timestamp_writes: timer.compute_writes(q) });
-            pass.set_pipeline(pipeline);
-            pass.set_bind_group(0, &bind, &[]);
-            pass.dispatch_workgroups(workgroups.0, workgroups.1, workgroups.2);
+            rec.in_debug_group(label, |rec| {
+                let q = rec.timer.begin(label);
+                let mut pass = rec.enc.begin_compute_pass(&wgpu::ComputePassDescriptor { label: Some(label), timestamp_writes: rec.timer.compute_writes(q) });
+                pass.set_pipeline(pipeline);
+                pass.set_bind_group(0, &bind, &[]);
+                pass.dispatch_workgroups(workgroups.0, workgroups.1, workgroups.2);
+            });
         };
 
         let params = |sample_offset, batch_samples| PathParamsRaw { seed, sample_offset, batch_samples, _pad: 0 };
         // The three entry points share one shader, so they take the same leave-out flags.
         let flags = [("HAS_TEXTURES", input.features.textures), ("HAS_NORMAL_MAPS", input.features.normal_maps)];
-        dispatch(enc, timer, "pathtrace_direct", &self.direct.get(gpu, &flags), params(0, 0));
+        dispatch(rec, "pathtrace_direct", &self.direct.get(gpu, &flags), params(0, 0));
         let indirect_pipeline = &self.indirect.get(gpu, &flags);
         // `frame.passes` names the untextured variant of the bounce pass (timed as `pathtrace`).
         let indirect_label = if input.features.textures { "pathtrace" } else { "pathtrace[untextured]" };
@@ -201,17 +201,16 @@ impl PathTracePass {
             let count = per_batch.min(spp - done);
             if done > 0 {
                 // Submit what is recorded so far on its own, so no submission runs for long.
-                let full = std::mem::replace(enc, new_encoder());
-                gpu.queue.submit([full.finish()]);
+                rec.submit_so_far();
                 batch += 1;
                 if batch % SUBMISSIONS_IN_FLIGHT == 0 {
                     gpu.wait("pathtrace batch")?;
                 }
             }
-            dispatch(enc, timer, indirect_label, indirect_pipeline, params(done, count));
+            dispatch(rec, indirect_label, indirect_pipeline, params(done, count));
             done += count;
         }
-        dispatch(enc, timer, "pathtrace_resolve", &self.resolve.get(gpu, &flags), params(spp, 0));
+        dispatch(rec, "pathtrace_resolve", &self.resolve.get(gpu, &flags), params(spp, 0));
         Ok(PathTraceOutput {
             stderr,
             bvh_built,

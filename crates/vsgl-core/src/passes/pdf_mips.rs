@@ -4,7 +4,7 @@
 
 use crate::error::Result;
 use crate::frame::Rsm;
-use crate::gpu::{groups, run_compute, uniform_buffer, Gpu, PassTimer};
+use crate::gpu::{groups, uniform_buffer, Gpu, Recorder};
 
 const WORKGROUP: u32 = 8;
 
@@ -28,15 +28,13 @@ impl PdfMipsPass {
         Ok(Self { pipeline: gpu.compute_pipeline("pdf_mips_pipeline", &module, "main") })
     }
 
-    pub fn record(&self, gpu: &Gpu, enc: &mut wgpu::CommandEncoder, timer: &mut PassTimer, rsm: &Rsm) {
+    pub fn record(&self, rec: &mut Recorder<'_>, rsm: &Rsm) {
+        let gpu = rec.gpu;
         let (offsets, _) = crate::frame::pyramid_layout(rsm.size);
         for level in 1..offsets.len() {
             let dst_size = rsm.size >> level;
             let uniform = uniform_buffer(gpu, "pdf_mips_level_uniform_buffer", &LevelRaw { src_offset: offsets[level - 1], dst_offset: offsets[level], dst_size, _pad: 0 });
-            run_compute(
-                gpu,
-                enc,
-                timer,
+            rec.compute(
                 "pdf_mips",
                 &self.pipeline,
                 &[&[uniform.as_entire_binding(), rsm.pyramid.as_entire_binding()]],

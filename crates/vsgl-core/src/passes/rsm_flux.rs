@@ -3,7 +3,7 @@
 
 use crate::frame::Rsm;
 use crate::error::Result;
-use crate::gpu::{groups, run_compute, Gpu, PassTimer, PipelineVariants};
+use crate::gpu::{groups, Gpu, PipelineVariants, Recorder};
 use crate::plan::ShaderFeatures;
 
 const WORKGROUP: u32 = 8;
@@ -18,7 +18,8 @@ impl RsmFluxPass {
         Ok(Self { pipelines: PipelineVariants::new(gpu, "passes/rsm_flux.wgsl", "main")? })
     }
 
-    pub fn record(&self, gpu: &Gpu, enc: &mut wgpu::CommandEncoder, timer: &mut PassTimer, view: &wgpu::Buffer, light: wgpu::BindingResource<'_>, rsm: &Rsm, features: ShaderFeatures) {
+    pub fn record(&self, rec: &mut Recorder<'_>, view: &wgpu::Buffer, light: wgpu::BindingResource<'_>, rsm: &Rsm, features: ShaderFeatures) {
+        let gpu = rec.gpu;
         let pipeline = self.pipelines.get(gpu, &[("HAS_SPECULAR", features.specular), ("SAMPLING_WEIGHTS", rsm.sampling)]);
         // The pyramid's level 0 is its first `size²` floats (the whole placeholder without one).
         let level0 = match rsm.sampling {
@@ -29,10 +30,7 @@ impl RsmFluxPass {
             }),
             false => rsm.pyramid.as_entire_binding(),
         };
-        run_compute(
-            gpu,
-            enc,
-            timer,
+        rec.compute(
             "rsm_flux",
             &pipeline,
             &[

@@ -1,7 +1,7 @@
 //! Spot-light shadow maps: depth only, one array layer per light, reverse-Z.
 
 use crate::error::Result;
-use crate::gpu::{uniform_buffer, Gpu, PassTimer};
+use crate::gpu::{uniform_buffer, Gpu, Recorder};
 
 pub const FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Depth32Float;
 
@@ -60,50 +60,51 @@ impl ShadowMapPass {
     /// list it only clears layer 0.
     pub fn record(
         &self,
-        gpu: &Gpu,
-        enc: &mut wgpu::CommandEncoder,
-        timer: &mut PassTimer,
+        rec: &mut Recorder<'_>,
         target: &wgpu::Texture,
         view_projs: &[[[f32; 4]; 4]],
         vertices: &wgpu::Buffer,
         vertex_count: u32,
     ) {
+        let gpu = rec.gpu;
         let layers = view_projs.len().max(1);
-        for layer in 0..layers {
-            let view = target.create_view(&wgpu::TextureViewDescriptor {
-                label: Some("shadow_map_layer_view"),
-                dimension: Some(wgpu::TextureViewDimension::D2),
-                base_array_layer: layer as u32,
-                array_layer_count: Some(1),
-                ..Default::default()
-            });
-            let q = timer.begin("shadow_map");
-            let mut pass = enc.begin_render_pass(&wgpu::RenderPassDescriptor {
-                label: Some("shadow_map_pass"),
-                color_attachments: &[],
-                depth_stencil_attachment: Some(wgpu::RenderPassDepthStencilAttachment {
-                    view: &view,
-                    depth_ops: Some(wgpu::Operations { load: wgpu::LoadOp::Clear(0.0), store: wgpu::StoreOp::Store }),
-                    stencil_ops: None,
-                }),
-                timestamp_writes: timer.render_writes(q),
-                occlusion_query_set: None,
-                multiview_mask: None,
-            });
-            let Some(vp) = view_projs.get(layer) else { continue };
-            if vertex_count == 0 {
-                continue;
+        rec.in_debug_group("shadow_map", |rec| {
+            for layer in 0..layers {
+                let view = target.create_view(&wgpu::TextureViewDescriptor {
+                    label: Some("shadow_map_layer_view"),
+                    dimension: Some(wgpu::TextureViewDimension::D2),
+                    base_array_layer: layer as u32,
+                    array_layer_count: Some(1),
+                    ..Default::default()
+                });
+                let q = rec.timer.begin("shadow_map");
+                let mut pass = rec.enc.begin_render_pass(&wgpu::RenderPassDescriptor {
+                    label: Some("shadow_map_pass"),
+                    color_attachments: &[],
+                    depth_stencil_attachment: Some(wgpu::RenderPassDepthStencilAttachment {
+                        view: &view,
+                        depth_ops: Some(wgpu::Operations { load: wgpu::LoadOp::Clear(0.0), store: wgpu::StoreOp::Store }),
+                        stencil_ops: None,
+                    }),
+                    timestamp_writes: rec.timer.render_writes(q),
+                    occlusion_query_set: None,
+                    multiview_mask: None,
+                });
+                let Some(vp) = view_projs.get(layer) else { continue };
+                if vertex_count == 0 {
+                    continue;
+                }
+                let uniform = uniform_buffer(gpu, "shadow_map_view_uniform_buffer", vp);
+                let bind = gpu.device.create_bind_group(&wgpu::BindGroupDescriptor {
+                    label: Some("shadow_map_bind_group"),
+                    layout: &self.pipeline.get_bind_group_layout(0),
+                    entries: &[wgpu::BindGroupEntry { binding: 0, resource: uniform.as_entire_binding() }],
+                });
+                pass.set_pipeline(&self.pipeline);
+                pass.set_bind_group(0, &bind, &[]);
+                pass.set_vertex_buffer(0, vertices.slice(..));
+                pass.draw(0..vertex_count, 0..1);
             }
-            let uniform = uniform_buffer(gpu, "shadow_map_view_uniform_buffer", vp);
-            let bind = gpu.device.create_bind_group(&wgpu::BindGroupDescriptor {
-                label: Some("shadow_map_bind_group"),
-                layout: &self.pipeline.get_bind_group_layout(0),
-                entries: &[wgpu::BindGroupEntry { binding: 0, resource: uniform.as_entire_binding() }],
-            });
-            pass.set_pipeline(&self.pipeline);
-            pass.set_bind_group(0, &bind, &[]);
-            pass.set_vertex_buffer(0, vertices.slice(..));
-            pass.draw(0..vertex_count, 0..1);
-        }
+        });
     }
 }

@@ -2,7 +2,7 @@
 
 use crate::error::Result;
 use crate::frame::targets::{VisibilityTargets, VISIBILITY_DEPTH_FORMAT as DEPTH_FORMAT, VISIBILITY_ID_FORMAT as ID_FORMAT};
-use crate::gpu::{Gpu, PassTimer};
+use crate::gpu::{Gpu, Recorder};
 
 
 pub struct VisibilityPass {
@@ -51,44 +51,45 @@ impl VisibilityPass {
     #[allow(clippy::too_many_arguments)]
     pub fn record(
         &self,
-        gpu: &Gpu,
-        enc: &mut wgpu::CommandEncoder,
-        timer: &mut PassTimer,
+        rec: &mut Recorder<'_>,
         label: &str,
         frame_uniforms: &wgpu::Buffer,
         vertices: &wgpu::Buffer,
         vertex_count: u32,
         targets: &VisibilityTargets,
     ) {
+        let gpu = rec.gpu;
         let bind = gpu.device.create_bind_group(&wgpu::BindGroupDescriptor {
             label: Some("visibility_frame_bind_group"),
             layout: &self.pipeline.get_bind_group_layout(0),
             entries: &[wgpu::BindGroupEntry { binding: 0, resource: frame_uniforms.as_entire_binding() }],
         });
-        let q = timer.begin(label);
-        let mut pass = enc.begin_render_pass(&wgpu::RenderPassDescriptor {
-            label: Some(label),
-            color_attachments: &[Some(wgpu::RenderPassColorAttachment {
-                view: &targets.ids,
-                depth_slice: None,
-                resolve_target: None,
-                ops: wgpu::Operations { load: wgpu::LoadOp::Clear(wgpu::Color::TRANSPARENT), store: wgpu::StoreOp::Store },
-            })],
-            depth_stencil_attachment: Some(wgpu::RenderPassDepthStencilAttachment {
-                view: &targets.depth,
-                // Reverse-Z: 0 is infinitely far.
-                depth_ops: Some(wgpu::Operations { load: wgpu::LoadOp::Clear(0.0), store: wgpu::StoreOp::Store }),
-                stencil_ops: None,
-            }),
-            timestamp_writes: timer.render_writes(q),
-            occlusion_query_set: None,
-            multiview_mask: None,
+        rec.in_debug_group(label, |rec| {
+            let q = rec.timer.begin(label);
+            let mut pass = rec.enc.begin_render_pass(&wgpu::RenderPassDescriptor {
+                label: Some(label),
+                color_attachments: &[Some(wgpu::RenderPassColorAttachment {
+                    view: &targets.ids,
+                    depth_slice: None,
+                    resolve_target: None,
+                    ops: wgpu::Operations { load: wgpu::LoadOp::Clear(wgpu::Color::TRANSPARENT), store: wgpu::StoreOp::Store },
+                })],
+                depth_stencil_attachment: Some(wgpu::RenderPassDepthStencilAttachment {
+                    view: &targets.depth,
+                    // Reverse-Z: 0 is infinitely far.
+                    depth_ops: Some(wgpu::Operations { load: wgpu::LoadOp::Clear(0.0), store: wgpu::StoreOp::Store }),
+                    stencil_ops: None,
+                }),
+                timestamp_writes: rec.timer.render_writes(q),
+                occlusion_query_set: None,
+                multiview_mask: None,
+            });
+            if vertex_count > 0 {
+                pass.set_pipeline(&self.pipeline);
+                pass.set_bind_group(0, &bind, &[]);
+                pass.set_vertex_buffer(0, vertices.slice(..));
+                pass.draw(0..vertex_count, 0..1);
+            }
         });
-        if vertex_count > 0 {
-            pass.set_pipeline(&self.pipeline);
-            pass.set_bind_group(0, &bind, &[]);
-            pass.set_vertex_buffer(0, vertices.slice(..));
-            pass.draw(0..vertex_count, 0..1);
-        }
     }
 }

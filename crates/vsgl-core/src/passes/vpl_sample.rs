@@ -3,7 +3,7 @@
 
 use crate::error::Result;
 use crate::frame::Rsm;
-use crate::gpu::{groups, run_compute, storage_binding, uniform_binding, uniform_buffer, Gpu, PassTimer, PipelineVariants};
+use crate::gpu::{groups, storage_binding, uniform_binding, uniform_buffer, Gpu, PipelineVariants, Recorder};
 use crate::plan::ShaderFeatures;
 
 const WORKGROUP: u32 = 64;
@@ -66,12 +66,10 @@ impl VplSamplePass {
     }
 
     #[allow(clippy::too_many_arguments)]
-    fn dispatch(&self, gpu: &Gpu, enc: &mut wgpu::CommandEncoder, timer: &mut PassTimer, label: &str, pipeline: &wgpu::ComputePipeline, params: SampleParamsRaw, light: wgpu::BindingResource<'_>, rsm: &Rsm, out: &wgpu::Buffer) {
+    fn dispatch(&self, rec: &mut Recorder<'_>, label: &str, pipeline: &wgpu::ComputePipeline, params: SampleParamsRaw, light: wgpu::BindingResource<'_>, rsm: &Rsm, out: &wgpu::Buffer) {
+        let gpu = rec.gpu;
         let uniform = uniform_buffer(gpu, "vpl_sample_params_uniform_buffer", &params);
-        run_compute(
-            gpu,
-            enc,
-            timer,
+        rec.compute(
             label,
             pipeline,
             &[&[
@@ -91,7 +89,8 @@ impl VplSamplePass {
 
     /// `count` VPLs with p ∝ Φ·(R_d + R_s), estimator weights 1/(N p).
     #[allow(clippy::too_many_arguments)]
-    pub fn record_importance(&self, gpu: &Gpu, enc: &mut wgpu::CommandEncoder, timer: &mut PassTimer, light: wgpu::BindingResource<'_>, rsm: &Rsm, count: u32, sampling: Sampling, seed: u32, out: &wgpu::Buffer, features: ShaderFeatures) {
+    pub fn record_importance(&self, rec: &mut Recorder<'_>, light: wgpu::BindingResource<'_>, rsm: &Rsm, count: u32, sampling: Sampling, seed: u32, out: &wgpu::Buffer, features: ShaderFeatures) {
+        let gpu = rec.gpu;
         let params = SampleParamsRaw {
             count,
             levels: rsm.levels,
@@ -101,14 +100,15 @@ impl VplSamplePass {
             first: 0,
             _pad: [0; 2],
         };
-        self.dispatch(gpu, enc, timer, "vpl_sample", &self.importance.get(gpu, &features.specular_flags()), params, light, rsm, out);
+        self.dispatch(rec, "vpl_sample", &self.importance.get(gpu, &features.specular_flags()), params, light, rsm, out);
     }
 
     /// Texels `first .. first + count` as VPLs of weight Φ·R.
     #[allow(clippy::too_many_arguments)]
-    pub fn record_every_texel(&self, gpu: &Gpu, enc: &mut wgpu::CommandEncoder, timer: &mut PassTimer, light: wgpu::BindingResource<'_>, rsm: &Rsm, first: u32, count: u32, out: &wgpu::Buffer, features: ShaderFeatures) {
+    pub fn record_every_texel(&self, rec: &mut Recorder<'_>, light: wgpu::BindingResource<'_>, rsm: &Rsm, first: u32, count: u32, out: &wgpu::Buffer, features: ShaderFeatures) {
+        let gpu = rec.gpu;
         let params = SampleParamsRaw { count, levels: rsm.levels, rsm_size: rsm.size, mode: 0, seed: 0, first, _pad: [0; 2] };
         // Reported as its own variant in `frame.passes`, timed as `vpl_sample`.
-        self.dispatch(gpu, enc, timer, "vpl_sample[every_texel]", &self.every_texel.get(gpu, &features.specular_flags()), params, light, rsm, out);
+        self.dispatch(rec, "vpl_sample[every_texel]", &self.every_texel.get(gpu, &features.specular_flags()), params, light, rsm, out);
     }
 }

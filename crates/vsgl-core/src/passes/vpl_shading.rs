@@ -3,7 +3,7 @@
 use crate::frame::IndirectTargets;
 use crate::error::Result;
 use crate::frame::GBuffer;
-use crate::gpu::{for_each_chunk, groups, run_compute, uniform_buffer, Gpu, PassTimer, PipelineVariants};
+use crate::gpu::{for_each_chunk, groups, uniform_buffer, Gpu, PipelineVariants, Recorder};
 use crate::plan::ShaderFeatures;
 
 const WORKGROUP: u32 = 8;
@@ -35,9 +35,7 @@ impl VplShadingPass {
     #[allow(clippy::too_many_arguments)]
     pub fn record(
         &self,
-        gpu: &Gpu,
-        enc: &mut wgpu::CommandEncoder,
-        timer: &mut PassTimer,
+        rec: &mut Recorder<'_>,
         frame: &wgpu::Buffer,
         vpls: &wgpu::Buffer,
         vpl_count: u32,
@@ -47,13 +45,11 @@ impl VplShadingPass {
         features: ShaderFeatures,
         size: (u32, u32),
     ) {
+        let gpu = rec.gpu;
         let pipeline = self.pipelines.get(gpu, &features.specular_flags());
         for_each_chunk(vpl_count, VPLS_PER_DISPATCH, |first, count| {
             let uniform = uniform_buffer(gpu, "vpl_shading_params_uniform_buffer", &ShadeParamsRaw { vpl_count: count, min_distance2, first, _pad: 0 });
-            run_compute(
-                gpu,
-                enc,
-                timer,
+            rec.compute(
                 "vpl_shading",
                 &pipeline,
                 &[&[frame.as_entire_binding()], &out.shading_bindings(&uniform, vpls, gbuffer)],

@@ -10,7 +10,7 @@
 
 use crate::error::Result;
 use crate::frame::Rsm;
-use crate::gpu::{groups, run_compute, storage_binding, storage_buffer, uniform_binding, uniform_buffer, Gpu, PassTimer, PipelineVariants};
+use crate::gpu::{groups, storage_binding, storage_buffer, uniform_binding, uniform_buffer, Gpu, PipelineVariants, Recorder};
 use crate::plan::ShaderFeatures;
 
 /// Side of an RSM tile summed by one `tiles` workgroup.
@@ -128,7 +128,8 @@ impl Vsgl2Reduce {
 
     /// Records the reduction of `rsm` into `out` (two VSGL records, means relative to the
     /// frame origin: `light_offset` is the light's position relative to it).
-    pub fn record(&self, gpu: &Gpu, enc: &mut wgpu::CommandEncoder, timer: &mut PassTimer, rsm: &Rsm, light_offset: [f32; 3], out: &wgpu::Buffer, features: ShaderFeatures, reduction: Vsgl2Reduction) -> Result<()> {
+    pub fn record(&self, rec: &mut Recorder<'_>, rsm: &Rsm, light_offset: [f32; 3], out: &wgpu::Buffer, features: ShaderFeatures, reduction: Vsgl2Reduction) -> Result<()> {
+        let gpu = rec.gpu;
         let pipelines = self.pipelines(gpu, reduction)?;
         let (tiles, merge) = (pipelines.tiles.get(gpu, &features.specular_flags()), pipelines.merge.get(gpu, &features.specular_flags()));
         let n = rsm.size;
@@ -139,11 +140,8 @@ impl Vsgl2Reduce {
             let raw = ReduceParamsRaw { rsm_size: n, count: count as u32, finish: finish as u32, _pad0: 0, light_offset, _pad1: 0.0 };
             uniform_buffer(gpu, "vsgl2_reduce_params_uniform_buffer", &raw)
         };
-        let dispatch = |u: &wgpu::Buffer, input: &wgpu::Buffer, output: &wgpu::Buffer, pipeline: &wgpu::ComputePipeline, enc: &mut wgpu::CommandEncoder, timer: &mut PassTimer, workgroups: (u32, u32, u32)| {
-            run_compute(
-                gpu,
-                enc,
-                timer,
+        let dispatch = |u: &wgpu::Buffer, input: &wgpu::Buffer, output: &wgpu::Buffer, pipeline: &wgpu::ComputePipeline, rec: &mut Recorder<'_>, workgroups: (u32, u32, u32)| {
+            rec.compute(
                 "vsgl2_reduce",
                 pipeline,
                 &[&[
@@ -161,7 +159,7 @@ impl Vsgl2Reduce {
         };
         let u = params(0, false);
         let t = groups(n, TILE);
-        dispatch(&u, &b, &a, &tiles, enc, timer, (t, t, 1));
+        dispatch(&u, &b, &a, &tiles, rec, (t, t, 1));
         // Ping-pong: each merge reads `count` partials from one buffer and writes
         // ⌈count/256⌉ to the other (the first buffer is the larger, so both always fit).
         let (mut input, mut output) = (&a, &b);
@@ -170,7 +168,7 @@ impl Vsgl2Reduce {
             let wgs = count.div_ceil(MERGE_SPAN as u64);
             let finish = wgs == 1;
             let u = params(count, finish);
-            dispatch(&u, input, output, &merge, enc, timer, (wgs as u32, 1, 1));
+            dispatch(&u, input, output, &merge, rec, (wgs as u32, 1, 1));
             if finish {
                 break;
             }

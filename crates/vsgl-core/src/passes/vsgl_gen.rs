@@ -3,7 +3,7 @@
 
 use crate::error::Result;
 use crate::frame::{MomentChains, Rsm};
-use crate::gpu::{groups, run_compute, uniform_buffer, Gpu, PassTimer};
+use crate::gpu::{groups, uniform_buffer, Gpu, Recorder};
 
 const WORKGROUP: u32 = 64;
 
@@ -84,7 +84,8 @@ impl VsglGenPass {
     }
 
     #[allow(clippy::too_many_arguments)]
-    pub fn record(&self, gpu: &Gpu, enc: &mut wgpu::CommandEncoder, timer: &mut PassTimer, rsm: &Rsm, chains: &MomentChains, s: &GenSettings, out: &wgpu::Buffer) {
+    pub fn record(&self, rec: &mut Recorder<'_>, rsm: &Rsm, chains: &MomentChains, s: &GenSettings, out: &wgpu::Buffer) {
+        let gpu = rec.gpu;
         let params = GenParamsRaw {
             count: s.count,
             levels: rsm.levels,
@@ -98,10 +99,7 @@ impl VsglGenPass {
             k: s.k,
         };
         let uniform = uniform_buffer(gpu, "vsgl_gen_params_uniform_buffer", &params);
-        run_compute(
-            gpu,
-            enc,
-            timer,
+        rec.compute(
             "vsgl_gen",
             &self.pipeline,
             &[&[

@@ -4,7 +4,7 @@
 use crate::frame::MomentChains;
 use crate::error::Result;
 use crate::frame::Rsm;
-use crate::gpu::{groups, run_compute, uniform_buffer, Gpu, PassTimer, PipelineVariants};
+use crate::gpu::{groups, uniform_buffer, Gpu, PipelineVariants, Recorder};
 use crate::plan::ShaderFeatures;
 
 const WORKGROUP: u32 = 8;
@@ -26,13 +26,11 @@ impl VsglMomentsPass {
         Ok(Self { pipelines: PipelineVariants::new(gpu, "passes/vsgl_moments.wgsl", "main")? })
     }
 
-    pub fn record(&self, gpu: &Gpu, enc: &mut wgpu::CommandEncoder, timer: &mut PassTimer, rsm: &Rsm, chains: &MomentChains, features: ShaderFeatures) {
+    pub fn record(&self, rec: &mut Recorder<'_>, rsm: &Rsm, chains: &MomentChains, features: ShaderFeatures) {
+        let gpu = rec.gpu;
         let pipeline = self.pipelines.get(gpu, &features.specular_flags());
         let uniform = uniform_buffer(gpu, "vsgl_moments_params_uniform_buffer", &MomentParamsRaw { rsm_size: rsm.size, chain_len: chains.chain_len, _pad: [0; 2] });
-        run_compute(
-            gpu,
-            enc,
-            timer,
+        rec.compute(
             "vsgl_moments",
             &pipeline,
             &[&[

@@ -2,7 +2,7 @@
 
 use crate::error::Result;
 use crate::frame::{GBuffer, IndirectTargets};
-use crate::gpu::{for_each_chunk, groups, run_compute, uniform_buffer, Gpu, PassTimer, PipelineVariants};
+use crate::gpu::{for_each_chunk, groups, uniform_buffer, Gpu, PipelineVariants, Recorder};
 use crate::plan::ShaderFeatures;
 
 const WORKGROUP: u32 = 8;
@@ -65,9 +65,7 @@ impl VsglShadingPass {
     #[allow(clippy::too_many_arguments)]
     pub fn record(
         &self,
-        gpu: &Gpu,
-        enc: &mut wgpu::CommandEncoder,
-        timer: &mut PassTimer,
+        rec: &mut Recorder<'_>,
         frame: &wgpu::Buffer,
         vsgls: &wgpu::Buffer,
         count: u32,
@@ -78,16 +76,14 @@ impl VsglShadingPass {
         features: ShaderFeatures,
         size: (u32, u32),
     ) {
+        let gpu = rec.gpu;
         let pipeline = self.pipelines.get(gpu, &features.specular_flags());
         // Chunks are multiples of k² so the interleaved subsets stay j ≡ t (mod k²).
         let chunk = VSGLS_PER_PIXEL_PER_DISPATCH * interleave * interleave;
         for_each_chunk(count, chunk, |first, n| {
             let params = ShadeParamsRaw { count: n, interleave, diffuse_mode: diffuse.shader_code(), first };
             let uniform = uniform_buffer(gpu, "vsgl_shading_params_uniform_buffer", &params);
-            run_compute(
-                gpu,
-                enc,
-                timer,
+            rec.compute(
                 "vsgl_shading",
                 &pipeline,
                 &[&[frame.as_entire_binding()], &out.shading_bindings(&uniform, vsgls, gbuffer)],

@@ -13,7 +13,7 @@ pub use options::{RenderOptions, AOV_NAMES};
 use crate::error::{Error, Result};
 use crate::frame::uniforms::{frame_uniforms, light_raw};
 use crate::frame::{GBuffer, IndirectTargets, VisibilityTargets};
-use crate::gpu::{frame_log::log_frame, storage_buffer, uniform_buffer, Gpu, PassCache, PassTimer};
+use crate::gpu::{frame_log::log_frame, storage_buffer, uniform_buffer, Gpu, PassCache, PassTimer, Recorder};
 use crate::methods::{options::common, DirectLight, FrameContext, Method, MethodInfo, OptionValue, Options};
 use crate::passes::{direct::DirectPass, material::MaterialPass, shadow_map::ShadowMapPass, visibility::VisibilityPass};
 use crate::plan::{Plan, ShaderFeatures};
@@ -135,9 +135,9 @@ impl Renderer {
         });
 
         let mut timer = PassTimer::new(gpu, TIMER_CAPACITY);
-        let mut enc = FrameContext::new_encoder(gpu);
+        let mut rec = Recorder::new(gpu, &mut timer);
         let vis = VisibilityTargets::new(gpu, w, h);
-        self.passes.get::<VisibilityPass>()?.record(gpu, &mut enc, &mut timer, "visibility", &frame_buf, &gscene.raster_vertices, gscene.raster_vertex_count, &vis);
+        self.passes.get::<VisibilityPass>()?.record(&mut rec, "visibility", &frame_buf, &gscene.raster_vertices, gscene.raster_vertex_count, &vis);
 
         let shadow_mapped = info.direct_light == DirectLight::ShadowMapped;
         let shadow_needed = !lights.is_empty() && shadow_mapped;
@@ -146,16 +146,16 @@ impl Renderer {
         let shadow_map = self.passes.get::<ShadowMapPass>()?;
         if shadow_needed {
             let vps: Vec<_> = lights.iter().map(|l| l.view_proj).collect();
-            shadow_map.record(gpu, &mut enc, &mut timer, &shadow_tex, &vps, &gscene.raster_vertices, gscene.raster_vertex_count);
+            shadow_map.record(&mut rec, &shadow_tex, &vps, &gscene.raster_vertices, gscene.raster_vertex_count);
         } else {
             // Clear the one placeholder layer so the binding is defined.
-            shadow_map.record(gpu, &mut enc, &mut PassTimer::new_disabled(), &shadow_tex, &[], &gscene.raster_vertices, 0);
+            rec.untimed(|rec| shadow_map.record(rec, &shadow_tex, &[], &gscene.raster_vertices, 0));
             let why = if lights.is_empty() { "the scene has no spot light".to_string() } else { format!("method={:?} traces shadow rays", info.name) };
             skipped.push(("shadow_map".into(), why));
         }
 
         let gbuffer = GBuffer::new(gpu, w, h);
-        self.passes.get::<MaterialPass>()?.record(gpu, &mut enc, &mut timer, "material", &frame_buf, &vis.ids, &gscene, feat, &gbuffer, (w, h));
+        self.passes.get::<MaterialPass>()?.record(&mut rec, "material", &frame_buf, &vis.ids, &gscene, feat, &gbuffer, (w, h));
 
         let direct_out = storage_buffer(gpu, "direct_radiance_buffer", w as u64 * h as u64 * 16);
         if shadow_mapped {
@@ -164,7 +164,7 @@ impl Renderer {
                 dimension: Some(wgpu::TextureViewDimension::D2Array),
                 ..Default::default()
             });
-            self.passes.get::<DirectPass>()?.record(gpu, &mut enc, &mut timer, &frame_buf, &light_buf, &shadow_view, &gbuffer, &direct_out, feat, (w, h));
+            self.passes.get::<DirectPass>()?.record(&mut rec, &frame_buf, &light_buf, &shadow_view, &gbuffer, &direct_out, feat, (w, h));
         }
 
         // Indirect targets; without specular materials the specular one is never bound for
@@ -177,8 +177,7 @@ impl Renderer {
         let mut ctx = FrameContext {
             gpu,
             passes: &self.passes,
-            enc,
-            timer: &mut timer,
+            rec,
             scene,
             gpu_scene: &gscene,
             origin,
@@ -199,9 +198,10 @@ impl Renderer {
             settings: Vec::new(),
         };
         job.method.record(&mut ctx)?;
-        let FrameContext { mut enc, skipped: method_skipped, vsgls, captured_rsm, stderr, settings: method_settings, .. } = ctx;
+        let FrameContext { rec, skipped: method_skipped, vsgls, captured_rsm, stderr, settings: method_settings, .. } = ctx;
         skipped.extend(method_skipped);
 
+        let mut enc = rec.finish();
         timer.resolve(&mut enc);
         gpu.queue.submit([enc.finish()]);
         let sources = AovSources { direct: &direct_out, indirect: &indirect, gbuffer: &gbuffer, stderr: stderr.as_ref(), specular: feat.specular };
