@@ -11,7 +11,7 @@
 //! (lavapipe) only the ratio between the two implementations means anything.
 
 use std::time::Instant;
-use vsgl_core::gpu::{storage_buffer, Gpu, PassTimer, Recorder};
+use vsgl_core::gpu::{storage_buffer, FrameResources, Gpu, PassTimer, Recorder};
 use vsgl_core::frame::Rsm;
 use vsgl_core::passes::vsgl_gen::VSGL_BYTES;
 use vsgl_core::passes::vsgl2_reduce::{Vsgl2Reduce, Vsgl2Reduction, VSGL2_COUNT};
@@ -25,7 +25,8 @@ fn arg(args: &[String], name: &str, default: &str) -> String {
 /// An RSM of side `n` whose every texel reflects light: positions in a 10 m box in front of
 /// the light, unit normals facing it, roughness in 0.05..1, positive diffuse and specular flux.
 fn synthetic_rsm(gpu: &Gpu, n: u32, seed: u64) -> Rsm {
-    let rsm = Rsm::new(gpu, n, true, false);
+    let (mut timer, mut resources) = (PassTimer::new_disabled(), FrameResources::default());
+    let rsm = Rsm::new(&mut Recorder::new(gpu, &mut timer, &mut resources), n, true, false);
     let mut rng = SplitMix64(seed);
     let texels = (n * n) as usize;
     let (mut position, mut normal, mut flux_d, mut flux_s) = (Vec::with_capacity(texels * 4), Vec::with_capacity(texels * 4), Vec::with_capacity(texels * 4), Vec::with_capacity(texels * 4));
@@ -47,7 +48,8 @@ fn synthetic_rsm(gpu: &Gpu, n: u32, seed: u64) -> Rsm {
 fn time_sample(gpu: &Gpu, reduce: &Vsgl2Reduce, rsm: &Rsm, out: &wgpu::Buffer, reduction: Vsgl2Reduction, repeats: u32) -> f64 {
     let features = ShaderFeatures { textures: false, normal_maps: false, specular: true };
     let mut timer = PassTimer::new_disabled();
-    let mut rec = Recorder::new(gpu, &mut timer);
+    let mut resources = FrameResources::default();
+    let mut rec = Recorder::new(gpu, &mut timer, &mut resources);
     for _ in 0..repeats {
         reduce.record(&mut rec, rsm, [0.0; 3], out, features, reduction).expect("record the reduction");
     }

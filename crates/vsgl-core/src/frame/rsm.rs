@@ -2,7 +2,7 @@
 //! per-texel buffers, the layout of its mip pyramids, and the VSGL moment chains.
 
 use super::targets::GBuffer;
-use crate::gpu::{storage_buffer, Gpu};
+use crate::gpu::Recorder;
 
 /// Level start offsets (level 0 = size², …, top = 1) and the total texel count, for a
 /// power-of-two `size`.
@@ -39,20 +39,16 @@ impl Rsm {
     /// `specular = false` (no specular material): the specular flux is never written or read,
     /// so it gets a 16-byte placeholder; `sampling = false` (nothing is sampled from the RSM):
     /// neither is the weight pyramid.
-    pub fn new(gpu: &Gpu, size: u32, specular: bool, sampling: bool) -> Self {
+    pub fn new(rec: &mut Recorder<'_>, size: u32, specular: bool, sampling: bool) -> Self {
         let texels = size as u64 * size as u64;
         let (offsets, total) = pyramid_layout(size);
         Self {
             size,
-            gbuffer: GBuffer::new(gpu, size, size),
-            flux_diffuse: storage_buffer(gpu, "rsm_flux_diffuse_buffer", texels * 16),
-            flux_specular: storage_buffer(gpu, "rsm_flux_specular_buffer", if specular { texels * 16 } else { 16 }),
-            pyramid: storage_buffer(gpu, "rsm_weight_pyramid_buffer", if sampling { total as u64 * 4 } else { 16 }),
-            level_offsets: wgpu::util::DeviceExt::create_buffer_init(&gpu.device, &wgpu::util::BufferInitDescriptor {
-                label: Some("rsm_level_offset_buffer"),
-                contents: bytemuck::cast_slice(&offsets),
-                usage: wgpu::BufferUsages::STORAGE,
-            }),
+            gbuffer: GBuffer::new(rec, size, size),
+            flux_diffuse: rec.storage("rsm_flux_diffuse_buffer", texels * 16),
+            flux_specular: rec.storage("rsm_flux_specular_buffer", if specular { texels * 16 } else { 16 }),
+            pyramid: rec.storage("rsm_weight_pyramid_buffer", if sampling { total as u64 * 4 } else { 16 }),
+            level_offsets: rec.storage_init("rsm_level_offset_buffer", bytemuck::cast_slice(&offsets)),
             levels: offsets.len() as u32,
             sampling,
         }
@@ -69,9 +65,9 @@ pub struct MomentChains {
 }
 
 impl MomentChains {
-    pub fn new(gpu: &Gpu, rsm_size: u32) -> Self {
+    pub fn new(rec: &mut Recorder<'_>, rsm_size: u32) -> Self {
         let (_, chain_len) = pyramid_layout(rsm_size);
-        Self { buffer: storage_buffer(gpu, "vsgl_moment_chain_buffer", CHAINS * chain_len as u64 * 16), chain_len }
+        Self { buffer: rec.storage("vsgl_moment_chain_buffer", CHAINS * chain_len as u64 * 16), chain_len }
     }
 
     /// Bytes needed for an RSM of side `rsm_size`.

@@ -2,7 +2,7 @@
 //! indirect radiance targets. A pass that reads or writes one takes it as an argument; none of
 //! them belongs to a pass.
 
-use crate::gpu::{frame_log::note_allocation, storage_buffer, Gpu};
+use crate::gpu::Recorder;
 
 /// Formats of the visibility buffer: depth (reverse-Z) and the visible triangle id.
 pub const VISIBILITY_DEPTH_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Depth32Float;
@@ -16,22 +16,20 @@ pub struct VisibilityTargets {
 
 impl VisibilityTargets {
     /// Depth and triangle-id targets of `width`×`height`.
-    pub fn new(gpu: &Gpu, width: u32, height: u32) -> Self {
-        let make = |label, format, usage| {
+    pub fn new(rec: &mut Recorder<'_>, width: u32, height: u32) -> Self {
+        let mut make = |label, format, usage| {
+            let desc = wgpu::TextureDescriptor {
+                label: Some(label),
+                size: wgpu::Extent3d { width, height, depth_or_array_layers: 1 },
+                mip_level_count: 1,
+                sample_count: 1,
+                dimension: wgpu::TextureDimension::D2,
+                format,
+                usage,
+                view_formats: &[],
+            };
             // Both formats are 4 bytes a texel (r32uint ids, depth32float).
-            note_allocation(label, width as u64 * height as u64 * 4);
-            gpu.device
-                .create_texture(&wgpu::TextureDescriptor {
-                    label: Some(label),
-                    size: wgpu::Extent3d { width, height, depth_or_array_layers: 1 },
-                    mip_level_count: 1,
-                    sample_count: 1,
-                    dimension: wgpu::TextureDimension::D2,
-                    format,
-                    usage,
-                    view_formats: &[],
-                })
-                .create_view(&Default::default())
+            rec.texture(&desc, width as u64 * height as u64 * 4).create_view(&Default::default())
         };
         let usage = wgpu::TextureUsages::RENDER_ATTACHMENT | wgpu::TextureUsages::TEXTURE_BINDING;
         Self {
@@ -63,8 +61,8 @@ impl GBuffer {
 }
 
 impl GBuffer {
-    pub fn new(gpu: &Gpu, width: u32, height: u32) -> Self {
-        let make = |label| storage_buffer(gpu, label, width as u64 * height as u64 * 16);
+    pub fn new(rec: &mut Recorder<'_>, width: u32, height: u32) -> Self {
+        let mut make = |label| rec.storage(label, width as u64 * height as u64 * 16);
         Self {
             position: make("gbuffer_position_buffer"),
             normal: make("gbuffer_normal_buffer"),

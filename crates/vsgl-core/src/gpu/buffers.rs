@@ -1,6 +1,7 @@
 //! Buffers: uniforms from `Pod` twins of WGSL structs, logged storage buffers, and readback.
 
-use super::{frame_log::note_allocation, Gpu};
+use super::frame_log::{note_allocation, note_use};
+use super::Gpu;
 use crate::error::{Error, Result};
 
 impl Gpu {
@@ -47,9 +48,11 @@ pub fn uniform_buffer<T: bytemuck::Pod>(gpu: &Gpu, label: &str, value: &T) -> wg
     )
 }
 
-/// A storage buffer of `size` bytes (at least 16, as wgpu rejects empty bindings).
+/// A storage buffer of `size` bytes (at least 16, as wgpu rejects empty bindings), created now
+/// (frames get theirs from [`super::Recorder::storage`], which keeps them across frames).
 pub fn storage_buffer(gpu: &Gpu, label: &str, size: u64) -> wgpu::Buffer {
     note_allocation(label, size.max(16));
+    note_use(label, size.max(16));
     gpu.device.create_buffer(&wgpu::BufferDescriptor {
         label: Some(label),
         size: size.max(16),

@@ -1,7 +1,7 @@
 //! Recording compute work: bind groups in binding order, timed and labelled dispatches, and
 //! workgroup counts from thread counts.
 
-use super::{Gpu, PassTimer};
+use super::{FrameResources, Gpu, PassTimer};
 
 /// Workgroups needed to cover `threads` with groups of `group` (callers count threads, not
 /// groups, as kajiya does).
@@ -25,11 +25,47 @@ pub struct Recorder<'a> {
     pub gpu: &'a Gpu,
     pub enc: wgpu::CommandEncoder,
     pub timer: &'a mut PassTimer,
+    /// Buffers and textures kept from frame to frame (see [`FrameResources`]).
+    pub resources: &'a mut FrameResources,
 }
 
 impl<'a> Recorder<'a> {
-    pub fn new(gpu: &'a Gpu, timer: &'a mut PassTimer) -> Self {
-        Self { gpu, enc: Self::encoder(gpu), timer }
+    pub fn new(gpu: &'a Gpu, timer: &'a mut PassTimer, resources: &'a mut FrameResources) -> Self {
+        Self { gpu, enc: Self::encoder(gpu), timer, resources }
+    }
+
+    /// A zero storage buffer of `size` bytes (new, or kept from an earlier frame and cleared).
+    pub fn storage(&mut self, label: &str, size: u64) -> wgpu::Buffer {
+        let usage = wgpu::BufferUsages::STORAGE | wgpu::BufferUsages::COPY_SRC | wgpu::BufferUsages::COPY_DST;
+        let (buffer, new) = self.resources.buffer(self.gpu, label, size, usage);
+        if !new {
+            // As a new buffer is: passes that accumulate (shading adds into its targets) rely on it.
+            self.enc.clear_buffer(&buffer, 0, None);
+        }
+        buffer
+    }
+
+    /// A read-only storage buffer holding `bytes`.
+    pub fn storage_init(&mut self, label: &str, bytes: &[u8]) -> wgpu::Buffer {
+        let usage = wgpu::BufferUsages::STORAGE | wgpu::BufferUsages::COPY_DST;
+        let (buffer, _) = self.resources.buffer(self.gpu, label, bytes.len() as u64, usage);
+        self.gpu.queue.write_buffer(&buffer, 0, bytes);
+        buffer
+    }
+
+    /// A uniform buffer holding `value` (a `#[repr(C)]` twin of a WGSL struct).
+    pub fn uniform<T: bytemuck::Pod>(&mut self, label: &str, value: &T) -> wgpu::Buffer {
+        let usage = wgpu::BufferUsages::UNIFORM | wgpu::BufferUsages::COPY_DST;
+        let bytes = bytemuck::bytes_of(value);
+        let (buffer, _) = self.resources.buffer(self.gpu, label, bytes.len() as u64, usage);
+        self.gpu.queue.write_buffer(&buffer, 0, bytes);
+        buffer
+    }
+
+    /// A texture as described (kept from frame to frame like the buffers); `bytes` is what
+    /// `frame.memory_bytes` counts for it.
+    pub fn texture(&mut self, desc: &wgpu::TextureDescriptor<'_>, bytes: u64) -> wgpu::Texture {
+        self.resources.texture(self.gpu, desc, bytes)
     }
 
     fn encoder(gpu: &Gpu) -> wgpu::CommandEncoder {
@@ -85,7 +121,7 @@ impl<'a> Recorder<'a> {
         let mut off = PassTimer::new_disabled();
         // The spare encoder swapped in is dropped unused.
         let enc = std::mem::replace(&mut self.enc, Self::encoder(self.gpu));
-        let mut inner = Recorder { gpu: self.gpu, enc, timer: &mut off };
+        let mut inner = Recorder { gpu: self.gpu, enc, timer: &mut off, resources: &mut *self.resources };
         let value = f(&mut inner);
         self.enc = inner.enc;
         value

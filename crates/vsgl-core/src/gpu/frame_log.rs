@@ -7,8 +7,10 @@ use std::cell::RefCell;
 /// What a frame did besides its passes, logged while it is recorded on this thread.
 #[derive(Clone, Debug, Default)]
 pub struct FrameLog {
-    /// (label, bytes summed over allocations with that label), in first-use order
-    /// (`frame.memory_bytes`).
+    /// (label, bytes summed over the buffers and targets with that label that the frame
+    /// used, created now or kept from earlier frames), in first-use order (`frame.memory_bytes`).
+    pub uses: Vec<(String, u64)>,
+    /// The same for what the frame created (`frame.settings["allocated_bytes"]` sums it).
     pub allocations: Vec<(String, u64)>,
     /// Every pipeline variant the frame bound: (shader path, entry point, override flags).
     pub variants: Vec<(String, String, Vec<(&'static str, bool)>)>,
@@ -30,12 +32,21 @@ fn with_frame_log(f: impl FnOnce(&mut FrameLog)) {
     });
 }
 
-/// Notes that the frame allocated `bytes` for `label` (a no-op outside [`log_frame`]).
-pub fn note_allocation(label: &str, bytes: u64) {
-    with_frame_log(|log| match log.allocations.iter_mut().find(|(l, _)| l == label) {
+fn add(list: &mut Vec<(String, u64)>, label: &str, bytes: u64) {
+    match list.iter_mut().find(|(l, _)| l == label) {
         Some((_, b)) => *b += bytes,
-        None => log.allocations.push((label.to_string(), bytes)),
-    });
+        None => list.push((label.to_string(), bytes)),
+    }
+}
+
+/// Notes that the frame created `bytes` for `label` (a no-op outside [`log_frame`]).
+pub fn note_allocation(label: &str, bytes: u64) {
+    with_frame_log(|log| add(&mut log.allocations, label, bytes));
+}
+
+/// Notes that the frame used `bytes` for `label`, new or kept (a no-op outside [`log_frame`]).
+pub fn note_use(label: &str, bytes: u64) {
+    with_frame_log(|log| add(&mut log.uses, label, bytes));
 }
 
 /// Notes that the frame bound this pipeline variant (a no-op outside [`log_frame`]).

@@ -1,6 +1,6 @@
 //! The GPU wing: everything about talking to wgpu that is not a pass — the device
 //! ([`device`]), shader modules and pipeline variants ([`pipelines`]), recording dispatches
-//! ([`dispatch`]), the per-renderer cache of passes ([`pass_cache`]), buffers and readback ([`buffers`]), per-pass timestamps ([`timer`]) and the
+//! ([`dispatch`]), the per-renderer cache of passes ([`pass_cache`]), buffers and readback ([`buffers`]), the buffers and textures kept from frame to frame ([`resources`]), per-pass timestamps ([`timer`]) and the
 //! per-frame log of allocations and variants ([`frame_log`]). Passes and methods build on it;
 //! it depends on neither.
 
@@ -10,6 +10,7 @@ pub mod dispatch;
 pub mod frame_log;
 pub mod pass_cache;
 pub mod pipelines;
+pub mod resources;
 pub mod timer;
 
 pub use buffers::{storage_buffer, uniform_buffer};
@@ -17,4 +18,5 @@ pub use device::{adapters, AdapterSummary, Gpu};
 pub use pass_cache::{Pass, PassCache};
 pub use dispatch::{entries, for_each_chunk, groups, Recorder};
 pub use pipelines::{storage_binding, uniform_binding, PipelineVariants};
+pub use resources::FrameResources;
 pub use timer::PassTimer;

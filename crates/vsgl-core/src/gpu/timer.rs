@@ -38,6 +38,11 @@ impl PassTimer {
         Self { query_set: None, resolve: None, names: Vec::new(), capacity: 0, period_ns: 1.0 }
     }
 
+    /// Forgets the passes of the previous frame (the queries are reused).
+    pub fn reset(&mut self) {
+        self.names.clear();
+    }
+
     /// Registers a pass; returns the (begin, end) query indices when timestamps are on.
     /// `name` may carry the variant in brackets (`"vpl_sample[every_texel]"`): the frame log
     /// records it as is (`frame.passes`: what ran, reported by the code that ran it), the

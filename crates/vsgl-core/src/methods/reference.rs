@@ -4,7 +4,7 @@
 use super::rsm_lights::{check_rsm_size, for_each_light, RsmSettings};
 use super::{options::common, DirectLight, FrameContext, Method, MethodInfo, OptionSpec, OptionValue, Options};
 use crate::error::Result;
-use crate::gpu::{storage_buffer, Gpu};
+use crate::gpu::Gpu;
 use crate::passes::vpl_sample::{VplSamplePass, VPL_BYTES};
 use crate::passes::vpl_shading::VplShadingPass;
 
@@ -56,7 +56,7 @@ impl Method for Reference {
         let n = self.rsm_size;
         let texels = n as u64 * n as u64;
         let capacity = texels.min(1 << 20);
-        let vpls = storage_buffer(ctx.gpu, "vpl_buffer", capacity * VPL_BYTES);
+        let vpls = ctx.rec.storage("vpl_buffer", capacity * VPL_BYTES);
         let min_distance2 = (self.vpl_clamp as f64 * ctx.extent).powi(2) as f32;
         let rsm = RsmSettings { size: n, sampling: false, capture: self.capture_rsm };
         let lit = for_each_light(ctx, &rsm, |ctx, light| {

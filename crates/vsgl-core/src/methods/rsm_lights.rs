@@ -6,9 +6,7 @@ use super::{CapturedRsm, FrameContext};
 use crate::error::Result;
 use crate::frame::uniforms::{light_view_uniforms, LightRaw};
 use crate::frame::{Rsm, VisibilityTargets};
-use crate::gpu::uniform_buffer;
 use crate::passes::{material::MaterialPass, rsm_flux::RsmFluxPass, visibility::VisibilityPass};
-use wgpu::util::DeviceExt;
 
 /// How the RSMs of a frame are made.
 pub struct RsmSettings {
@@ -37,20 +35,16 @@ pub fn for_each_light(ctx: &mut FrameContext<'_>, s: &RsmSettings, mut per_light
         ctx.skip("indirect", "the scene has no spot light");
         return Ok(false);
     }
-    let (gpu, n) = (ctx.gpu, s.size);
-    let rsm = Rsm::new(gpu, n, ctx.features.specular, s.sampling);
-    let rsm_visibility = VisibilityTargets::new(gpu, n, n);
+    let n = s.size;
+    let rsm = Rsm::new(&mut ctx.rec, n, ctx.features.specular, s.sampling);
+    let rsm_visibility = VisibilityTargets::new(&mut ctx.rec, n, n);
     let (visibility, material, flux) = (ctx.passes.get::<VisibilityPass>()?, ctx.passes.get::<MaterialPass>()?, ctx.passes.get::<RsmFluxPass>()?);
     let lights = ctx.lights;
     for (index, raw) in lights.iter().enumerate() {
         let Some(spot) = ctx.scene.lights[index].as_spot() else { continue };
         let view = light_view_uniforms(spot, ctx.origin, ctx.extent, n, ctx.gpu_scene.texture_layer_size);
-        let view_buf = uniform_buffer(gpu, "rsm_view_uniform_buffer", &view);
-        let light = gpu.device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
-            label: Some("spot_light_storage_buffer"),
-            contents: bytemuck::bytes_of(raw),
-            usage: wgpu::BufferUsages::STORAGE,
-        });
+        let view_buf = ctx.rec.uniform("rsm_view_uniform_buffer", &view);
+        let light = ctx.rec.storage_init("spot_light_storage_buffer", bytemuck::bytes_of(raw));
         let gs = ctx.gpu_scene;
         visibility.record(&mut ctx.rec, "rsm_visibility", &view_buf, &gs.raster_vertices, gs.raster_vertex_count, &rsm_visibility);
         material.record(&mut ctx.rec, "rsm_material", &view_buf, &rsm_visibility.ids, gs, ctx.features, &rsm.gbuffer, (n, n));

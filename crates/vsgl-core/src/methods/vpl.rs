@@ -5,7 +5,7 @@
 use super::rsm_lights::{check_rsm_size, for_each_light, RsmSettings};
 use super::{options::common, DirectLight, FrameContext, Method, MethodInfo, OptionSpec, Options};
 use crate::error::Result;
-use crate::gpu::{storage_buffer, Gpu};
+use crate::gpu::Gpu;
 use crate::passes::pdf_mips::PdfMipsPass;
 use crate::passes::vpl_sample::{Sampling, VplSamplePass, VPL_BYTES};
 use crate::passes::vpl_shading::VplShadingPass;
@@ -67,7 +67,7 @@ impl Method for Vpl {
 
     fn record(&self, ctx: &mut FrameContext<'_>) -> Result<()> {
         let (pdf_mips, sample, shading) = (ctx.passes.get::<PdfMipsPass>()?, ctx.passes.get::<VplSamplePass>()?, ctx.passes.get::<VplShadingPass>()?);
-        let vpls = storage_buffer(ctx.gpu, "vpl_buffer", self.num_lights as u64 * VPL_BYTES);
+        let vpls = ctx.rec.storage("vpl_buffer", self.num_lights as u64 * VPL_BYTES);
         // Distances below the clamp count as the clamp (0: unbiased).
         let min_distance2 = (self.vpl_clamp as f64 * ctx.extent).powi(2) as f32;
         let rsm = RsmSettings { size: self.rsm_size, sampling: true, capture: self.capture_rsm };

@@ -6,7 +6,7 @@ use super::rsm_lights::{check_rsm_size, for_each_light, RsmSettings};
 use super::{options::common, DirectLight, FrameContext, Method, MethodInfo, OptionKind, OptionSpec, OptionValue, Options};
 use crate::error::{Error, Result};
 use crate::frame::{IndirectTargets, MomentChains};
-use crate::gpu::{storage_buffer, Gpu};
+use crate::gpu::Gpu;
 use crate::passes::denoise::DenoisePass;
 use crate::passes::moment_mips::MomentMipsPass;
 use crate::passes::pdf_mips::PdfMipsPass;
@@ -143,18 +143,18 @@ impl Method for Vsgl {
         // placeholder keeps the bind group layouts of the full variants.
         let specular_bytes = if ctx.features.specular { pixel_bytes } else { 16 };
         let noisy = IndirectTargets {
-            diffuse: storage_buffer(ctx.gpu, "indirect_noisy_diffuse_buffer", if filter { pixel_bytes } else { 16 }),
-            specular: storage_buffer(ctx.gpu, "indirect_noisy_specular_buffer", if filter { specular_bytes } else { 16 }),
+            diffuse: ctx.rec.storage("indirect_noisy_diffuse_buffer", if filter { pixel_bytes } else { 16 }),
+            specular: ctx.rec.storage("indirect_noisy_specular_buffer", if filter { specular_bytes } else { 16 }),
         };
         let mut chains: Option<MomentChains> = None;
         let rsm = RsmSettings { size: self.rsm_size, sampling: true, capture: self.capture_rsm };
         let lit = for_each_light(ctx, &rsm, |ctx, light| {
-            let (gpu, feat) = (ctx.gpu, ctx.features);
-            let chains = chains.get_or_insert_with(|| MomentChains::new(gpu, self.rsm_size));
+            let feat = ctx.features;
+            let chains = chains.get_or_insert_with(|| MomentChains::new(&mut ctx.rec, self.rsm_size));
             pdf_mips.record(&mut ctx.rec, light.rsm);
             moments.record(&mut ctx.rec, light.rsm, chains, feat);
             moment_mips.record(&mut ctx.rec, self.rsm_size, chains);
-            let buf = storage_buffer(gpu, "vsgl_buffer", self.num_lights as u64 * VSGL_BYTES);
+            let buf = ctx.rec.storage("vsgl_buffer", self.num_lights as u64 * VSGL_BYTES);
             let settings = GenSettings {
                 count: self.num_lights,
                 stratified: self.sampling == Sampling::Stratified,

@@ -4,7 +4,7 @@
 use super::rsm_lights::{check_rsm_size, for_each_light, RsmSettings};
 use super::{options::common, DirectLight, FrameContext, Method, MethodInfo, OptionKind, OptionSpec, OptionValue, Options};
 use crate::error::Result;
-use crate::gpu::{storage_buffer, Gpu};
+use crate::gpu::Gpu;
 use crate::passes::vsgl2_reduce::{Vsgl2Reduce, Vsgl2Reduction, VSGL2_COUNT};
 use crate::passes::vsgl_gen::VSGL_BYTES;
 use crate::passes::vsgl_shading::{DiffuseMode, VsglShadingPass};
@@ -66,8 +66,8 @@ impl Method for Vsgl2 {
         let reduction = Vsgl2Reduce::resolve(ctx.gpu, self.reduction)?;
         let rsm = RsmSettings { size: self.rsm_size, sampling: false, capture: self.capture_rsm };
         let lit = for_each_light(ctx, &rsm, |ctx, light| {
-            let (gpu, feat) = (ctx.gpu, ctx.features);
-            let buf = storage_buffer(gpu, "vsgl2_buffer", VSGL2_COUNT as u64 * VSGL_BYTES);
+            let feat = ctx.features;
+            let buf = ctx.rec.storage("vsgl2_buffer", VSGL2_COUNT as u64 * VSGL_BYTES);
             reduce.record(&mut ctx.rec, light.rsm, light.raw.position, &buf, feat, reduction)?;
             shading.record(&mut ctx.rec, ctx.frame_uniforms, &buf, VSGL2_COUNT, 1, self.diffuse, ctx.gbuffer, ctx.indirect, feat, ctx.size);
             if light.index == 0 {

@@ -3,7 +3,7 @@
 
 use crate::error::Result;
 use crate::frame::{GBuffer, IndirectTargets};
-use crate::gpu::{groups, storage_buffer, uniform_buffer, Gpu, PipelineVariants, Recorder};
+use crate::gpu::{groups, Gpu, PipelineVariants, Recorder};
 use crate::plan::ShaderFeatures;
 
 const WORKGROUP: u32 = 8;
@@ -32,11 +32,11 @@ impl DenoisePass {
         let pipeline = self.pipelines.get(gpu, &features.specular_flags());
         let bytes = size.0 as u64 * size.1 as u64 * 16;
         let across = IndirectTargets {
-            diffuse: storage_buffer(gpu, "denoise_x_diffuse_buffer", bytes),
-            specular: storage_buffer(gpu, "denoise_x_specular_buffer", bytes),
+            diffuse: rec.storage("denoise_x_diffuse_buffer", bytes),
+            specular: rec.storage("denoise_x_specular_buffer", bytes),
         };
         for (direction, input, output) in [(0u32, noisy, &across), (1u32, &across, out)] {
-            let uniform = uniform_buffer(gpu, "denoise_params_uniform_buffer", &DenoiseParamsRaw { radius: radius as i32, direction, _pad: [0; 2] });
+            let uniform = rec.uniform("denoise_params_uniform_buffer", &DenoiseParamsRaw { radius: radius as i32, direction, _pad: [0; 2] });
             rec.compute(
                 "denoise",
                 &pipeline,

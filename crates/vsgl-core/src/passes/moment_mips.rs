@@ -2,7 +2,7 @@
 
 use crate::error::Result;
 use crate::frame::MomentChains;
-use crate::gpu::{groups, uniform_buffer, Gpu, Recorder};
+use crate::gpu::{groups, Gpu, Recorder};
 
 const WORKGROUP: u32 = 8;
 
@@ -26,11 +26,10 @@ impl MomentMipsPass {
     }
 
     pub fn record(&self, rec: &mut Recorder<'_>, rsm_size: u32, chains: &MomentChains) {
-        let gpu = rec.gpu;
         let (offsets, _) = crate::frame::pyramid_layout(rsm_size);
         for level in 1..offsets.len() {
             let dst_size = rsm_size >> level;
-            let uniform = uniform_buffer(gpu, "moment_mips_level_uniform_buffer", &LevelRaw { src_offset: offsets[level - 1], dst_offset: offsets[level], dst_size, chain_len: chains.chain_len });
+            let uniform = rec.uniform("moment_mips_level_uniform_buffer", &LevelRaw { src_offset: offsets[level - 1], dst_offset: offsets[level], dst_size, chain_len: chains.chain_len });
             rec.compute(
                 "moment_mips",
                 &self.pipeline,

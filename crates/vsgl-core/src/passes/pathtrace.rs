@@ -6,7 +6,7 @@
 use crate::error::Result;
 use crate::frame::{GBuffer, IndirectTargets};
 use crate::gpu::frame_log::note_pass;
-use crate::gpu::{entries, groups, storage_binding, storage_buffer, uniform_binding, uniform_buffer, Gpu, PipelineVariants, Recorder};
+use crate::gpu::{entries, groups, storage_binding, uniform_binding, Gpu, PipelineVariants, Recorder};
 use crate::plan::ShaderFeatures;
 use crate::scene::Scene;
 use crate::upload::GpuScene;
@@ -143,12 +143,12 @@ impl PathTracePass {
         }
         let (nodes, tris) = (&bvh.nodes, &bvh.triangles);
         let pixels = w as u64 * h as u64;
-        let m2 = storage_buffer(gpu, "pathtrace_m2_buffer", pixels * 16);
-        let stderr = storage_buffer(gpu, "pathtrace_stderr_buffer", pixels * 16);
+        let m2 = rec.storage("pathtrace_m2_buffer", pixels * 16);
+        let stderr = rec.storage("pathtrace_stderr_buffer", pixels * 16);
         let workgroups = (groups(w, WORKGROUP), groups(h, WORKGROUP), 1);
 
         let dispatch = |rec: &mut Recorder<'_>, label: &str, pipeline: &wgpu::ComputePipeline, params: PathParamsRaw| {
-            let uniform = uniform_buffer(gpu, "pathtrace_params_uniform_buffer", &params);
+            let uniform = rec.uniform("pathtrace_params_uniform_buffer", &params);
             let resources = [
                 input.frame.as_entire_binding(),
                 uniform.as_entire_binding(),

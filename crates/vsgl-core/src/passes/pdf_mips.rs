@@ -4,7 +4,7 @@
 
 use crate::error::Result;
 use crate::frame::Rsm;
-use crate::gpu::{groups, uniform_buffer, Gpu, Recorder};
+use crate::gpu::{groups, Gpu, Recorder};
 
 const WORKGROUP: u32 = 8;
 
@@ -29,11 +29,10 @@ impl PdfMipsPass {
     }
 
     pub fn record(&self, rec: &mut Recorder<'_>, rsm: &Rsm) {
-        let gpu = rec.gpu;
         let (offsets, _) = crate::frame::pyramid_layout(rsm.size);
         for level in 1..offsets.len() {
             let dst_size = rsm.size >> level;
-            let uniform = uniform_buffer(gpu, "pdf_mips_level_uniform_buffer", &LevelRaw { src_offset: offsets[level - 1], dst_offset: offsets[level], dst_size, _pad: 0 });
+            let uniform = rec.uniform("pdf_mips_level_uniform_buffer", &LevelRaw { src_offset: offsets[level - 1], dst_offset: offsets[level], dst_size, _pad: 0 });
             rec.compute(
                 "pdf_mips",
                 &self.pipeline,

@@ -1,7 +1,7 @@
 //! Spot-light shadow maps: depth only, one array layer per light, reverse-Z.
 
 use crate::error::Result;
-use crate::gpu::{uniform_buffer, Gpu, Recorder};
+use crate::gpu::{Gpu, Recorder};
 
 pub const FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Depth32Float;
 
@@ -42,9 +42,8 @@ impl ShadowMapPass {
     }
 
     /// A depth array with one layer per light (at least one, so the binding always exists).
-    pub fn target(gpu: &Gpu, size: u32, layers: u32) -> wgpu::Texture {
-        crate::gpu::frame_log::note_allocation("shadow_map_depth_texture", size as u64 * size as u64 * layers.max(1) as u64 * 4);
-        gpu.device.create_texture(&wgpu::TextureDescriptor {
+    pub fn target(rec: &mut Recorder<'_>, size: u32, layers: u32) -> wgpu::Texture {
+        let desc = wgpu::TextureDescriptor {
             label: Some("shadow_map_depth_texture"),
             size: wgpu::Extent3d { width: size, height: size, depth_or_array_layers: layers.max(1) },
             mip_level_count: 1,
@@ -53,7 +52,8 @@ impl ShadowMapPass {
             format: FORMAT,
             usage: wgpu::TextureUsages::RENDER_ATTACHMENT | wgpu::TextureUsages::TEXTURE_BINDING,
             view_formats: &[],
-        })
+        };
+        rec.texture(&desc, size as u64 * size as u64 * layers.max(1) as u64 * 4)
     }
 
     /// Renders layer `i` from each light's view-projection (`view_projs[i]`); with an empty
@@ -68,6 +68,18 @@ impl ShadowMapPass {
     ) {
         let gpu = rec.gpu;
         let layers = view_projs.len().max(1);
+        // Each layer's view uniform, made before the passes borrow the encoder.
+        let binds: Vec<wgpu::BindGroup> = view_projs
+            .iter()
+            .map(|vp| {
+                let uniform = rec.uniform("shadow_map_view_uniform_buffer", vp);
+                gpu.device.create_bind_group(&wgpu::BindGroupDescriptor {
+                    label: Some("shadow_map_bind_group"),
+                    layout: &self.pipeline.get_bind_group_layout(0),
+                    entries: &[wgpu::BindGroupEntry { binding: 0, resource: uniform.as_entire_binding() }],
+                })
+            })
+            .collect();
         rec.in_debug_group("shadow_map", |rec| {
             for layer in 0..layers {
                 let view = target.create_view(&wgpu::TextureViewDescriptor {
@@ -90,18 +102,12 @@ impl ShadowMapPass {
                     occlusion_query_set: None,
                     multiview_mask: None,
                 });
-                let Some(vp) = view_projs.get(layer) else { continue };
+                let Some(bind) = binds.get(layer) else { continue };
                 if vertex_count == 0 {
                     continue;
                 }
-                let uniform = uniform_buffer(gpu, "shadow_map_view_uniform_buffer", vp);
-                let bind = gpu.device.create_bind_group(&wgpu::BindGroupDescriptor {
-                    label: Some("shadow_map_bind_group"),
-                    layout: &self.pipeline.get_bind_group_layout(0),
-                    entries: &[wgpu::BindGroupEntry { binding: 0, resource: uniform.as_entire_binding() }],
-                });
                 pass.set_pipeline(&self.pipeline);
-                pass.set_bind_group(0, &bind, &[]);
+                pass.set_bind_group(0, bind, &[]);
                 pass.set_vertex_buffer(0, vertices.slice(..));
                 pass.draw(0..vertex_count, 0..1);
             }

@@ -3,7 +3,7 @@
 
 use crate::error::Result;
 use crate::frame::Rsm;
-use crate::gpu::{groups, storage_binding, uniform_binding, uniform_buffer, Gpu, PipelineVariants, Recorder};
+use crate::gpu::{groups, storage_binding, uniform_binding, Gpu, PipelineVariants, Recorder};
 use crate::plan::ShaderFeatures;
 
 const WORKGROUP: u32 = 64;
@@ -67,8 +67,7 @@ impl VplSamplePass {
 
     #[allow(clippy::too_many_arguments)]
     fn dispatch(&self, rec: &mut Recorder<'_>, label: &str, pipeline: &wgpu::ComputePipeline, params: SampleParamsRaw, light: wgpu::BindingResource<'_>, rsm: &Rsm, out: &wgpu::Buffer) {
-        let gpu = rec.gpu;
-        let uniform = uniform_buffer(gpu, "vpl_sample_params_uniform_buffer", &params);
+        let uniform = rec.uniform("vpl_sample_params_uniform_buffer", &params);
         rec.compute(
             label,
             pipeline,

@@ -3,7 +3,7 @@
 use crate::frame::IndirectTargets;
 use crate::error::Result;
 use crate::frame::GBuffer;
-use crate::gpu::{for_each_chunk, groups, uniform_buffer, Gpu, PipelineVariants, Recorder};
+use crate::gpu::{for_each_chunk, groups, Gpu, PipelineVariants, Recorder};
 use crate::plan::ShaderFeatures;
 
 const WORKGROUP: u32 = 8;
@@ -48,7 +48,7 @@ impl VplShadingPass {
         let gpu = rec.gpu;
         let pipeline = self.pipelines.get(gpu, &features.specular_flags());
         for_each_chunk(vpl_count, VPLS_PER_DISPATCH, |first, count| {
-            let uniform = uniform_buffer(gpu, "vpl_shading_params_uniform_buffer", &ShadeParamsRaw { vpl_count: count, min_distance2, first, _pad: 0 });
+            let uniform = rec.uniform("vpl_shading_params_uniform_buffer", &ShadeParamsRaw { vpl_count: count, min_distance2, first, _pad: 0 });
             rec.compute(
                 "vpl_shading",
                 &pipeline,

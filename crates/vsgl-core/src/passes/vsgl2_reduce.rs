@@ -10,7 +10,7 @@
 
 use crate::error::Result;
 use crate::frame::Rsm;
-use crate::gpu::{groups, storage_binding, storage_buffer, uniform_binding, uniform_buffer, Gpu, PipelineVariants, Recorder};
+use crate::gpu::{groups, storage_binding, uniform_binding, Gpu, PipelineVariants, Recorder};
 use crate::plan::ShaderFeatures;
 
 /// Side of an RSM tile summed by one `tiles` workgroup.
@@ -134,11 +134,11 @@ impl Vsgl2Reduce {
         let (tiles, merge) = (pipelines.tiles.get(gpu, &features.specular_flags()), pipelines.merge.get(gpu, &features.specular_flags()));
         let n = rsm.size;
         let p = tile_partials(n);
-        let a = storage_buffer(gpu, "vsgl2_partial_a_buffer", p * PARTIAL_BYTES);
-        let b = storage_buffer(gpu, "vsgl2_partial_b_buffer", p.div_ceil(MERGE_SPAN as u64) * PARTIAL_BYTES);
-        let params = |count: u64, finish: bool| {
+        let a = rec.storage("vsgl2_partial_a_buffer", p * PARTIAL_BYTES);
+        let b = rec.storage("vsgl2_partial_b_buffer", p.div_ceil(MERGE_SPAN as u64) * PARTIAL_BYTES);
+        let params = |rec: &mut Recorder<'_>, count: u64, finish: bool| {
             let raw = ReduceParamsRaw { rsm_size: n, count: count as u32, finish: finish as u32, _pad0: 0, light_offset, _pad1: 0.0 };
-            uniform_buffer(gpu, "vsgl2_reduce_params_uniform_buffer", &raw)
+            rec.uniform("vsgl2_reduce_params_uniform_buffer", &raw)
         };
         let dispatch = |u: &wgpu::Buffer, input: &wgpu::Buffer, output: &wgpu::Buffer, pipeline: &wgpu::ComputePipeline, rec: &mut Recorder<'_>, workgroups: (u32, u32, u32)| {
             rec.compute(
@@ -157,7 +157,7 @@ impl Vsgl2Reduce {
                 workgroups,
             );
         };
-        let u = params(0, false);
+        let u = params(rec, 0, false);
         let t = groups(n, TILE);
         dispatch(&u, &b, &a, &tiles, rec, (t, t, 1));
         // Ping-pong: each merge reads `count` partials from one buffer and writes
@@ -167,7 +167,7 @@ impl Vsgl2Reduce {
         loop {
             let wgs = count.div_ceil(MERGE_SPAN as u64);
             let finish = wgs == 1;
-            let u = params(count, finish);
+            let u = params(rec, count, finish);
             dispatch(&u, input, output, &merge, rec, (wgs as u32, 1, 1));
             if finish {
                 break;

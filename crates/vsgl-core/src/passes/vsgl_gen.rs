@@ -3,7 +3,7 @@
 
 use crate::error::Result;
 use crate::frame::{MomentChains, Rsm};
-use crate::gpu::{groups, uniform_buffer, Gpu, Recorder};
+use crate::gpu::{groups, Gpu, Recorder};
 
 const WORKGROUP: u32 = 64;
 
@@ -85,7 +85,6 @@ impl VsglGenPass {
 
     #[allow(clippy::too_many_arguments)]
     pub fn record(&self, rec: &mut Recorder<'_>, rsm: &Rsm, chains: &MomentChains, s: &GenSettings, out: &wgpu::Buffer) {
-        let gpu = rec.gpu;
         let params = GenParamsRaw {
             count: s.count,
             levels: rsm.levels,
@@ -98,7 +97,7 @@ impl VsglGenPass {
             light_offset: s.light_offset,
             k: s.k,
         };
-        let uniform = uniform_buffer(gpu, "vsgl_gen_params_uniform_buffer", &params);
+        let uniform = rec.uniform("vsgl_gen_params_uniform_buffer", &params);
         rec.compute(
             "vsgl_gen",
             &self.pipeline,

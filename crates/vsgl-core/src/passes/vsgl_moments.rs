@@ -4,7 +4,7 @@
 use crate::frame::MomentChains;
 use crate::error::Result;
 use crate::frame::Rsm;
-use crate::gpu::{groups, uniform_buffer, Gpu, PipelineVariants, Recorder};
+use crate::gpu::{groups, Gpu, PipelineVariants, Recorder};
 use crate::plan::ShaderFeatures;
 
 const WORKGROUP: u32 = 8;
@@ -29,7 +29,7 @@ impl VsglMomentsPass {
     pub fn record(&self, rec: &mut Recorder<'_>, rsm: &Rsm, chains: &MomentChains, features: ShaderFeatures) {
         let gpu = rec.gpu;
         let pipeline = self.pipelines.get(gpu, &features.specular_flags());
-        let uniform = uniform_buffer(gpu, "vsgl_moments_params_uniform_buffer", &MomentParamsRaw { rsm_size: rsm.size, chain_len: chains.chain_len, _pad: [0; 2] });
+        let uniform = rec.uniform("vsgl_moments_params_uniform_buffer", &MomentParamsRaw { rsm_size: rsm.size, chain_len: chains.chain_len, _pad: [0; 2] });
         rec.compute(
             "vsgl_moments",
             &pipeline,

@@ -2,7 +2,7 @@
 
 use crate::error::Result;
 use crate::frame::{GBuffer, IndirectTargets};
-use crate::gpu::{for_each_chunk, groups, uniform_buffer, Gpu, PipelineVariants, Recorder};
+use crate::gpu::{for_each_chunk, groups, Gpu, PipelineVariants, Recorder};
 use crate::plan::ShaderFeatures;
 
 const WORKGROUP: u32 = 8;
@@ -82,7 +82,7 @@ impl VsglShadingPass {
         let chunk = VSGLS_PER_PIXEL_PER_DISPATCH * interleave * interleave;
         for_each_chunk(count, chunk, |first, n| {
             let params = ShadeParamsRaw { count: n, interleave, diffuse_mode: diffuse.shader_code(), first };
-            let uniform = uniform_buffer(gpu, "vsgl_shading_params_uniform_buffer", &params);
+            let uniform = rec.uniform("vsgl_shading_params_uniform_buffer", &params);
             rec.compute(
                 "vsgl_shading",
                 &pipeline,

@@ -19,8 +19,9 @@ pub struct Frame {
     pub rsm: Option<(u32, Vec<(String, usize, Vec<f32>)>)>,
     /// The first light's VSGLs (`vsgl`): VSGL_FLOATS floats each, fields in VSGL_FIELDS order.
     pub vsgls: Option<Vec<f32>>,
-    /// GPU buffers and render targets the frame allocated: (label, bytes), summed per label.
-    /// The scene's own upload (geometry, textures) is not included.
+    /// GPU buffers and render targets the frame used, created now or kept from an earlier
+    /// frame: (label, bytes), summed per label. The scene's own upload (geometry, textures) is
+    /// not included; `settings["allocated_bytes"]` is what the frame created.
     pub memory_bytes: Vec<(String, u64)>,
     /// The pipeline variants the frame bound: (shader path, entry point, override flags), so
     /// tests can check that each pass ran the variant its plan asked for.

@@ -13,7 +13,7 @@ pub use options::{RenderOptions, AOV_NAMES};
 use crate::error::{Error, Result};
 use crate::frame::uniforms::{frame_uniforms, light_raw};
 use crate::frame::{GBuffer, IndirectTargets, VisibilityTargets};
-use crate::gpu::{frame_log::log_frame, storage_buffer, uniform_buffer, Gpu, PassCache, PassTimer, Recorder};
+use crate::gpu::{frame_log::log_frame, FrameResources, Gpu, PassCache, PassTimer, Recorder};
 use crate::methods::{options::common, DirectLight, FrameContext, Method, MethodInfo, OptionValue, Options};
 use crate::passes::{direct::DirectPass, material::MaterialPass, shadow_map::ShadowMapPass, visibility::VisibilityPass};
 use crate::plan::{Plan, ShaderFeatures};
@@ -22,7 +22,6 @@ use crate::upload::GpuScene;
 use readback::{read_aovs, AovSources};
 use std::sync::{Arc, Mutex};
 use std::time::Instant;
-use wgpu::util::DeviceExt;
 
 /// Query pairs one frame may time: the reference's batches are the most numerous.
 const TIMER_CAPACITY: u32 = 2048;
@@ -35,6 +34,17 @@ pub struct Renderer {
     passes: PassCache,
     /// The last scene uploaded and what it was uploaded from: reused while the key matches.
     scene_cache: Mutex<Option<(SceneUploadKey, Arc<GpuScene>)>>,
+    /// Kept from frame to frame; held for the whole of a frame (frames of one renderer are
+    /// recorded one at a time).
+    frame_state: Mutex<FrameState>,
+}
+
+/// What a renderer keeps between frames besides passes and the scene upload.
+#[derive(Default)]
+struct FrameState {
+    resources: FrameResources,
+    /// Created by the first frame.
+    timer: Option<PassTimer>,
 }
 
 /// What [`GpuScene::upload`] reads: the scene instance, its geometry version, and the frame
@@ -70,7 +80,7 @@ impl Renderer {
             passes.get::<DirectPass>()?;
             Ok(())
         })?;
-        Ok(Self { gpu, width, height, passes, scene_cache: Mutex::new(None) })
+        Ok(Self { gpu, width, height, passes, scene_cache: Mutex::new(None), frame_state: Mutex::default() })
     }
 
     pub fn render(&self, scene: &Scene, camera: Option<&Camera>, opts: &RenderOptions) -> Result<Frame> {
@@ -86,7 +96,10 @@ impl Renderer {
         let (frame, features) = frame?;
         // What ran is what the passes logged as they began, with their plan variants named.
         let passes = log.passes.iter().map(|p| features.pass_name(p)).collect();
-        Ok(Frame { memory_bytes: log.allocations, variants: log.variants, passes, ..frame })
+        let mut settings = frame.settings;
+        // What this frame created; 0 when it reused every target of an earlier frame.
+        settings.push(("allocated_bytes".into(), log.allocations.iter().map(|(_, b)| b).sum::<u64>().to_string()));
+        Ok(Frame { memory_bytes: log.uses, variants: log.variants, passes, settings, ..frame })
     }
 
     /// The scene's GPU copy for a frame at `origin`: the cached one when nothing it was made
@@ -126,23 +139,24 @@ impl Renderer {
         let shadow_size = if info.takes("shadow_size") { job.options.u32("shadow_size")? } else { default_shadow_size() };
         let lights = scene.lights.iter().enumerate().map(|(i, l)| light_raw(l, i, origin, extent, shadow_size)).collect::<Result<Vec<_>>>()?;
         let uniforms = frame_uniforms(camera, w, h, lights.len() as u32, gscene.texture_layer_size, extent, shadow_size);
-        let frame_buf = uniform_buffer(gpu, "frame_uniform_buffer", &uniforms);
-        let light_bytes: Vec<u8> = if lights.is_empty() { vec![0; 128] } else { bytemuck::cast_slice(&lights).to_vec() };
-        let light_buf = gpu.device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
-            label: Some("spot_light_buffer"),
-            contents: &light_bytes,
-            usage: wgpu::BufferUsages::STORAGE,
-        });
 
-        let mut timer = PassTimer::new(gpu, TIMER_CAPACITY);
-        let mut rec = Recorder::new(gpu, &mut timer);
-        let vis = VisibilityTargets::new(gpu, w, h);
+        // What the renderer keeps from frame to frame: targets, buffers, the timer's queries.
+        let mut state = self.frame_state.lock().unwrap_or_else(|e| e.into_inner());
+        let FrameState { resources, timer } = &mut *state;
+        let timer = timer.get_or_insert_with(|| PassTimer::new(gpu, TIMER_CAPACITY));
+        timer.reset();
+        resources.begin_frame();
+        let mut rec = Recorder::new(gpu, timer, resources);
+        let frame_buf = rec.uniform("frame_uniform_buffer", &uniforms);
+        let light_bytes: Vec<u8> = if lights.is_empty() { vec![0; 128] } else { bytemuck::cast_slice(&lights).to_vec() };
+        let light_buf = rec.storage_init("spot_light_buffer", &light_bytes);
+        let vis = VisibilityTargets::new(&mut rec, w, h);
         self.passes.get::<VisibilityPass>()?.record(&mut rec, "visibility", &frame_buf, &gscene.raster_vertices, gscene.raster_vertex_count, &vis);
 
         let shadow_mapped = info.direct_light == DirectLight::ShadowMapped;
         let shadow_needed = !lights.is_empty() && shadow_mapped;
         // Unneeded: the smallest placeholder layer, so the binding exists.
-        let shadow_tex = ShadowMapPass::target(gpu, if shadow_needed { shadow_size } else { 16 }, lights.len() as u32);
+        let shadow_tex = ShadowMapPass::target(&mut rec, if shadow_needed { shadow_size } else { 16 }, lights.len() as u32);
         let shadow_map = self.passes.get::<ShadowMapPass>()?;
         if shadow_needed {
             let vps: Vec<_> = lights.iter().map(|l| l.view_proj).collect();
@@ -154,10 +168,10 @@ impl Renderer {
             skipped.push(("shadow_map".into(), why));
         }
 
-        let gbuffer = GBuffer::new(gpu, w, h);
+        let gbuffer = GBuffer::new(&mut rec, w, h);
         self.passes.get::<MaterialPass>()?.record(&mut rec, "material", &frame_buf, &vis.ids, &gscene, feat, &gbuffer, (w, h));
 
-        let direct_out = storage_buffer(gpu, "direct_radiance_buffer", w as u64 * h as u64 * 16);
+        let direct_out = rec.storage("direct_radiance_buffer", w as u64 * h as u64 * 16);
         if shadow_mapped {
             let shadow_view = shadow_tex.create_view(&wgpu::TextureViewDescriptor {
                 label: Some("shadow_map_array_view"),
@@ -171,8 +185,8 @@ impl Renderer {
         // writing: a 16-byte placeholder keeps the bind group layouts of the full variants.
         let pixel_bytes = if info.indirect { w as u64 * h as u64 * 16 } else { 16 };
         let indirect = IndirectTargets {
-            diffuse: storage_buffer(gpu, "indirect_diffuse_buffer", pixel_bytes),
-            specular: storage_buffer(gpu, "indirect_specular_buffer", if feat.specular { pixel_bytes } else { 16 }),
+            diffuse: rec.storage("indirect_diffuse_buffer", pixel_bytes),
+            specular: rec.storage("indirect_specular_buffer", if feat.specular { pixel_bytes } else { 16 }),
         };
         let mut ctx = FrameContext {
             gpu,
@@ -204,6 +218,7 @@ impl Renderer {
         let mut enc = rec.finish();
         timer.resolve(&mut enc);
         gpu.queue.submit([enc.finish()]);
+        resources.end_frame();
         let sources = AovSources { direct: &direct_out, indirect: &indirect, gbuffer: &gbuffer, stderr: stderr.as_ref(), specular: feat.specular };
         let aovs = read_aovs(gpu, job.opts, info, &sources, w as usize * h as usize)?;
         let vsgls = match &vsgls {
