@@ -1,0 +1,56 @@
+"""Wall time of a render() loop on the best adapter: median and interquartile range of the
+time per `render()` call (scene upload cached, the GPU frame, readback of the asked-for AOVs)
+and of the GPU total, for a few AOV selections. Writes JSON to $OUT (or .).
+
+    python scripts/gpu_frame_wall.py --size 1920x1080 --frames 40 --tag _new
+"""
+
+from __future__ import annotations
+
+import argparse
+import json
+import os
+import statistics
+import time
+
+import vsgl
+
+
+def main() -> None:
+    ap = argparse.ArgumentParser()
+    ap.add_argument("--size", default="1920x1080")
+    ap.add_argument("--frames", type=int, default=40)
+    ap.add_argument("--scene", default="cornell_box")
+    ap.add_argument("--methods", default="direct,vsgl")
+    ap.add_argument("--tag", default="")
+    args = ap.parse_args()
+    w, h = (int(x) for x in args.size.split("x"))
+    r = vsgl.Renderer(width=w, height=h)
+    scene = vsgl.scenes.load(args.scene)
+    report = {"adapter": r.adapter, "size": [w, h], "frames": args.frames, "rows": []}
+    for method in args.methods.split(","):
+        opts = {"num_lights": 1024, "rsm_size": 256} if method == "vsgl" else {}
+        for aovs in ([], ["image"]):
+            for _ in range(3):
+                r.render(scene, method=method, aovs=aovs, **opts)
+            walls, gpu = [], []
+            for _ in range(args.frames):
+                t = time.perf_counter()
+                f = r.render(scene, method=method, aovs=aovs, **opts)
+                walls.append(1e3 * (time.perf_counter() - t))
+                gpu.append(f.timings_ms["total"])
+            q = lambda v: statistics.quantiles(v, n=4)  # noqa: E731
+            row = {
+                "method": method, "aovs": aovs, "wall_ms_median": statistics.median(walls), "wall_ms_q1": q(walls)[0], "wall_ms_q3": q(walls)[2],
+                "gpu_ms_median": statistics.median(gpu), "allocated_bytes": f.settings.get("allocated_bytes", "n/a"),
+            }
+            report["rows"].append(row)
+            print(f"{method:8s} aovs={str(aovs):10s} wall {row['wall_ms_median']:8.2f} ms [{row['wall_ms_q1']:.2f},{row['wall_ms_q3']:.2f}]  gpu {row['gpu_ms_median']:.3f} ms  allocated {row['allocated_bytes']}")
+    out = os.environ.get("OUT", ".")
+    os.makedirs(out, exist_ok=True)
+    with open(os.path.join(out, f"frame_wall{args.tag}.json"), "w") as fh:
+        json.dump(report, fh, indent=1)
+
+
+if __name__ == "__main__":
+    main()
