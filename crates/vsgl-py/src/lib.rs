@@ -256,6 +256,10 @@ struct PyFrame {
 
 impl PyFrame {
     fn array<'py>(&self, py: Python<'py>, name: &str) -> PyResult<Bound<'py, PyAny>> {
+        let (h, w) = (self.inner.height as usize, self.inner.width as usize);
+        if let (Some(ldr), "ldr") = (&self.inner.ldr, name) {
+            return Ok(PyArray1::from_slice(py, ldr).reshape([h, w, 4])?.into_any());
+        }
         let (c, data) = self.inner.aov(name).ok_or_else(|| {
             let available = self.inner.aov_names().join(", ");
             if vsgl_core::renderer::AOV_NAMES.contains(&name) {
@@ -267,7 +271,7 @@ impl PyFrame {
             }
         })?;
         let arr = PyArray1::from_slice(py, data);
-        Ok(arr.reshape([self.inner.height as usize, self.inner.width as usize, c])?.into_any())
+        Ok(arr.reshape([h, w, c])?.into_any())
     }
 }
 
@@ -278,7 +282,8 @@ impl PyFrame {
     fn image<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyAny>> {
         self.array(py, "image")
     }
-    /// One AOV by name (see `aovs`), (H, W, C) float32.
+    /// One AOV by name (see `aovs`), (H, W, C) float32; `"ldr"` (asked for with
+    /// `render(..., aovs=["ldr"])`) is (H, W, 4) uint8 sRGB, tone-mapped on the GPU.
     fn aov<'py>(&self, py: Python<'py>, name: &str) -> PyResult<Bound<'py, PyAny>> {
         self.array(py, name)
     }
@@ -455,7 +460,8 @@ impl PyRenderer {
     /// the scene) with `method`, and returns a `Frame`. Releases the GIL while the GPU works.
     ///
     /// `plan="auto"` leaves out what the scene does not need (`"full"` runs every variant);
-    /// `aovs=["image"]` reads back only those AOVs (default: every AOV the method makes).
+    /// `aovs=["image"]` reads back only those AOVs (default: every float AOV the method makes;
+    /// `"ldr"`, the (H, W, 4) uint8 display image tone-mapped on the GPU, only when named).
     /// Every other keyword is an option of the method; an option the method does not take
     /// raises `vsgl.ArgumentError` naming it. `vsgl.describe_method(name)` lists each
     /// method's options with their ranges and defaults:

@@ -45,6 +45,13 @@ impl<'a> Recorder<'a> {
         buffer
     }
 
+    /// A storage buffer every word of which the caller writes before anything reads it (so a
+    /// kept one is not cleared).
+    pub fn storage_written(&mut self, label: &str, size: u64) -> wgpu::Buffer {
+        let usage = wgpu::BufferUsages::STORAGE | wgpu::BufferUsages::COPY_SRC | wgpu::BufferUsages::COPY_DST;
+        self.resources.buffer(self.gpu, label, size, usage).0
+    }
+
     /// A read-only storage buffer holding `bytes`.
     pub fn storage_init(&mut self, label: &str, bytes: &[u8]) -> wgpu::Buffer {
         let usage = wgpu::BufferUsages::STORAGE | wgpu::BufferUsages::COPY_DST;

@@ -2,6 +2,7 @@
 //! methods (`crate::methods`) and the frame script (`crate::renderer`) wire them together.
 //! Shared targets live in `crate::frame`, GPU plumbing in `crate::gpu`.
 
+pub mod aov_pack;
 pub mod denoise;
 pub mod direct;
 pub mod material;
@@ -30,6 +31,7 @@ macro_rules! passes_from_device {
 }
 
 passes_from_device!(
+    aov_pack::AovPackPass,
     denoise::DenoisePass,
     direct::DirectPass,
     material::MaterialPass,

@@ -7,6 +7,8 @@ pub struct Frame {
     pub height: u32,
     /// (name, channels, data of width·height·channels floats).
     pub aovs: Vec<(String, usize, Vec<f32>)>,
+    /// The `ldr` AOV when asked for: width·height RGBA bytes (sRGB, tone-mapped on the GPU).
+    pub ldr: Option<Vec<u8>>,
     /// Milliseconds per pass and "total".
     pub timings_ms: Vec<(String, f64)>,
     /// "gpu-timestamp" or "cpu-wall" (adapters without timestamp queries).
@@ -33,6 +35,10 @@ impl Frame {
         self.aovs.iter().find(|(n, _, _)| n == name).map(|(_, c, d)| (*c, d.as_slice()))
     }
     pub fn aov_names(&self) -> Vec<String> {
-        self.aovs.iter().map(|(n, _, _)| n.clone()).collect()
+        let mut names: Vec<String> = self.aovs.iter().map(|(n, _, _)| n.clone()).collect();
+        if self.ldr.is_some() {
+            names.push("ldr".into());
+        }
+        names
     }
 }

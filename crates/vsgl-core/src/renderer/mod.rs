@@ -19,7 +19,8 @@ use crate::passes::{direct::DirectPass, material::MaterialPass, shadow_map::Shad
 use crate::plan::{Plan, ShaderFeatures};
 use crate::scene::{Camera, Scene};
 use crate::upload::GpuScene;
-use readback::{read_aovs, AovSources};
+use crate::passes::aov_pack::{AovPackPass, PackSources};
+use readback::record_aovs;
 use std::sync::{Arc, Mutex};
 use std::time::Instant;
 
@@ -212,15 +213,25 @@ impl Renderer {
             settings: Vec::new(),
         };
         job.method.record(&mut ctx)?;
-        let FrameContext { rec, skipped: method_skipped, vsgls, captured_rsm, stderr, settings: method_settings, .. } = ctx;
+        let FrameContext { mut rec, skipped: method_skipped, vsgls, captured_rsm, stderr, settings: method_settings, .. } = ctx;
         skipped.extend(method_skipped);
 
+        let sources = PackSources {
+            direct: &direct_out,
+            indirect: &indirect,
+            gbuffer: &gbuffer,
+            stderr: stderr.as_ref(),
+            indirect_light: info.indirect,
+            specular: feat.specular,
+        };
+        let pack = self.passes.get::<AovPackPass>()?;
+        // Timed like any pass (`aov_pack`): readback work is part of the frame's GPU time.
+        let pending = record_aovs(&mut rec, &pack, job.opts, info, &sources, (w, h));
         let mut enc = rec.finish();
         timer.resolve(&mut enc);
         gpu.queue.submit([enc.finish()]);
         resources.end_frame();
-        let sources = AovSources { direct: &direct_out, indirect: &indirect, gbuffer: &gbuffer, stderr: stderr.as_ref(), specular: feat.specular };
-        let aovs = read_aovs(gpu, job.opts, info, &sources, w as usize * h as usize)?;
+        let aovs = pending.read(gpu)?;
         let vsgls = match &vsgls {
             Some(b) => Some(bytemuck::cast_slice::<u8, f32>(&gpu.read_buffers(&[b])?[0]).to_vec()),
             None => None,
@@ -248,7 +259,8 @@ impl Renderer {
         let frame = Frame {
             width: w,
             height: h,
-            aovs,
+            aovs: aovs.float,
+            ldr: aovs.ldr,
             timings_ms: timings,
             timings_clock: clock.into(),
             passes: Vec::new(),

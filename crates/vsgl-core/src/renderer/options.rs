@@ -4,8 +4,13 @@
 use crate::error::{Error, Result};
 use crate::methods::{self, MethodInfo, OptionValue, Options};
 
-/// Every AOV a frame can hold, in the order a frame lists them.
-pub const AOV_NAMES: &[&str] = &["image", "indirect", "indirect_diffuse", "indirect_specular", "direct", "albedo", "normal", "depth", "stderr"];
+/// Every AOV a frame can hold, in the order a frame lists them (and the kinds of
+/// `wgsl/passes/aov_pack.wgsl`).
+pub const AOV_NAMES: &[&str] = &["image", "indirect", "indirect_diffuse", "indirect_specular", "direct", "albedo", "normal", "depth", "stderr", "ldr"];
+
+/// AOVs read back only when asked for by name (not by `aovs=None`): `ldr` is a display copy of
+/// `image`, (H, W, 4) uint8 sRGB tone-mapped on the GPU as `Frame.save(".png")` does.
+pub const ON_REQUEST_AOVS: &[&str] = &["ldr"];
 
 /// Settings of one render (the keyword arguments of `Renderer.render`).
 #[derive(Clone, Debug)]
@@ -60,6 +65,10 @@ impl RenderOptions {
 
     /// Whether the frame reads back AOV `name` (asked for, or all asked for and made).
     pub fn wants_aov(&self, info: &MethodInfo, name: &str) -> bool {
-        info.makes_aov(name) && self.aovs.as_ref().is_none_or(|a| a.iter().any(|n| n == name))
+        let asked = match &self.aovs {
+            Some(a) => a.iter().any(|n| n == name),
+            None => !ON_REQUEST_AOVS.contains(&name),
+        };
+        info.makes_aov(name) && asked
     }
 }

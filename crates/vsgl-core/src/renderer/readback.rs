@@ -1,89 +1,85 @@
-//! Reading a frame's AOVs back: only the buffers the asked-for AOVs are made from, converted
-//! from the GPU's vec4f per pixel to (H, W, C) floats.
+//! Reading a frame's AOVs back: the GPU packs the asked-for AOVs in NumPy's layout into one
+//! buffer (`passes/aov_pack.rs`), which is copied into a staging buffer kept from frame to frame
+//! in the frame's own submission; the CPU then only splits the mapped bytes into the AOVs.
 
-use super::options::RenderOptions;
-use crate::error::Result;
-use crate::frame::{GBuffer, IndirectTargets};
-use crate::gpu::Gpu;
+use super::options::{RenderOptions, AOV_NAMES};
+use crate::error::{Error, Result};
+use crate::gpu::{Gpu, Recorder};
 use crate::methods::MethodInfo;
-use std::collections::HashMap;
+use crate::passes::aov_pack::{AovPackPass, PackEntry, PackSources, LDR_KIND, MAX_ENTRIES};
 
-/// The frame's targets that AOVs are made from.
-pub(super) struct AovSources<'a> {
-    pub direct: &'a wgpu::Buffer,
-    pub indirect: &'a IndirectTargets,
-    pub gbuffer: &'a GBuffer,
-    pub stderr: Option<&'a wgpu::Buffer>,
-    /// Whether the scene has specular materials (else the specular target is a placeholder).
-    pub specular: bool,
+/// Float AOVs (name, channels, data) and the 8-bit `ldr` image (RGBA per pixel) if asked for.
+pub(super) struct Aovs {
+    pub float: Vec<(String, usize, Vec<f32>)>,
+    pub ldr: Option<Vec<u8>>,
 }
 
-pub(super) type Aovs = Vec<(String, usize, Vec<f32>)>;
-
-fn rgb(v: &[f32]) -> Vec<f32> {
-    v.chunks_exact(4).flat_map(|p| [p[0], p[1], p[2]]).collect()
+/// Channels of a float AOV (4-byte words per pixel of any AOV).
+fn words_per_pixel(name: &str) -> usize {
+    match name {
+        "depth" | "ldr" => 1,
+        _ => 3,
+    }
 }
 
-/// The AOVs `opts` asks for (all the method makes when it names none), in `AOV_NAMES` order.
-pub(super) fn read_aovs(gpu: &Gpu, opts: &RenderOptions, info: &MethodInfo, src: &AovSources<'_>, pixels: usize) -> Result<Aovs> {
-    let wants = |names: &[&str]| names.iter().any(|n| opts.wants_aov(info, n));
-    let specular_wanted = wants(&["image", "indirect", "indirect_specular"]);
-    let sources: Vec<(&str, &wgpu::Buffer)> = [
-        ("direct", src.direct, wants(&["image", "direct"])),
-        ("indirect_diffuse", &src.indirect.diffuse, wants(&["image", "indirect", "indirect_diffuse"])),
-        ("indirect_specular", &src.indirect.specular, src.specular && specular_wanted),
-        ("albedo", &src.gbuffer.base_color, wants(&["albedo"])),
-        ("normal", &src.gbuffer.normal, wants(&["normal"])),
-        ("depth", &src.gbuffer.position, wants(&["depth"])),
-    ]
-    .into_iter()
-    .chain(src.stderr.map(|b| ("stderr", b, wants(&["stderr"]))))
-    .filter(|(_, _, wanted)| *wanted)
-    .map(|(name, buffer, _)| (name, buffer))
-    .collect();
-    let buffers: Vec<&wgpu::Buffer> = sources.iter().map(|(_, b)| *b).collect();
-    let read = if buffers.is_empty() { Vec::new() } else { gpu.read_buffers(&buffers)? };
-    let mut raw: HashMap<&str, Vec<f32>> =
-        sources.iter().zip(read).map(|((name, _), bytes)| (*name, bytemuck::cast_slice::<u8, f32>(&bytes).to_vec())).collect();
+/// The packed AOVs of a frame: where each lies in the staging buffer, to read after submission.
+pub(super) struct PendingAovs {
+    layout: Vec<(&'static str, usize, u64)>,
+    staging: Option<wgpu::Buffer>,
+    pixels: usize,
+}
 
-    let mut take_rgb = |name: &str| raw.remove(name).map(|v| rgb(&v));
-    let direct = take_rgb("direct");
-    let ind_d = take_rgb("indirect_diffuse");
-    // Without specular materials the specular target is a placeholder: zero by definition
-    // (made whenever the specular part is wanted, with or without the diffuse readback).
-    let ind_s = take_rgb("indirect_specular").or_else(|| specular_wanted.then(|| vec![0.0; pixels * 3]));
-    let albedo = take_rgb("albedo");
-    let normal = take_rgb("normal");
-    let stderr = take_rgb("stderr");
-    // View depth; 0 where no surface was hit (never Inf, see docs/rendering.md).
-    let depth = raw.remove("depth").map(|p| p.chunks_exact(4).map(|p| if p[3] > 0.0 { p[3] } else { 0.0 }).collect::<Vec<f32>>());
-    let sum = |a: &[f32], b: &[f32]| -> Vec<f32> { a.iter().zip(b).map(|(x, y)| x + y).collect() };
-    let indirect_sum = match (&ind_d, &ind_s) {
-        (Some(d), Some(s)) => Some(sum(d, s)),
-        _ => None,
-    };
-    // Without indirect light the image is the direct AOV: moved, not copied, unless both are
-    // asked for.
-    let (image, direct) = match (&direct, &indirect_sum) {
-        _ if !info.indirect && opts.wants_aov(info, "direct") => (direct.clone(), direct),
-        _ if !info.indirect => (direct, None),
-        (Some(d), Some(i)) => (Some(sum(d, i)), direct),
-        _ => (None, direct),
-    };
-    let made: [(&str, usize, Option<Vec<f32>>); 9] = [
-        ("image", 3, image),
-        ("indirect", 3, indirect_sum),
-        ("indirect_diffuse", 3, ind_d),
-        ("indirect_specular", 3, ind_s),
-        ("direct", 3, direct),
-        ("albedo", 3, albedo),
-        ("normal", 3, normal),
-        ("depth", 1, depth),
-        ("stderr", 3, stderr),
-    ];
-    Ok(made
-        .into_iter()
-        .filter(|(name, _, _)| opts.wants_aov(info, name))
-        .filter_map(|(name, c, data)| data.map(|d| (name.to_string(), c, d)))
-        .collect())
+/// Records the packing of the AOVs `opts` asks for (all float AOVs the method makes when it
+/// names none) and their copy into a staging buffer.
+pub(super) fn record_aovs(rec: &mut Recorder<'_>, pack: &AovPackPass, opts: &RenderOptions, info: &MethodInfo, src: &PackSources<'_>, size: (u32, u32)) -> PendingAovs {
+    let pixels = size.0 as usize * size.1 as usize;
+    let mut layout = Vec::new();
+    let mut entries = Vec::new();
+    let mut words = 0u64;
+    for (kind, name) in AOV_NAMES.iter().enumerate() {
+        let wanted = opts.wants_aov(info, name) && (*name != "stderr" || src.stderr.is_some());
+        if !wanted {
+            continue;
+        }
+        let kind = if *name == "ldr" { LDR_KIND } else { kind as u32 };
+        entries.push(PackEntry { kind, first_word: words as u32 });
+        layout.push((*name, words_per_pixel(name), words * 4));
+        words += (words_per_pixel(name) * pixels) as u64;
+    }
+    debug_assert!(entries.len() <= MAX_ENTRIES);
+    if entries.is_empty() {
+        return PendingAovs { layout, staging: None, pixels };
+    }
+    let bytes = words * 4;
+    // Every word is written by the pack pass: no clear needed on reuse.
+    let packed = rec.storage_written("aov_pack_buffer", bytes);
+    pack.record(rec, src, &entries, &packed, size);
+    let (staging, _) = rec.resources.buffer(rec.gpu, "aov_readback_staging_buffer", bytes, wgpu::BufferUsages::MAP_READ | wgpu::BufferUsages::COPY_DST);
+    rec.enc.copy_buffer_to_buffer(&packed, 0, &staging, 0, bytes);
+    PendingAovs { layout, staging: Some(staging), pixels }
+}
+
+impl PendingAovs {
+    /// Waits for the frame's submission and splits the staging buffer into the AOVs.
+    pub(super) fn read(self, gpu: &Gpu) -> Result<Aovs> {
+        let mut out = Aovs { float: Vec::new(), ldr: None };
+        let Some(staging) = self.staging else { return Ok(out) };
+        staging.slice(..).map_async(wgpu::MapMode::Read, |_| {});
+        gpu.wait("readback")?;
+        {
+            let view = staging.slice(..).get_mapped_range().map_err(|e| Error::Validation { context: "readback".into(), message: e.to_string() })?;
+            for (name, words, offset) in &self.layout {
+                let start = *offset as usize;
+                let bytes = &view[start..start + words * self.pixels * 4];
+                if *name == "ldr" {
+                    out.ldr = Some(bytes.to_vec());
+                } else {
+                    // (copies, so no alignment of the mapping is assumed)
+                    out.float.push((name.to_string(), *words, bytemuck::pod_collect_to_vec::<u8, f32>(bytes)));
+                }
+            }
+        }
+        staging.unmap();
+        Ok(out)
+    }
 }
