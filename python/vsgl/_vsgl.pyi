@@ -1,7 +1,7 @@
 """Type stubs of the native extension (checked against the built module by mypy.stubtest)."""
 
 import os
-from typing import Any, Literal, Sequence
+from typing import Any, Iterable, Literal, Sequence
 
 import numpy as np
 import numpy.typing as npt
@@ -12,6 +12,7 @@ __all__ = [
     "ArgumentError",
     "Camera",
     "Frame",
+    "FrameSequence",
     "GpuError",
     "NoAdapterError",
     "Renderer",
@@ -137,6 +138,11 @@ class Frame:
     def _repr_png_(self) -> bytes: ...
 
 @final
+class FrameSequence:
+    def __iter__(self) -> FrameSequence: ...
+    def __next__(self) -> Frame: ...
+
+@final
 class Renderer:
     def __new__(cls, width: int = 640, height: int = 360, adapter: str | None = None) -> Renderer: ...
     @property
@@ -156,6 +162,17 @@ class Renderer:
         aovs: Sequence[str] | None = None,
         **options: int | float | bool | str | None,
     ) -> Frame: ...
+    def render_sequence(
+        self,
+        scene: Scene,
+        frames: Iterable[dict[str, Any]],
+        camera: Camera | None = None,
+        method: _MethodName = "direct",
+        *,
+        plan: Literal["auto", "full"] = "auto",
+        aovs: Sequence[str] | None = None,
+        **options: int | float | bool | str | None,
+    ) -> FrameSequence: ...
 
 def adapters() -> list[dict[str, Any]]: ...
 def describe_method(name: str) -> str: ...

@@ -9,7 +9,7 @@ use glam::{DMat4, DVec3};
 use numpy::{PyArray1, PyArrayMethods};
 use pyo3::exceptions::PyTypeError;
 use pyo3::prelude::*;
-use pyo3::types::{PyBool, PyBytes, PyDict, PyFloat, PyInt, PyString, PyTuple};
+use pyo3::types::{PyBool, PyBytes, PyDict, PyFloat, PyInt, PyIterator, PyString, PyTuple};
 use std::sync::Arc;
 use vsgl_core::methods::{self, OptionValue};
 use vsgl_core::passes::vsgl_gen::{VSGL_FIELDS, VSGL_FLOATS};
@@ -194,22 +194,7 @@ impl PyScene {
     /// Sets the local transform of every node called `node_name` to `matrix` (4×4, row-major as
     /// NumPy prints it: p' = M @ p). Raises ValueError when no node has that name.
     fn set_transform(&mut self, node_name: &str, matrix: Vec<Vec<f64>>) -> PyResult<()> {
-        if matrix.len() != 4 || matrix.iter().any(|r| r.len() != 4) {
-            return Err(argument_error("matrix: expected a 4x4 matrix"));
-        }
-        if matrix.iter().flatten().any(|x| !x.is_finite()) {
-            return Err(argument_error("matrix: every entry must be finite"));
-        }
-        let rows: Vec<f64> = matrix.into_iter().flatten().collect();
-        let m = DMat4::from_cols_slice(&rows).transpose();
-        if m.determinant() == 0.0 {
-            return Err(argument_error("matrix: must be invertible"));
-        }
-        if self.inner.set_transform(node_name, m) == 0 {
-            let names: Vec<&str> = self.inner.nodes.iter().map(|n| n.name.as_str()).collect();
-            return Err(argument_error(format!("node_name: no node named {node_name:?}; nodes: {names:?}")));
-        }
-        Ok(())
+        set_node_transform(&mut self.inner, node_name, matrix, "matrix", "node_name")
     }
     #[getter]
     fn node_names(&self) -> Vec<String> {
@@ -245,6 +230,78 @@ impl PyScene {
     fn __repr__(&self) -> String {
         let s = self.inner.stats();
         format!("Scene({:?}, triangles={}, materials={}, lights={})", self.inner.source, s.triangles, s.materials, s.lights)
+    }
+}
+
+/// Sets the local transform of every node called `node_name` (the checks of
+/// `Scene.set_transform`; `what` names the matrix and `node_arg` the node in errors).
+fn set_node_transform(scene: &mut Scene, node_name: &str, matrix: Vec<Vec<f64>>, what: &str, node_arg: &str) -> PyResult<()> {
+    if matrix.len() != 4 || matrix.iter().any(|r| r.len() != 4) {
+        return Err(argument_error(format!("{what}: expected a 4x4 matrix")));
+    }
+    if matrix.iter().flatten().any(|x| !x.is_finite()) {
+        return Err(argument_error(format!("{what}: every entry must be finite")));
+    }
+    let rows: Vec<f64> = matrix.into_iter().flatten().collect();
+    let m = DMat4::from_cols_slice(&rows).transpose();
+    if m.determinant() == 0.0 {
+        return Err(argument_error(format!("{what}: must be invertible")));
+    }
+    if scene.set_transform(node_name, m) == 0 {
+        let names: Vec<&str> = scene.nodes.iter().map(|n| n.name.as_str()).collect();
+        return Err(argument_error(format!("{node_arg}: no node named {node_name:?}; nodes: {names:?}")));
+    }
+    Ok(())
+}
+
+/// The frames of `Renderer.render_sequence`, rendered one at a time as they are asked for.
+#[pyclass(name = "FrameSequence", module = "vsgl", frozen)]
+struct PyFrameSequence {
+    renderer: Arc<Renderer>,
+    /// The sequence's own copy of the scene, which the per-frame changes edit.
+    scene: std::sync::Mutex<Scene>,
+    camera: std::sync::Mutex<Option<Camera>>,
+    frames: Py<PyIterator>,
+    opts: RenderOptions,
+    index: std::sync::atomic::AtomicUsize,
+}
+
+#[pymethods]
+impl PyFrameSequence {
+    fn __iter__(slf: PyRef<'_, Self>) -> PyRef<'_, Self> {
+        slf
+    }
+
+    fn __next__(&self, py: Python<'_>) -> PyResult<Option<PyFrame>> {
+        let Some(item) = self.frames.bind(py).clone().next() else { return Ok(None) };
+        let item = item?;
+        let index = self.index.fetch_add(1, std::sync::atomic::Ordering::Relaxed);
+        let changes = item.cast::<PyDict>().map_err(|_| argument_error(format!("frames[{index}]: expected a dict of \"camera\", \"lights\", \"transforms\", got {}", item.get_type().name().map(|n| n.to_string()).unwrap_or_default())))?;
+        let mut scene = self.scene.lock().unwrap_or_else(|e| e.into_inner());
+        let mut camera = self.camera.lock().unwrap_or_else(|e| e.into_inner());
+        for (key, value) in changes.iter() {
+            let key: String = key.extract()?;
+            match key.as_str() {
+                "camera" => *camera = Some(value.extract::<PyCamera>().map_err(|_| argument_error(format!("frames[{index}][\"camera\"]: expected a vsgl.Camera")))?.inner),
+                "lights" => {
+                    let lights: Vec<PySpotLight> = value.extract().map_err(|_| argument_error(format!("frames[{index}][\"lights\"]: expected a list of lights")))?;
+                    scene.lights = lights.into_iter().map(|l| Light::Spot(l.inner)).collect();
+                }
+                "transforms" => {
+                    let d = value.cast::<PyDict>().map_err(|_| argument_error(format!("frames[{index}][\"transforms\"]: expected a dict of node name -> 4x4 matrix")))?;
+                    for (node, matrix) in d.iter() {
+                        let node: String = node.extract()?;
+                        let matrix: Vec<Vec<f64>> = matrix.extract().map_err(|_| argument_error(format!("frames[{index}][\"transforms\"][{node:?}]: expected a 4x4 matrix")))?;
+                        let what = format!("frames[{index}][\"transforms\"]");
+                        set_node_transform(&mut scene, &node, matrix, &format!("{what}[{node:?}]"), &what)?;
+                    }
+                }
+                other => return Err(argument_error(format!("frames[{index}]: unknown key {other:?}; a frame may set \"camera\", \"lights\", \"transforms\""))),
+            }
+        }
+        let (r, s, cam, opts) = (&self.renderer, &*scene, *camera, &self.opts);
+        let frame = py.detach(|| r.render(s, cam.as_ref(), opts)).map_err(to_py)?;
+        Ok(Some(PyFrame { inner: frame }))
     }
 }
 
@@ -494,25 +551,61 @@ impl PyRenderer {
         aovs: Option<Vec<String>>,
         options: Option<&Bound<'_, PyDict>>,
     ) -> PyResult<PyFrame> {
-        let mut opts = RenderOptions::new(method);
-        opts.plan = plan.into();
-        opts.aovs = aovs;
-        for (key, value) in options.into_iter().flat_map(|d| d.iter()) {
-            let name: String = key.extract()?;
-            if value.is_none() {
-                continue; // None: the method's default
-            }
-            opts.options.push((name.clone(), option_value(&name, &value)?));
-        }
+        let opts = render_options(method, plan, aovs, options)?;
         let s: &Scene = &scene.inner;
         let cam = camera.map(|c| c.inner);
         let r = &self.inner;
         let frame = py.detach(|| r.render(s, cam.as_ref(), &opts)).map_err(to_py)?;
         Ok(PyFrame { inner: frame })
     }
+    /// Renders a sequence: `frames` is an iterable of dicts, each of which may set `"camera"`
+    /// (a Camera, kept for later frames), `"lights"` (a list that replaces the lights) and
+    /// `"transforms"` ({node name: 4×4 matrix}); `camera=` is the first frame's camera. Returns
+    /// an iterator of Frames, each rendered when asked for, with the settings of `render`
+    /// (validated once, here). The sequence edits its own copy of `scene`, never `scene` itself.
+    /// Each frame equals a `render` call of the same scene state, bit for bit.
+    #[pyo3(signature = (scene, frames, camera=None, method="direct", *, plan="auto", aovs=None, **options))]
+    #[allow(clippy::too_many_arguments)]
+    fn render_sequence(
+        &self,
+        scene: PyRef<'_, PyScene>,
+        frames: &Bound<'_, PyAny>,
+        camera: Option<PyCamera>,
+        method: &str,
+        plan: &str,
+        aovs: Option<Vec<String>>,
+        options: Option<&Bound<'_, PyDict>>,
+    ) -> PyResult<PyFrameSequence> {
+        let opts = render_options(method, plan, aovs, options)?;
+        opts.resolve().map_err(to_py)?;
+        let frames = frames.try_iter().map_err(|_| argument_error("frames: expected an iterable of dicts"))?;
+        Ok(PyFrameSequence {
+            renderer: self.inner.clone(),
+            scene: std::sync::Mutex::new(scene.inner.clone()),
+            camera: std::sync::Mutex::new(camera.map(|c| c.inner)),
+            frames: frames.unbind(),
+            opts,
+            index: Default::default(),
+        })
+    }
     fn __repr__(&self) -> String {
         format!("Renderer(width={}, height={}, adapter={:?})", self.inner.width, self.inner.height, self.inner.gpu.adapter.name)
     }
+}
+
+/// The settings of `render` and `render_sequence` as the core takes them.
+fn render_options(method: &str, plan: &str, aovs: Option<Vec<String>>, options: Option<&Bound<'_, PyDict>>) -> PyResult<RenderOptions> {
+    let mut opts = RenderOptions::new(method);
+    opts.plan = plan.into();
+    opts.aovs = aovs;
+    for (key, value) in options.into_iter().flat_map(|d| d.iter()) {
+        let name: String = key.extract()?;
+        if value.is_none() {
+            continue; // None: the method's default
+        }
+        opts.options.push((name.clone(), option_value(&name, &value)?));
+    }
+    Ok(opts)
 }
 
 /// A keyword option as the core takes it. Names that no method takes are a `TypeError`, as
@@ -621,6 +714,7 @@ fn _vsgl(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_class::<PyCamera>()?;
     m.add_class::<PySpotLight>()?;
     m.add_class::<PyFrame>()?;
+    m.add_class::<PyFrameSequence>()?;
     m.add_function(wrap_pyfunction!(adapters, m)?)?;
     m.add_function(wrap_pyfunction!(describe_method, m)?)?;
     m.add_function(wrap_pyfunction!(method_options, m)?)?;
