@@ -95,3 +95,23 @@ def test_pruned_and_full_plans_are_timed_side_by_side_with_equal_error(tmp_path,
     assert json.loads((tmp_path / "bench.json").read_text())["plan_ratios"]
     with pytest.raises(ValueError, match="plans"):
         bench.run(plans=("some",), size=(8, 8), out=None, progress=False)
+
+
+def test_timings_report_quartiles_and_the_warm_up(tmp_path, renderer):
+    report = bench.run(
+        scenes=["cornell_box"], methods=["vsgl2"], size=(32, 24), rsm_sizes=[32], seeds=(0,), frames=5,
+        reference_rsm=32, out=tmp_path, progress=False, warmup_seconds=0.5,
+    )
+    (r,) = report.rows
+    assert r.total_ms_min <= r.total_ms_q1 <= r.total_ms_median <= r.total_ms_q3 <= r.total_ms_max
+    for name, (q1, q3) in r.passes_iqr_ms.items():
+        assert q1 <= r.passes_ms[name] <= q3, name
+    cpu = renderer.adapter["device_type"] == "Cpu"
+    # A CPU adapter has no clock to warm; a GPU gets the asked-for sustained load, and says so.
+    assert report.warmup_seconds == (0.0 if cpu else 0.5)
+    assert (r.warmup_frames == 0) == cpu
+    text = (tmp_path / "bench.txt").read_text()
+    assert "IQR" in text and "sustained rendering" in text
+    assert "total_ms_q1" in (tmp_path / "bench.csv").read_text()
+    with pytest.raises(ValueError, match="warmup_seconds"):
+        bench.run(warmup_seconds=-1.0, size=(8, 8), out=None, progress=False)

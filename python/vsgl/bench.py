@@ -1,8 +1,10 @@
 """Error against run time: ``python -m vsgl bench`` and ``vsgl.bench.run(...)``.
 
 Sweeps methods × light counts × RSM sizes × VSGL kernels over scenes at one resolution. For each
-configuration it reports GPU time per pass and in total (median and spread over timed frames
-after warm-up, from timestamp queries), and the error of the ``indirect`` AOV and of the full
+configuration it reports GPU time per pass and in total (median, interquartile range and
+extremes over frames rendered back to back after a warm-up of ``--warmup-seconds`` of sustained
+rendering, so the GPU leaves its idle clock; from timestamp queries; the SM clock before and
+after the timed frames where ``nvidia-ml-py`` is installed), and the error of the ``indirect`` AOV and of the full
 image against the scene's reference (``reference`` by default, computed once per scene, view
 and settings, and cached on disk), as the mean and spread over seeds for stochastic methods.
 Writes a terminal table, ``bench.csv``, ``bench.json`` and, with matplotlib, ``error_vs_time.png``
@@ -54,6 +56,14 @@ class Row:
     relmse_image: float
     flip_image: float | None
     plan: str = "auto"
+    total_ms_q1: float = 0.0
+    total_ms_q3: float = 0.0
+    # Per pass: (first quartile, third quartile) of its time over the timed frames.
+    passes_iqr_ms: dict[str, tuple[float, float]] = field(default_factory=dict)
+    # Untimed frames rendered back to back before the timed ones (the warm-up).
+    warmup_frames: int = 0
+    # SM clock (MHz) before and after the timed frames, where NVML is available.
+    sm_clock_mhz: tuple[int, int] | None = None
 
 
 @dataclass
@@ -66,6 +76,8 @@ class Report:
     frames: int
     warmup: int
     rows: list[Row] = field(default_factory=list)
+    # Seconds of back-to-back rendering before each configuration's timed frames.
+    warmup_seconds: float = 0.0
     note: str = ""
     # Per configuration run with both plans: pruned ("auto") over "full" median total time.
     plan_ratios: list[dict[str, Any]] = field(default_factory=list)
@@ -74,6 +86,25 @@ class Report:
         d = asdict(self)
         d["rows"] = [asdict(r) for r in self.rows]
         return d
+
+
+def _quartiles(v: list[float]) -> tuple[float, float]:
+    if len(v) < 2:
+        return v[0], v[0]
+    q = statistics.quantiles(v, n=4, method="inclusive")
+    return q[0], q[2]
+
+
+def _sm_clock_reader():
+    """A function returning the SM clock in MHz through NVML (optional `nvidia-ml-py`), or None."""
+    try:
+        import pynvml  # type: ignore[import-not-found]
+
+        pynvml.nvmlInit()
+        handle = pynvml.nvmlDeviceGetHandleByIndex(0)
+        return lambda: int(pynvml.nvmlDeviceGetClockInfo(handle, pynvml.NVML_CLOCK_SM))
+    except Exception:  # not installed, no NVIDIA driver, no device: clocks are not reported
+        return None
 
 
 def _scene(name: str) -> vsgl.Scene:
@@ -145,6 +176,7 @@ def run(
     seeds=(0, 1, 2),
     frames=5,
     warmup=1,
+    warmup_seconds=1.0,
     reference="reference",
     reference_rsm=1024,
     reference_spp=256,
@@ -158,6 +190,8 @@ def run(
     """Runs the sweep and returns a :class:`Report`; with ``out`` also writes CSV, JSON and plots."""
     if frames < 1:
         raise ValueError(f"frames: must be >= 1, got {frames}")
+    if not (warmup_seconds >= 0 and np.isfinite(warmup_seconds)):
+        raise ValueError(f"warmup_seconds: must be finite and >= 0, got {warmup_seconds}")
     if reference not in ("reference", "pathtrace"):
         raise ValueError(f"reference: must be \"reference\" or \"pathtrace\", got {reference!r}")
     unknown = [m for m in methods if m not in vsgl.METHODS]
@@ -172,6 +206,7 @@ def run(
     if out is not None and cache_dir is None:
         cache_dir = pathlib.Path(out) / "cache"
     cpu = renderer.adapter["device_type"] == "Cpu"
+    sm_clock = None if cpu else _sm_clock_reader()
     report = Report(
         adapter=dict(renderer.adapter),
         size=(w, h),
@@ -180,7 +215,9 @@ def run(
         reference_ms={},
         frames=frames,
         warmup=warmup,
-        note="CPU adapter: absolute times are meaningless; compare only ratios within this report." if cpu else "",
+        # A CPU adapter has no clock states to leave: no warm-up time there.
+        warmup_seconds=0.0 if cpu else warmup_seconds,
+        note="CPU adapter: absolute times are meaningless; compare only ratios within this report (no warm-up time)." if cpu else "",
     )
     configs = []
     for m in methods:
@@ -217,11 +254,22 @@ def run(
             totals: list[float] = []
             per_pass: dict[str, list[float]] = {}
             errs: dict[str, list[float]] = {"rmse_indirect": [], "rmse_image": [], "relmse_indirect": [], "relmse_image": [], "flip": []}
+            # Sustained load first: frames back to back (nothing read back) until the GPU has left
+            # its idle clock (DESIGN.md, "Clocks"); the seeds that follow keep it busy.
+            warm_frames = 0
+            t_end = time.perf_counter() + report.warmup_seconds
+            quiet = {k: v for k, v in settings.items() if k != "aovs"}
+            while time.perf_counter() < t_end:
+                renderer.render(scene, method=method, aovs=[], **quiet)
+                warm_frames += 1
+            clocks: list[int] = []
             for seed in run_seeds:
                 if method in STOCHASTIC:
                     settings["seed"] = seed
                 for _ in range(warmup):
                     renderer.render(scene, method=method, **settings)
+                if sm_clock is not None:
+                    clocks.append(sm_clock())
                 frame = None
                 for _ in range(frames):
                     frame = renderer.render(scene, method=method, **settings)
@@ -229,6 +277,8 @@ def run(
                     for k2, v in frame.timings_ms.items():
                         if k2 != "total":
                             per_pass.setdefault(k2, []).append(v)
+                if sm_clock is not None:
+                    clocks.append(sm_clock())
                 indirect = frame.aov("indirect") if "indirect" in frame.aovs else np.zeros_like(ref_indirect)
                 errs["rmse_indirect"].append(metrics.rmse(indirect, ref_indirect))
                 errs["rmse_image"].append(metrics.rmse(frame.image, ref_image))
@@ -249,6 +299,11 @@ def run(
                     total_ms_min=min(totals),
                     total_ms_max=max(totals),
                     passes_ms={k2: statistics.median(v) for k2, v in per_pass.items()},
+                    total_ms_q1=_quartiles(totals)[0],
+                    total_ms_q3=_quartiles(totals)[1],
+                    passes_iqr_ms={k2: _quartiles(v) for k2, v in per_pass.items()},
+                    warmup_frames=warm_frames,
+                    sm_clock_mhz=(min(clocks), max(clocks)) if clocks else None,
                     rmse_indirect=float(np.mean(errs["rmse_indirect"])),
                     rmse_indirect_std=float(np.std(errs["rmse_indirect"])),
                     rmse_image=float(np.mean(errs["rmse_image"])),
@@ -286,18 +341,18 @@ def _plan_ratios(rows: list[Row]) -> list[dict[str, Any]]:
 def table(report: Report) -> str:
     lines = [
         f"adapter   {report.adapter['name']} ({report.adapter['device_type']}), {report.size[0]}x{report.size[1]}, "
-        f"{report.frames} timed frames after {report.warmup} warm-up",
+        f"{report.frames} timed frames back to back after {report.warmup} warm-up frame(s) and {report.warmup_seconds:g} s of sustained rendering",
         f"reference {report.reference} {report.reference_settings}; its cost (ms): "
         + ", ".join(f"{k} {v:.1f}" for k, v in report.reference_ms.items()),
     ]
     if report.note:
         lines.append(f"note      {report.note}")
-    head = f"{'scene':<16}{'plan':<6}{'method':<10}{'N':>6}{'rsm':>6}{'kernel':>10}{'total ms':>11}{'[min,max]':>20}{'RMSE ind.':>12}{'± seeds':>10}{'RMSE img':>11}{'relMSE':>10}"
+    head = f"{'scene':<16}{'plan':<6}{'method':<10}{'N':>6}{'rsm':>6}{'kernel':>10}{'total ms':>11}{'IQR':>20}{'[min,max]':>20}{'RMSE ind.':>12}{'± seeds':>10}{'RMSE img':>11}{'relMSE':>10}"
     lines += [head, "-" * len(head)]
     for r in report.rows:
         lines.append(
             f"{r.scene:<16}{r.plan:<6}{r.method:<10}{r.num_lights or '-':>6}{r.rsm_size or '-':>6}{r.kernel or '-':>10}"
-            f"{r.total_ms_median:>11.3f}{f'[{r.total_ms_min:.3f},{r.total_ms_max:.3f}]':>20}"
+            f"{r.total_ms_median:>11.3f}{f'[{r.total_ms_q1:.3f},{r.total_ms_q3:.3f}]':>20}{f'[{r.total_ms_min:.3f},{r.total_ms_max:.3f}]':>20}"
             f"{r.rmse_indirect:>12.5g}{r.rmse_indirect_std:>10.2g}{r.rmse_image:>11.5g}{r.relmse_indirect:>10.4g}"
         )
     for p in report.plan_ratios:
@@ -314,10 +369,10 @@ def write(report: Report, out) -> None:
     (out / "bench.json").write_text(json.dumps(report.to_json(), indent=1))
     with open(out / "bench.csv", "w", newline="") as fh:
         writer = csv.writer(fh)
-        writer.writerow(["scene", "plan", "method", "num_lights", "rsm_size", "kernel", "seeds", "total_ms_median", "total_ms_min", "total_ms_max",
+        writer.writerow(["scene", "plan", "method", "num_lights", "rsm_size", "kernel", "seeds", "total_ms_median", "total_ms_q1", "total_ms_q3", "total_ms_min", "total_ms_max",
                          "rmse_indirect", "rmse_indirect_std", "rmse_image", "relmse_indirect", "relmse_image", "flip_image", "passes_ms"])
         for r in report.rows:
-            writer.writerow([r.scene, r.plan, r.method, r.num_lights, r.rsm_size, r.kernel, r.seeds, r.total_ms_median, r.total_ms_min, r.total_ms_max,
+            writer.writerow([r.scene, r.plan, r.method, r.num_lights, r.rsm_size, r.kernel, r.seeds, r.total_ms_median, r.total_ms_q1, r.total_ms_q3, r.total_ms_min, r.total_ms_max,
                              r.rmse_indirect, r.rmse_indirect_std, r.rmse_image, r.relmse_indirect, r.relmse_image, r.flip_image, json.dumps(r.passes_ms)])
     (out / "bench.txt").write_text(table(report) + "\n")
     _plots(report, out)
@@ -344,7 +399,8 @@ def _plots(report: Report, out: pathlib.Path) -> None:
     ax.set_xlabel("GPU time per frame (ms)")
     ax.set_ylabel("RMSE of indirect vs reference")
     ax.set_title(title + (" (CPU: ratios only)" if report.note else ""), fontsize=9)
-    ax.legend(fontsize=7)
+    if ax.get_legend_handles_labels()[0]:
+        ax.legend(fontsize=7)
     fig.tight_layout()
     fig.savefig(out / "error_vs_time.png", dpi=120)
     plt.close(fig)
@@ -357,7 +413,8 @@ def _plots(report: Report, out: pathlib.Path) -> None:
     ax.set_xlabel("number of VPLs / VSGLs")
     ax.set_ylabel("RMSE of indirect vs reference")
     ax.set_title(title, fontsize=9)
-    ax.legend(fontsize=7)
+    if ax.get_legend_handles_labels()[0]:
+        ax.legend(fontsize=7)
     fig.tight_layout()
     fig.savefig(out / "error_vs_lights.png", dpi=120)
     plt.close(fig)
@@ -383,6 +440,7 @@ def main(argv: list[str] | None = None) -> int:
     p.add_argument("--seeds", type=int, default=3, help="seeds per stochastic configuration (default: 3)")
     p.add_argument("--frames", type=int, default=5, help="timed frames per configuration and seed (default: 5)")
     p.add_argument("--warmup", type=int, default=1, help="untimed frames first (default: 1)")
+    p.add_argument("--warmup-seconds", type=float, default=1.0, help="then this long of back-to-back rendering before timing, so the GPU leaves its idle clock (default: 1)")
     p.add_argument("--reference", default="reference", choices=["reference", "pathtrace"], help="what errors are measured against (default: reference)")
     p.add_argument("--reference-rsm", type=int, default=1024, help="RSM side of the reference (default: 1024)")
     p.add_argument("--reference-spp", type=int, default=256, help="samples per pixel of a pathtrace reference (default: 256)")
@@ -397,7 +455,7 @@ def main(argv: list[str] | None = None) -> int:
         p.error(f"--size: expected WIDTHxHEIGHT, got {a.size!r}")
     report = run(
         scenes=a.scene, methods=a.methods, lights=a.lights, size=(w, h), rsm_sizes=a.rsm_sizes, kernels=a.kernels,
-        seeds=tuple(range(a.seeds)), frames=a.frames, warmup=a.warmup, reference=a.reference, reference_rsm=a.reference_rsm,
+        seeds=tuple(range(a.seeds)), frames=a.frames, warmup=a.warmup, warmup_seconds=a.warmup_seconds, reference=a.reference, reference_rsm=a.reference_rsm,
         reference_spp=a.reference_spp, interleave=a.interleave, plans=tuple(a.plans), adapter=a.adapter, out=a.out, progress=not a.no_progress,
     )
     print(table(report))
