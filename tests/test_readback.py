@@ -44,3 +44,11 @@ def test_ldr_is_the_png_mapping_of_the_image_and_only_on_request(renderer):
     assert only.aovs == ["ldr"]
     direct = _srgb8(renderer.render(scene, method="direct").image)
     assert np.abs(only.aov("ldr")[..., :3].astype(np.int64) - direct).max() <= 1
+
+
+def test_aov_arrays_are_the_readback_itself_not_copies(renderer):
+    f = renderer.render(vsgl.scenes.cornell_box(), method="direct", aovs=["image", "depth"])
+    a, b = f.image, f.image
+    assert a is b and f.aov("image") is a, "each access copied the image"
+    assert a.dtype == np.float32 and a.flags.c_contiguous and a.flags.writeable
+    assert f.aov("depth").shape == (48, 64, 1)

@@ -301,23 +301,50 @@ impl PyFrameSequence {
         }
         let (r, s, cam, opts) = (&self.renderer, &*scene, *camera, &self.opts);
         let frame = py.detach(|| r.render(s, cam.as_ref(), opts)).map_err(to_py)?;
-        Ok(Some(PyFrame { inner: frame }))
+        Ok(Some(PyFrame::new(py, frame)?))
     }
 }
 
 /// A rendered frame: linear float32 AOVs of shape (H, W, C), row 0 at the top.
 #[pyclass(name = "Frame", module = "vsgl", frozen)]
 struct PyFrame {
+    /// The frame without its AOV data, which lives in `arrays`.
     inner: Frame,
+    /// Each AOV as the NumPy array `frame.aov(name)` returns: made once, from the readback's
+    /// own allocation (no copy), and the same object on every access.
+    arrays: Vec<(String, Py<PyAny>)>,
 }
 
 impl PyFrame {
-    fn array<'py>(&self, py: Python<'py>, name: &str) -> PyResult<Bound<'py, PyAny>> {
-        let (h, w) = (self.inner.height as usize, self.inner.width as usize);
-        if let (Some(ldr), "ldr") = (&self.inner.ldr, name) {
-            return Ok(PyArray1::from_slice(py, ldr).reshape([h, w, 4])?.into_any());
+    /// Moves the frame's AOV data into NumPy arrays without copying it.
+    fn new(py: Python<'_>, mut frame: Frame) -> PyResult<Self> {
+        let (h, w) = (frame.height as usize, frame.width as usize);
+        let mut arrays = Vec::new();
+        for (name, c, data) in std::mem::take(&mut frame.aovs) {
+            arrays.push((name, PyArray1::from_vec(py, data).reshape([h, w, c])?.into_any().unbind()));
         }
-        let (c, data) = self.inner.aov(name).ok_or_else(|| {
+        if let Some(ldr) = frame.ldr.take() {
+            arrays.push(("ldr".to_string(), PyArray1::from_vec(py, ldr).reshape([h, w, 4])?.into_any().unbind()));
+        }
+        Ok(Self { inner: frame, arrays })
+    }
+
+    fn names(&self) -> Vec<String> {
+        self.arrays.iter().map(|(n, _)| n.clone()).collect()
+    }
+
+    /// The image as floats (for encoding), as it is now (edits through `frame.image` included).
+    fn image_floats(&self, py: Python<'_>) -> PyResult<Vec<f32>> {
+        let image = self.array(py, "image")?;
+        let image = image.cast::<numpy::PyArray3<f32>>().map_err(|_| argument_error("frame.image is not a float32 (H, W, 3) array"))?;
+        Ok(image.to_vec()?)
+    }
+
+    fn array<'py>(&self, py: Python<'py>, name: &str) -> PyResult<Bound<'py, PyAny>> {
+        if let Some((_, a)) = self.arrays.iter().find(|(n, _)| n == name) {
+            return Ok(a.bind(py).clone());
+        }
+        Err({
             let available = self.inner.aov_names().join(", ");
             if vsgl_core::renderer::AOV_NAMES.contains(&name) {
                 argument_error(format!(
@@ -326,15 +353,15 @@ impl PyFrame {
             } else {
                 argument_error(format!("name: unknown AOV {name:?}; available: {available}"))
             }
-        })?;
-        let arr = PyArray1::from_slice(py, data);
-        Ok(arr.reshape([h, w, c])?.into_any())
+        })
     }
 }
 
 #[pymethods]
 impl PyFrame {
-    /// Direct + indirect radiance, (H, W, 3) float32.
+    /// Direct + indirect radiance, (H, W, 3) float32. Like every AOV, the same array on every
+    /// access (the readback's own memory, never copied): edit a `.copy()` to keep the frame as
+    /// rendered; `save()` writes the array as it is.
     #[getter]
     fn image<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyAny>> {
         self.array(py, "image")
@@ -346,7 +373,7 @@ impl PyFrame {
     }
     #[getter]
     fn aovs(&self) -> Vec<String> {
-        self.inner.aov_names()
+        self.names()
     }
     /// The first light's VSGLs (`method="vsgl"`; `"vsgl2"`: record 0 diffuse, 1 specular) as a
     /// NumPy structured array with fields
@@ -445,12 +472,12 @@ impl PyFrame {
             return Err(argument_error(format!("exposure: must be positive and finite, got {exposure}")));
         }
         let ext = path.extension().and_then(|e| e.to_str()).unwrap_or("").to_ascii_lowercase();
-        let (_, rgb) = self.inner.aov("image").ok_or_else(|| argument_error("frame has no image"))?;
+        let rgb = self.image_floats(py)?;
         let (w, h) = (self.inner.width, self.inner.height);
         let bytes = py.detach(|| match ext.as_str() {
-            "png" => image_io::encode_png(rgb, w, h, exposure),
-            "npy" => Ok(image_io::encode_npy(rgb, &[h as usize, w as usize, 3])),
-            "exr" => image_io::encode_exr(rgb, w, h),
+            "png" => image_io::encode_png(&rgb, w, h, exposure),
+            "npy" => Ok(image_io::encode_npy(&rgb, &[h as usize, w as usize, 3])),
+            "exr" => image_io::encode_exr(&rgb, w, h),
             _ => Err(vsgl_core::Error::invalid("path", format!("unsupported extension {ext:?}; use .png, .exr or .npy"))),
         });
         let bytes = bytes.map_err(to_py)?;
@@ -458,8 +485,8 @@ impl PyFrame {
     }
     /// PNG bytes for Jupyter.
     fn _repr_png_<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyBytes>> {
-        let (_, rgb) = self.inner.aov("image").ok_or_else(|| argument_error("frame has no image"))?;
-        let png = image_io::encode_png(rgb, self.inner.width, self.inner.height, 1.0).map_err(to_py)?;
+        let rgb = self.image_floats(py)?;
+        let png = image_io::encode_png(&rgb, self.inner.width, self.inner.height, 1.0).map_err(to_py)?;
         Ok(PyBytes::new(py, &png))
     }
     fn __repr__(&self) -> String {
@@ -556,7 +583,7 @@ impl PyRenderer {
         let cam = camera.map(|c| c.inner);
         let r = &self.inner;
         let frame = py.detach(|| r.render(s, cam.as_ref(), &opts)).map_err(to_py)?;
-        Ok(PyFrame { inner: frame })
+        PyFrame::new(py, frame)
     }
     /// Renders a sequence: `frames` is an iterable of dicts, each of which may set `"camera"`
     /// (a Camera, kept for later frames), `"lights"` (a list that replaces the lights) and
