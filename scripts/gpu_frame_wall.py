@@ -1,5 +1,6 @@
 """Wall time of a render() loop on the best adapter: median and interquartile range of the
-time per `render()` call (scene upload cached, the GPU frame, readback of the asked-for AOVs)
+time per `render()` call and a read of each asked-for AOV (scene upload cached, the GPU frame,
+readback)
 and of the GPU total, for a few AOV selections. Writes JSON to $OUT (or .).
 
     python scripts/gpu_frame_wall.py --size 1920x1080 --frames 40 --tag _new
@@ -12,6 +13,8 @@ import json
 import os
 import statistics
 import time
+
+import numpy as np
 
 import vsgl
 
@@ -41,6 +44,10 @@ def main() -> None:
             for _ in range(args.frames):
                 t = time.perf_counter()
                 f = r.render(scene, method=method, aovs=aovs, **opts)
+                # A loop uses what it read back: touching the arrays counts (an array made per
+                # access would cost a copy here).
+                for name in aovs:
+                    f.aov(name).sum(dtype=np.float64) if name != "ldr" else f.aov(name)[0, 0, 0]
                 walls.append(1e3 * (time.perf_counter() - t))
                 gpu.append(f.timings_ms["total"])
             q = lambda v: statistics.quantiles(v, n=4)  # noqa: E731
