@@ -9,14 +9,11 @@ and of the GPU total, for a few AOV selections. Writes JSON to $OUT (or .).
 from __future__ import annotations
 
 import argparse
-import json
-import os
 import statistics
 import time
 
-import numpy as np
-
 import vsgl
+from gpu_timings import quartiles, write_report  # scripts/ is on sys.path when run as a script
 
 
 def main() -> None:
@@ -50,17 +47,14 @@ def main() -> None:
                     f.aov(name)[0, 0, 0]
                 walls.append(1e3 * (time.perf_counter() - t))
                 gpu.append(f.timings_ms["total"])
-            q = lambda v: statistics.quantiles(v, n=4)  # noqa: E731
+            q1, q3 = quartiles(walls)
             row = {
-                "method": method, "aovs": aovs, "wall_ms_median": statistics.median(walls), "wall_ms_q1": q(walls)[0], "wall_ms_q3": q(walls)[2],
+                "method": method, "aovs": aovs, "wall_ms_median": statistics.median(walls), "wall_ms_q1": q1, "wall_ms_q3": q3,
                 "gpu_ms_median": statistics.median(gpu), "allocated_bytes": f.settings.get("allocated_bytes", "n/a"),
             }
             report["rows"].append(row)
             print(f"{method:8s} aovs={str(aovs):10s} wall {row['wall_ms_median']:8.2f} ms [{row['wall_ms_q1']:.2f},{row['wall_ms_q3']:.2f}]  gpu {row['gpu_ms_median']:.3f} ms  allocated {row['allocated_bytes']}")
-    out = os.environ.get("OUT", ".")
-    os.makedirs(out, exist_ok=True)
-    with open(os.path.join(out, f"frame_wall{args.tag}.json"), "w") as fh:
-        json.dump(report, fh, indent=1)
+    write_report(report, f"frame_wall{args.tag}.json")
 
 
 if __name__ == "__main__":

@@ -37,6 +37,14 @@ def quartiles(v: list[float]) -> tuple[float, float]:
     return q[0], q[2]
 
 
+def write_report(report: dict, name: str) -> None:
+    """Writes `report` as JSON to $OUT/name (or ./name)."""
+    out = os.environ.get("OUT", ".")
+    os.makedirs(out, exist_ok=True)
+    with open(os.path.join(out, name), "w") as fh:
+        json.dump(report, fh, indent=1)
+
+
 def main() -> None:
     ap = argparse.ArgumentParser()
     ap.add_argument("--size", default="1920x1088")
@@ -89,10 +97,7 @@ def main() -> None:
         }
         cells = "  ".join(f"{k}={v['median']:.3f}[{v['min']:.3f},{v['max']:.3f}]" for k, v in row.items())
         print(f"{name}/{method:8s} warm {warm_frames} frames, SM {clock_before}->{clock_after} MHz  {cells}")
-    out = os.environ.get("OUT", ".")
-    os.makedirs(out, exist_ok=True)
-    with open(os.path.join(out, f"gpu_timings{args.tag}.json"), "w") as fh:
-        json.dump(report, fh, indent=1)
+    write_report(report, f"gpu_timings{args.tag}.json")
 
 
 if __name__ == "__main__":

@@ -45,8 +45,9 @@ impl Rsm {
         Self {
             size,
             gbuffer: GBuffer::new(rec, size, size),
-            flux_diffuse: rec.storage("rsm_flux_diffuse_buffer", texels * 16),
-            flux_specular: rec.storage("rsm_flux_specular_buffer", if specular { texels * 16 } else { 16 }),
+            // rsm_flux writes every texel of both (zero where nothing reflects).
+            flux_diffuse: rec.storage_written("rsm_flux_diffuse_buffer", texels * 16),
+            flux_specular: rec.storage_written("rsm_flux_specular_buffer", if specular { texels * 16 } else { 16 }),
             pyramid: rec.storage("rsm_weight_pyramid_buffer", if sampling { total as u64 * 4 } else { 16 }),
             level_offsets: rec.storage_init("rsm_level_offset_buffer", bytemuck::cast_slice(&offsets)),
             levels: offsets.len() as u32,

@@ -62,7 +62,8 @@ impl GBuffer {
 
 impl GBuffer {
     pub fn new(rec: &mut Recorder<'_>, width: u32, height: u32) -> Self {
-        let mut make = |label| rec.storage(label, width as u64 * height as u64 * 16);
+        // The material pass writes every texel (background ones too): nothing to clear.
+        let mut make = |label| rec.storage_written(label, width as u64 * height as u64 * 16);
         Self {
             position: make("gbuffer_position_buffer"),
             normal: make("gbuffer_normal_buffer"),

@@ -1,4 +1,5 @@
-//! Buffers: uniforms from `Pod` twins of WGSL structs, logged storage buffers, and readback.
+//! Buffers made outside a frame (a frame gets its own from `Recorder`, which keeps them) and
+//! readback of whole buffers.
 
 use super::frame_log::{note_allocation, note_use};
 use super::Gpu;
@@ -6,11 +7,14 @@ use crate::error::{Error, Result};
 
 impl Gpu {
     /// Reads back whole buffers (each must have COPY_SRC) as f32/u32 words, waiting for the GPU.
+    /// Staging buffers made here count as the frame's allocations (`allocated_bytes`): frame
+    /// loops read back through staging buffers they keep instead (`read_staging`).
     pub fn read_buffers(&self, buffers: &[&wgpu::Buffer]) -> Result<Vec<Vec<u8>>> {
         let mut enc = self.device.create_command_encoder(&wgpu::CommandEncoderDescriptor { label: Some("readback_encoder") });
         let staging: Vec<wgpu::Buffer> = buffers
             .iter()
             .map(|b| {
+                note_allocation("readback_staging_buffer", b.size());
                 let s = self.device.create_buffer(&wgpu::BufferDescriptor {
                     label: Some("readback_staging_buffer"),
                     size: b.size(),
@@ -22,30 +26,8 @@ impl Gpu {
             })
             .collect();
         self.queue.submit([enc.finish()]);
-        for s in &staging {
-            s.slice(..).map_async(wgpu::MapMode::Read, |_| {});
-        }
-        self.wait("readback")?;
-        let mut out = Vec::with_capacity(staging.len());
-        for s in &staging {
-            let view = s
-                .slice(..)
-                .get_mapped_range()
-                .map_err(|e| Error::Validation { context: "readback".into(), message: e.to_string() })?;
-            out.push(view.to_vec());
-            drop(view);
-            s.unmap();
-        }
-        Ok(out)
+        staging.iter().map(|s| read_staging::<u8>(self, s, s.size(), "readback")).collect()
     }
-}
-
-/// A uniform buffer holding `value` (a `#[repr(C)]` twin of a WGSL struct).
-pub fn uniform_buffer<T: bytemuck::Pod>(gpu: &Gpu, label: &str, value: &T) -> wgpu::Buffer {
-    wgpu::util::DeviceExt::create_buffer_init(
-        &gpu.device,
-        &wgpu::util::BufferInitDescriptor { label: Some(label), contents: bytemuck::bytes_of(value), usage: wgpu::BufferUsages::UNIFORM },
-    )
 }
 
 /// A storage buffer of `size` bytes (at least 16, as wgpu rejects empty bindings), created now
@@ -59,4 +41,21 @@ pub fn storage_buffer(gpu: &Gpu, label: &str, size: u64) -> wgpu::Buffer {
         usage: wgpu::BufferUsages::STORAGE | wgpu::BufferUsages::COPY_SRC | wgpu::BufferUsages::COPY_DST,
         mapped_at_creation: false,
     })
+}
+
+/// Calls `f` on the first `bytes` of a MAP_READ `staging` buffer whose copy is already
+/// submitted: maps it, waits for the GPU, and unmaps it on every path, so the next frame can
+/// copy into it again. `f` copies out what it keeps (the mapping may not be aligned).
+pub fn read_staging_with<R>(gpu: &Gpu, staging: &wgpu::Buffer, bytes: u64, context: &str, f: impl FnOnce(&[u8]) -> R) -> Result<R> {
+    let slice = staging.slice(..bytes);
+    slice.map_async(wgpu::MapMode::Read, |_| {});
+    gpu.wait(context)?;
+    let value = slice.get_mapped_range().map(|view| f(&view));
+    staging.unmap();
+    value.map_err(|e| Error::Validation { context: context.into(), message: e.to_string() })
+}
+
+/// [`read_staging_with`] copying the bytes out as `T`s.
+pub fn read_staging<T: bytemuck::Pod>(gpu: &Gpu, staging: &wgpu::Buffer, bytes: u64, context: &str) -> Result<Vec<T>> {
+    read_staging_with(gpu, staging, bytes, context, |view| bytemuck::pod_collect_to_vec::<u8, T>(view))
 }

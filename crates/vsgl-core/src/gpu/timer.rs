@@ -7,6 +7,9 @@ use crate::error::Result;
 pub struct PassTimer {
     pub query_set: Option<wgpu::QuerySet>,
     resolve: Option<wgpu::Buffer>,
+    /// Where `resolve` copies the timestamps in the frame's own submission, so reading them
+    /// needs no second submission and no buffer made per frame.
+    staging: Option<wgpu::Buffer>,
     names: Vec<String>,
     capacity: u32,
     period_ns: f32,
@@ -30,12 +33,20 @@ impl PassTimer {
         } else {
             (None, None)
         };
-        Self { query_set, resolve, names: Vec::new(), capacity, period_ns: gpu.queue.get_timestamp_period() }
+        let staging = resolve.as_ref().map(|rb| {
+            gpu.device.create_buffer(&wgpu::BufferDescriptor {
+                label: Some("frame_timestamp_staging_buffer"),
+                size: rb.size(),
+                usage: wgpu::BufferUsages::MAP_READ | wgpu::BufferUsages::COPY_DST,
+                mapped_at_creation: false,
+            })
+        });
+        Self { query_set, resolve, staging, names: Vec::new(), capacity, period_ns: gpu.queue.get_timestamp_period() }
     }
 
     /// A timer that records nothing (for work that is not a pass of its own).
     pub fn new_disabled() -> Self {
-        Self { query_set: None, resolve: None, names: Vec::new(), capacity: 0, period_ns: 1.0 }
+        Self { query_set: None, resolve: None, staging: None, names: Vec::new(), capacity: 0, period_ns: 1.0 }
     }
 
     /// Forgets the passes of the previous frame (the queries are reused).
@@ -78,22 +89,25 @@ impl PassTimer {
         })
     }
 
+    /// Resolves this frame's queries and copies them to the staging buffer (in `enc`, the
+    /// frame's last encoder).
     pub fn resolve(&self, enc: &mut wgpu::CommandEncoder) {
-        if let (Some(qs), Some(rb)) = (&self.query_set, &self.resolve) {
+        if let (Some(qs), Some(rb), Some(st)) = (&self.query_set, &self.resolve, &self.staging) {
             if !self.names.is_empty() {
-                enc.resolve_query_set(qs, 0..self.names.len() as u32 * 2, rb, 0);
+                let used = self.names.len() as u32 * 2;
+                enc.resolve_query_set(qs, 0..used, rb, 0);
+                enc.copy_buffer_to_buffer(rb, 0, st, 0, used as u64 * 8);
             }
         }
     }
 
     /// Milliseconds per pass (same name twice adds up), after the frame's submission.
     pub fn read(&self, gpu: &Gpu) -> Result<Vec<(String, f64)>> {
-        let Some(rb) = &self.resolve else { return Ok(Vec::new()) };
+        let Some(st) = &self.staging else { return Ok(Vec::new()) };
         if self.names.is_empty() {
             return Ok(Vec::new());
         }
-        let bytes = gpu.read_buffers(&[rb])?.remove(0);
-        let ticks: &[u64] = bytemuck::cast_slice(&bytes);
+        let ticks: Vec<u64> = super::read_staging(gpu, st, self.names.len() as u64 * 16, "timestamp readback")?;
         let mut out: Vec<(String, f64)> = Vec::new();
         for (i, name) in self.names.iter().enumerate() {
             let dt = ticks[2 * i + 1].saturating_sub(ticks[2 * i]) as f64 * self.period_ns as f64 * 1e-6;

@@ -32,8 +32,9 @@ impl DenoisePass {
         let pipeline = self.pipelines.get(gpu, &features.specular_flags());
         let bytes = size.0 as u64 * size.1 as u64 * 16;
         let across = IndirectTargets {
-            diffuse: rec.storage("denoise_x_diffuse_buffer", bytes),
-            specular: rec.storage("denoise_x_specular_buffer", bytes),
+            // The x pass writes every pixel of both.
+            diffuse: rec.storage_written("denoise_x_diffuse_buffer", bytes),
+            specular: rec.storage_written("denoise_x_specular_buffer", bytes),
         };
         for (direction, input, output) in [(0u32, noisy, &across), (1u32, &across, out)] {
             let uniform = rec.uniform("denoise_params_uniform_buffer", &DenoiseParamsRaw { radius: radius as i32, direction, _pad: [0; 2] });

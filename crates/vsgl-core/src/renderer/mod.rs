@@ -13,7 +13,7 @@ pub use options::{RenderOptions, AOV_NAMES};
 use crate::error::{Error, Result};
 use crate::frame::uniforms::{frame_uniforms, light_raw};
 use crate::frame::{GBuffer, IndirectTargets, VisibilityTargets};
-use crate::gpu::{frame_log::log_frame, FrameResources, Gpu, PassCache, PassTimer, Recorder};
+use crate::gpu::{frame_log::log_frame, read_staging, FrameResources, Gpu, PassCache, PassTimer, Recorder};
 use crate::methods::{options::common, DirectLight, FrameContext, Method, MethodInfo, OptionValue, Options};
 use crate::passes::{direct::DirectPass, material::MaterialPass, shadow_map::ShadowMapPass, visibility::VisibilityPass};
 use crate::plan::{Plan, ShaderFeatures};
@@ -172,7 +172,8 @@ impl Renderer {
         let gbuffer = GBuffer::new(&mut rec, w, h);
         self.passes.get::<MaterialPass>()?.record(&mut rec, "material", &frame_buf, &vis.ids, &gscene, feat, &gbuffer, (w, h));
 
-        let direct_out = rec.storage("direct_radiance_buffer", w as u64 * h as u64 * 16);
+        // Written for every pixel by the direct pass (or the path tracer's direct entry point).
+        let direct_out = rec.storage_written("direct_radiance_buffer", w as u64 * h as u64 * 16);
         if shadow_mapped {
             let shadow_view = shadow_tex.create_view(&wgpu::TextureViewDescriptor {
                 label: Some("shadow_map_array_view"),
@@ -227,13 +228,20 @@ impl Renderer {
         let pack = self.passes.get::<AovPackPass>()?;
         // Timed like any pass (`aov_pack`): readback work is part of the frame's GPU time.
         let pending = record_aovs(&mut rec, &pack, job.opts, info, &sources, (w, h));
+        // The first light's VSGLs, copied in the same submission into a kept staging buffer.
+        let vsgl_staging = vsgls.as_ref().map(|b| {
+            let usage = wgpu::BufferUsages::MAP_READ | wgpu::BufferUsages::COPY_DST;
+            let (staging, _) = rec.resources.buffer(gpu, "vsgl_readback_staging_buffer", b.size(), usage);
+            rec.enc.copy_buffer_to_buffer(b, 0, &staging, 0, b.size());
+            staging
+        });
         let mut enc = rec.finish();
         timer.resolve(&mut enc);
         gpu.queue.submit([enc.finish()]);
         resources.end_frame();
         let aovs = pending.read(gpu)?;
-        let vsgls = match &vsgls {
-            Some(b) => Some(bytemuck::cast_slice::<u8, f32>(&gpu.read_buffers(&[b])?[0]).to_vec()),
+        let vsgls = match &vsgl_staging {
+            Some(st) => Some(read_staging::<f32>(gpu, st, st.size(), "VSGL readback")?),
             None => None,
         };
         let wall_ms = wall.elapsed().as_secs_f64() * 1e3;

@@ -3,8 +3,8 @@
 //! in the frame's own submission; the CPU then only splits the mapped bytes into the AOVs.
 
 use super::options::{RenderOptions, AOV_NAMES};
-use crate::error::{Error, Result};
-use crate::gpu::{Gpu, Recorder};
+use crate::error::Result;
+use crate::gpu::{read_staging_with, Gpu, Recorder};
 use crate::methods::MethodInfo;
 use crate::passes::aov_pack::{AovPackPass, PackEntry, PackSources, LDR_KIND, MAX_ENTRIES};
 
@@ -64,22 +64,18 @@ impl PendingAovs {
     pub(super) fn read(self, gpu: &Gpu) -> Result<Aovs> {
         let mut out = Aovs { float: Vec::new(), ldr: None };
         let Some(staging) = self.staging else { return Ok(out) };
-        staging.slice(..).map_async(wgpu::MapMode::Read, |_| {});
-        gpu.wait("readback")?;
-        {
-            let view = staging.slice(..).get_mapped_range().map_err(|e| Error::Validation { context: "readback".into(), message: e.to_string() })?;
+        // One copy of each AOV, straight out of the mapped memory.
+        read_staging_with(gpu, &staging, staging.size(), "readback", |bytes| {
             for (name, words, offset) in &self.layout {
                 let start = *offset as usize;
-                let bytes = &view[start..start + words * self.pixels * 4];
+                let data = &bytes[start..start + words * self.pixels * 4];
                 if *name == "ldr" {
-                    out.ldr = Some(bytes.to_vec());
+                    out.ldr = Some(data.to_vec());
                 } else {
-                    // (copies, so no alignment of the mapping is assumed)
-                    out.float.push((name.to_string(), *words, bytemuck::pod_collect_to_vec::<u8, f32>(bytes)));
+                    out.float.push((name.to_string(), *words, bytemuck::pod_collect_to_vec::<u8, f32>(data)));
                 }
             }
-        }
-        staging.unmap();
+        })?;
         Ok(out)
     }
 }
