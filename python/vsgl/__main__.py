@@ -64,6 +64,8 @@ def _render(args: argparse.Namespace) -> int:
             rmse = float(np.sqrt(np.mean((a - b) ** 2)))
             rel = rmse / max(float(np.sqrt(np.mean(b**2))), 1e-30)
             print(f"error     {aov:<9} RMSE {rmse:.6g} (relative {rel:.4f}) vs reference ({args.reference_rsm}² RSM, {1e3 * (t4 - t3):.0f} ms)")
+    elif args.no_error:
+        print("error     not measured (--no-error)")
     else:
         print("error     n/a for this method (error is measured for vpl, vsgl and vsgl2 against reference)")
     print(f"wrote     {args.output}")
