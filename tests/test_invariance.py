@@ -64,3 +64,32 @@ def test_lights_setter_replaces_lights():
     assert scene.lights == [] or len(scene.lights) == 0
     scene.lights = [vsgl.SpotLight(position=(0, 1, 0), direction=(0, -1, 0), intensity=1.0)]
     assert len(scene.lights) == 1
+
+
+def _orbit(scale: float, offset: np.ndarray, cam) -> list[dict]:
+    """Three cameras moving around the first one, in the transformed scene's coordinates."""
+    eye0 = np.array(cam.eye)
+    frames = []
+    for d in ([0.0, 0.0, 0.0], [0.3, 0.1, -0.2], [-0.4, -0.1, 0.3]):
+        eye = scale * (eye0 + np.array(d)) + offset
+        target = scale * (eye0 + np.array(cam.forward)) + offset
+        frames.append({"camera": vsgl.Camera.look_at(eye=tuple(eye), target=tuple(target), up=cam.up, fov_y_deg=cam.fov_y_deg)})
+    return frames
+
+
+@pytest.mark.parametrize(
+    ("name", "scale", "offset", "intensity_scale"),
+    [("glossy_cornell", 1.0, [1e4, -1e4, 1e4], 1.0), ("cornell_box", 1e-3, [0.0, 0.0, 0.0], 1e-6)],
+)
+def test_invariance_holds_for_a_moving_camera_that_reuses_the_upload(renderer, name, scale, offset, intensity_scale):
+    # The camera moves while the scene stays uploaded (positions relative to the scene's
+    # anchor, the eye applied on the GPU): every frame must match the untransformed scene's.
+    offset = np.array(offset)
+    base, cam = _transformed(name, 1.0, np.zeros(3), 1.0)
+    moved, _ = _transformed(name, scale, offset, intensity_scale)
+    want = list(renderer.render_sequence(base, _orbit(1.0, np.zeros(3), cam), method="vsgl", aovs=["image"], interleave=4))
+    got = list(renderer.render_sequence(moved, _orbit(scale, offset, cam), method="vsgl", aovs=["image"], interleave=4))
+    assert [f.settings["scene_upload"] for f in got] == ["uploaded", "reused", "reused"]
+    for i, (a, b) in enumerate(zip(want, got)):
+        assert _relative_rms(b.image, a.image) < 1e-3, f"frame {i}"
+    assert not np.array_equal(want[0].image, want[1].image), "the camera did not move"

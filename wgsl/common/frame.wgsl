@@ -1,6 +1,8 @@
-// Per-frame data shared by every pass (GPU twins of the structs in crates/vsgl-core/src/frame_data.rs;
+// Per-frame data shared by every pass (GPU twins of the structs in crates/vsgl-core/src/frame/uniforms.rs;
 // a test checks that their sizes agree with naga's layout). Positions are relative to the frame
-// origin (the camera position), computed in f64 on the CPU.
+// origin (the camera position), computed in f64 on the CPU; only the uploaded scene (vertex
+// buffers, BVH) is relative to the upload's anchor (the centre of the scene bounds), and
+// view_proj / view_origin take it from there.
 
 struct FrameUniforms {
     view_proj: mat4x4f,
@@ -8,8 +10,8 @@ struct FrameUniforms {
     cam_right: vec4f,
     cam_up: vec4f,
     cam_forward: vec4f,
-    // Where the view's rays start, relative to the frame origin: 0 for the camera, the light
-    // position for a reflective shadow map. Positions a view writes are relative to it.
+    // Where the view's rays start, relative to the upload anchor: the eye for the camera, the
+    // light position for a reflective shadow map. Positions a view writes are relative to it.
     view_origin: vec4f,
     size: vec2u,
     light_count: u32,

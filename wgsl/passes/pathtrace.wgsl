@@ -86,8 +86,21 @@ struct Surface {
     triangle: u32,
 }
 
+// Shading happens in frame space (relative to the eye, like the G-buffer and the lights); the
+// BVH and the vertex buffer are relative to the scene upload's anchor, which lies at
+// frame.view_origin (the eye's offset from the anchor) subtracted: a ray enters scene space
+// through to_scene, a hit comes back through the vertices minus view_origin.
+fn to_scene(p: vec3f) -> vec3f {
+    return p + frame.view_origin.xyz;
+}
+
+fn max_abs(p: vec3f) -> f32 {
+    return max(max(abs(p.x), abs(p.y)), abs(p.z));
+}
+
+// Clears the rounding of the point in both spaces it is used in.
 fn ray_offset(p: vec3f) -> f32 {
-    let m = max(max(abs(p.x), abs(p.y)), abs(p.z));
+    let m = max(max_abs(p), max_abs(to_scene(p)));
     return RAY_OFFSET_RELATIVE * max(m, RAY_OFFSET_EXTENT_FRACTION * frame.scene_extent);
 }
 
@@ -116,7 +129,7 @@ fn spot_lights_radiance(s: Surface, v: vec3f) -> vec3f {
         // Shadow ray from the offset origin, stopping short of the light by its own offset.
         let seg = light.position - origin;
         let seg_len = length(seg);
-        let shadow = Ray(origin, seg / max(seg_len, FLT_MIN), seg_len - ray_offset(light.position), s.triangle);
+        let shadow = Ray(to_scene(origin), seg / max(seg_len, FLT_MIN), seg_len - ray_offset(light.position), s.triangle);
         if (bvh_any_hit(shadow)) {
             continue;
         }
@@ -136,9 +149,13 @@ fn lerp_bary3(a: vec3f, b: vec3f, c: vec3f, w: vec2f) -> vec3f {
 // textures at the finest level: a path tracer integrates texture detail itself).
 fn hit_surface(dir: vec3f, hit: RayHit) -> Surface {
     let tri = hit.triangle;
-    let a = vertices[indices[3u * tri]];
-    let b = vertices[indices[3u * tri + 1u]];
-    let c = vertices[indices[3u * tri + 2u]];
+    var a = vertices[indices[3u * tri]];
+    var b = vertices[indices[3u * tri + 1u]];
+    var c = vertices[indices[3u * tri + 2u]];
+    // Back to frame space.
+    a.position -= frame.view_origin.xyz;
+    b.position -= frame.view_origin.xyz;
+    c.position -= frame.view_origin.xyz;
     let w = hit.bary;
     let position = lerp_bary3(a.position, b.position, c.position, w);
     var ng = safe_normalize(cross(b.position - a.position, c.position - a.position), -dir);
@@ -179,7 +196,7 @@ fn pixel_surface(pixel: vec2u, index: u32) -> Surface {
 // hit towards s (zero on a miss: there is no environment light).
 fn incoming_radiance(s: Surface, l: vec3f) -> vec3f {
     let origin = s.position + s.ng * ray_offset(s.position);
-    let hit = bvh_closest_hit(Ray(origin, l, RAY_T_MAX_EXTENTS * frame.scene_extent, s.triangle));
+    let hit = bvh_closest_hit(Ray(to_scene(origin), l, RAY_T_MAX_EXTENTS * frame.scene_extent, s.triangle));
     if (hit.triangle == BVH_NO_TRIANGLE) {
         return vec3f(0.0);
     }

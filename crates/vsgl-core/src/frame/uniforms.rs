@@ -63,24 +63,30 @@ pub const SHADOW_FOV_MAX: f64 = 170.0 * std::f64::consts::PI / 180.0;
 /// depth precision hardly depends on it; it only must not clip nearby geometry.
 pub const NEAR_PLANE_FRACTION: f64 = 1e-5;
 
-pub fn camera_view_proj(cam: &Camera, aspect: f64, extent: f64) -> DMat4 {
-    // The frame origin is the eye, so the view matrix has no translation.
-    let view = DMat4::look_to_rh(DVec3::ZERO, cam.forward, cam.up);
+/// The camera's view-projection of positions relative to `anchor` (the scene upload's), made
+/// in f64: the eye's offset from the anchor is the view's translation.
+pub fn camera_view_proj(cam: &Camera, anchor: DVec3, aspect: f64, extent: f64) -> DMat4 {
+    let view = DMat4::look_to_rh(cam.eye - anchor, cam.forward, cam.up);
     let proj = DMat4::perspective_infinite_reverse_rh(cam.fov_y as f64, aspect, extent * NEAR_PLANE_FRACTION);
     proj * view
 }
 
-pub fn frame_uniforms(cam: &Camera, width: u32, height: u32, lights: u32, layer: u32, extent: f64, shadow_size: u32) -> FrameUniforms {
+/// The camera's frame uniforms. The frame origin (where rays start, and what frame-space
+/// positions are relative to) is the eye; uploaded vertices are relative to `anchor`, so
+/// `view_proj` takes anchor-relative positions and `view_origin` is the eye's offset from the
+/// anchor (the material pass subtracts it).
+#[allow(clippy::too_many_arguments)]
+pub fn frame_uniforms(cam: &Camera, anchor: DVec3, width: u32, height: u32, lights: u32, layer: u32, extent: f64, shadow_size: u32) -> FrameUniforms {
     let aspect = width as f64 / height as f64;
     let t = (cam.fov_y as f64 * 0.5).tan();
     let right = cam.forward.cross(cam.up).normalize();
     let v4 = |v: DVec3| [v.x as f32, v.y as f32, v.z as f32, 0.0];
     FrameUniforms {
-        view_proj: camera_view_proj(cam, aspect, extent).as_mat4().to_cols_array_2d(),
+        view_proj: camera_view_proj(cam, anchor, aspect, extent).as_mat4().to_cols_array_2d(),
         cam_right: v4(right * t * aspect),
         cam_up: v4(cam.up * t),
         cam_forward: v4(cam.forward),
-        view_origin: [0.0; 4],
+        view_origin: v4(cam.eye - anchor),
         size: [width, height],
         light_count: lights,
         texture_layer_size: layer,
@@ -95,6 +101,8 @@ fn orthogonal(d: DVec3) -> DVec3 {
     if d.y.abs() < 0.9 { d.cross(DVec3::Y).normalize() } else { d.cross(DVec3::X).normalize() }
 }
 
+/// The spot light's view-projection of positions relative to `origin`: the frame origin for
+/// the direct pass's shadow lookups, the upload anchor for rasterising its shadow map or RSM.
 pub fn light_view_proj(light: &SpotLight, origin: DVec3, extent: f64) -> Mat4 {
     let pos = light.position - origin;
     let view = DMat4::look_to_rh(pos, light.direction, orthogonal(light.direction));
@@ -122,8 +130,10 @@ pub fn spot_light_raw(light: &SpotLight, origin: DVec3, extent: f64, layer: u32,
 }
 
 /// The view of a spot light's reflective shadow map: a square perspective image over the outer
-/// cone (at most [`SHADOW_FOV_MAX`]), rays starting at the light.
-pub fn light_view_uniforms(light: &SpotLight, origin: DVec3, extent: f64, size: u32, texture_layer_size: u32) -> FrameUniforms {
+/// cone (at most [`SHADOW_FOV_MAX`]), rays starting at the light. `anchor` is the scene
+/// upload's: the view rasterises anchor-relative vertices, and the positions it writes are
+/// relative to the light.
+pub fn light_view_uniforms(light: &SpotLight, anchor: DVec3, extent: f64, size: u32, texture_layer_size: u32) -> FrameUniforms {
     let fov = (2.0 * light.outer_cone as f64).min(SHADOW_FOV_MAX);
     let t = (fov * 0.5).tan();
     let dir = light.direction.normalize();
@@ -131,11 +141,11 @@ pub fn light_view_uniforms(light: &SpotLight, origin: DVec3, extent: f64, size: 
     let right = dir.cross(up).normalize();
     let v4 = |v: DVec3| [v.x as f32, v.y as f32, v.z as f32, 0.0];
     FrameUniforms {
-        view_proj: light_view_proj(light, origin, extent).to_cols_array_2d(),
+        view_proj: light_view_proj(light, anchor, extent).to_cols_array_2d(),
         cam_right: v4(right * t),
         cam_up: v4(up * t),
         cam_forward: v4(dir),
-        view_origin: v4(light.position - origin),
+        view_origin: v4(light.position - anchor),
         size: [size, size],
         light_count: 1,
         texture_layer_size,

@@ -39,7 +39,6 @@ impl Method for PathTrace {
         let pass = ctx.passes.get::<PathTracePass>()?;
         let input = PathTraceInputs {
             scene: ctx.scene,
-            origin: ctx.origin,
             frame: ctx.frame_uniforms,
             lights: ctx.light_buffer,
             gscene: ctx.gpu_scene,

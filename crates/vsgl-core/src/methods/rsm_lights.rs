@@ -42,7 +42,7 @@ pub fn for_each_light(ctx: &mut FrameContext<'_>, s: &RsmSettings, mut per_light
     let lights = ctx.lights;
     for (index, raw) in lights.iter().enumerate() {
         let Some(spot) = ctx.scene.lights[index].as_spot() else { continue };
-        let view = light_view_uniforms(spot, ctx.origin, ctx.extent, n, ctx.gpu_scene.texture_layer_size);
+        let view = light_view_uniforms(spot, ctx.gpu_scene.anchor, ctx.extent, n, ctx.gpu_scene.texture_layer_size);
         let view_buf = ctx.rec.uniform("rsm_view_uniform_buffer", &view);
         let light = ctx.rec.storage_init("spot_light_storage_buffer", bytemuck::bytes_of(raw));
         let gs = ctx.gpu_scene;

@@ -10,7 +10,6 @@ use crate::gpu::{entries, groups, storage_binding, uniform_binding, Gpu, Pipelin
 use crate::plan::ShaderFeatures;
 use crate::scene::Scene;
 use crate::upload::GpuScene;
-use glam::DVec3;
 
 const WORKGROUP: u32 = 8;
 /// Bounce paths (pixel samples) per dispatch and submission. Each path is one closest-hit ray
@@ -37,7 +36,6 @@ struct PathParamsRaw {
 /// and the visibility ids (for the pixel's own triangle).
 pub struct PathTraceInputs<'a> {
     pub scene: &'a Scene,
-    pub origin: DVec3,
     pub frame: &'a wgpu::Buffer,
     pub lights: &'a wgpu::Buffer,
     pub gscene: &'a GpuScene,
@@ -137,7 +135,7 @@ impl PathTracePass {
     ) -> Result<PathTraceOutput> {
         let gpu = rec.gpu;
         let (w, h) = size;
-        let (bvh, bvh_built) = input.gscene.bvh(gpu, input.scene, input.origin)?;
+        let (bvh, bvh_built) = input.gscene.bvh(gpu, input.scene)?;
         if bvh_built {
             note_pass("bvh_build");
         }

@@ -11,7 +11,7 @@ pub use frame::Frame;
 pub use options::{RenderOptions, AOV_NAMES};
 
 use crate::error::{Error, Result};
-use crate::frame::uniforms::{frame_uniforms, light_raw};
+use crate::frame::uniforms::{frame_uniforms, light_raw, light_view_proj};
 use crate::frame::{GBuffer, IndirectTargets, VisibilityTargets};
 use crate::gpu::{frame_log::log_frame, read_staging, FrameResources, Gpu, PassCache, PassTimer, Recorder};
 use crate::methods::{options::common, DirectLight, FrameContext, Method, MethodInfo, OptionValue, Options};
@@ -48,18 +48,17 @@ struct FrameState {
     timer: Option<PassTimer>,
 }
 
-/// What [`GpuScene::upload`] reads: the scene instance, its geometry version, and the frame
-/// origin (positions are uploaded relative to the camera, so a moved camera re-uploads).
+/// What [`GpuScene::upload`] reads: the scene instance and its geometry version (positions
+/// are uploaded relative to the scene's own anchor, so a moved camera reuses the upload).
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 struct SceneUploadKey {
     scene: u64,
     geometry_version: u64,
-    origin_bits: [u64; 3],
 }
 
 impl SceneUploadKey {
-    fn new(scene: &Scene, origin: glam::DVec3) -> Self {
-        Self { scene: scene.id.get(), geometry_version: scene.geometry_version, origin_bits: origin.to_array().map(f64::to_bits) }
+    fn new(scene: &Scene) -> Self {
+        Self { scene: scene.id.get(), geometry_version: scene.geometry_version }
     }
 }
 
@@ -103,17 +102,17 @@ impl Renderer {
         Ok(Frame { memory_bytes: log.uses, variants: log.variants, passes, settings, ..frame })
     }
 
-    /// The scene's GPU copy for a frame at `origin`: the cached one when nothing it was made
-    /// from has changed (then `true`), else a fresh upload that replaces it. One scene is
-    /// kept, so alternating between two scenes re-uploads each time.
-    fn uploaded_scene(&self, scene: &Scene, origin: glam::DVec3) -> Result<(Arc<GpuScene>, bool)> {
-        let key = SceneUploadKey::new(scene, origin);
+    /// The scene's GPU copy: the cached one when nothing it was made from has changed (then
+    /// `true`), else a fresh upload that replaces it. One scene is kept, so alternating
+    /// between two scenes re-uploads each time.
+    fn uploaded_scene(&self, scene: &Scene) -> Result<(Arc<GpuScene>, bool)> {
+        let key = SceneUploadKey::new(scene);
         if let Some((cached_key, gscene)) = self.scene_cache.lock().unwrap_or_else(|e| e.into_inner()).as_ref() {
             if *cached_key == key {
                 return Ok((gscene.clone(), true));
             }
         }
-        let gscene = Arc::new(GpuScene::upload(&self.gpu, scene, origin)?);
+        let gscene = Arc::new(GpuScene::upload(&self.gpu, scene)?);
         *self.scene_cache.lock().unwrap_or_else(|e| e.into_inner()) = Some((key, gscene.clone()));
         Ok((gscene, false))
     }
@@ -133,13 +132,15 @@ impl Renderer {
         let feat = plan.features;
         let mut skipped: Vec<(String, String)> = plan.skipped.clone();
 
+        // Frame space: positions relative to the eye (rays start at 0). Uploaded vertices are
+        // relative to the scene's anchor; the passes that read them shift them to the eye.
         let origin = camera.eye;
-        let (gscene, scene_reused) = self.uploaded_scene(scene, origin)?;
-        let extent = gscene.extent;
+        let (gscene, scene_reused) = self.uploaded_scene(scene)?;
+        let (extent, anchor) = (gscene.extent, gscene.anchor);
         // Methods without shadow maps still fill the lights' shadow fields (with the default).
         let shadow_size = if info.takes("shadow_size") { job.options.u32("shadow_size")? } else { default_shadow_size() };
         let lights = scene.lights.iter().enumerate().map(|(i, l)| light_raw(l, i, origin, extent, shadow_size)).collect::<Result<Vec<_>>>()?;
-        let uniforms = frame_uniforms(camera, w, h, lights.len() as u32, gscene.texture_layer_size, extent, shadow_size);
+        let uniforms = frame_uniforms(camera, anchor, w, h, lights.len() as u32, gscene.texture_layer_size, extent, shadow_size);
 
         // What the renderer keeps from frame to frame: targets, buffers, the timer's queries.
         let mut state = self.frame_state.lock().unwrap_or_else(|e| e.into_inner());
@@ -160,7 +161,9 @@ impl Renderer {
         let shadow_tex = ShadowMapPass::target(&mut rec, if shadow_needed { shadow_size } else { 16 }, lights.len() as u32);
         let shadow_map = self.passes.get::<ShadowMapPass>()?;
         if shadow_needed {
-            let vps: Vec<_> = lights.iter().map(|l| l.view_proj).collect();
+            // The shadow maps rasterise anchor-relative vertices; the direct pass looks them
+            // up with eye-relative positions through `LightRaw::view_proj`.
+            let vps: Vec<_> = scene.lights.iter().filter_map(|l| l.as_spot()).map(|s| light_view_proj(s, anchor, extent).to_cols_array_2d()).collect();
             shadow_map.record(&mut rec, &shadow_tex, &vps, &gscene.raster_vertices, gscene.raster_vertex_count);
         } else {
             // Clear the one placeholder layer so the binding is defined.

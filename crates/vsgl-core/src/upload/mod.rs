@@ -1,9 +1,12 @@
 //! Scene → GPU buffers.
 //!
-//! Positions are uploaded relative to a frame origin (the camera position), computed in f64,
-//! so a scene 1e5 m from the world origin renders as precisely as one at the origin. The
-//! renderer reuses an upload while the scene instance, its `geometry_version` and the origin
-//! are unchanged (`Renderer::uploaded_scene`, docs/rendering.md "Scene upload cache").
+//! Positions are uploaded relative to the scene's own anchor (the centre of its bounds),
+//! computed in f64, so a scene 1e5 m from the world origin renders as precisely as one at the
+//! origin, and a moving camera never re-uploads: each frame shifts the anchor-relative
+//! vertices to its camera on the GPU (`FrameUniforms::view_origin` and the translation in
+//! `view_proj`). The renderer reuses an upload while the scene instance and its
+//! `geometry_version` are unchanged (`Renderer::uploaded_scene`, docs/rendering.md
+//! "Scene upload cache").
 
 pub mod bvh;
 
@@ -27,7 +30,7 @@ pub struct VertexRaw {
 }
 const _: () = assert!(std::mem::size_of::<VertexRaw>() == 64);
 
-/// Rasterised vertex: position relative to the frame origin and the triangle id (16 bytes).
+/// Rasterised vertex: position relative to the upload anchor and the triangle id (16 bytes).
 #[repr(C)]
 #[derive(Clone, Copy, bytemuck::Pod, bytemuck::Zeroable)]
 pub struct RasterVertex {
@@ -71,8 +74,12 @@ pub struct GpuScene {
     pub triangle_count: u32,
     /// World-space bounds diagonal, for scale-aware epsilons.
     pub extent: f64,
+    /// World position every uploaded position is relative to: the centre of the scene bounds
+    /// (the world origin for a scene without geometry). Uploaded coordinates are thus at most
+    /// half the scene's diagonal, and f32 keeps them to ~3e-8 of its size wherever the scene is.
+    pub anchor: DVec3,
     /// The ray tracers' BVH over these very triangles, built on first use and kept with the
-    /// upload (a changed geometry or frame origin re-uploads, and so rebuilds it).
+    /// upload (a changed geometry re-uploads, and so rebuilds it).
     bvh: std::sync::Mutex<Option<std::sync::Arc<GpuBvh>>>,
 }
 
@@ -101,14 +108,14 @@ fn storage(gpu: &Gpu, label: &str, bytes: &[u8], extra: wgpu::BufferUsages) -> w
 }
 
 impl GpuScene {
-    /// The BVH of the uploaded triangles (`scene` and `origin` must be what the upload was made
-    /// from), built now if no frame has needed it yet (then `true`).
-    pub fn bvh(&self, gpu: &Gpu, scene: &Scene, origin: DVec3) -> Result<(std::sync::Arc<GpuBvh>, bool)> {
+    /// The BVH of the uploaded triangles, relative to [`Self::anchor`] like them (`scene` must
+    /// be what the upload was made from), built now if no frame has needed it yet (then `true`).
+    pub fn bvh(&self, gpu: &Gpu, scene: &Scene) -> Result<(std::sync::Arc<GpuBvh>, bool)> {
         let mut cached = self.bvh.lock().unwrap_or_else(|e| e.into_inner());
         if let Some(b) = cached.as_ref() {
             return Ok((b.clone(), false));
         }
-        let triangles = bvh::scene_triangles(scene, origin);
+        let triangles = bvh::scene_triangles(scene, self.anchor);
         if triangles.len() != self.triangle_count as usize {
             return Err(Error::invalid("scene", format!(
                 "the BVH has {} triangles but the uploaded scene {}", triangles.len(), self.triangle_count
@@ -136,7 +143,9 @@ impl GpuScene {
     }
 
 
-    pub fn upload(gpu: &Gpu, scene: &Scene, origin: DVec3) -> Result<Self> {
+    pub fn upload(gpu: &Gpu, scene: &Scene) -> Result<Self> {
+        let bounds = scene.bounds();
+        let anchor = if bounds.is_empty() { DVec3::ZERO } else { bounds.center() };
         let mut raster = Vec::new();
         let mut verts = Vec::new();
         let mut indices: Vec<u32> = Vec::new();
@@ -152,7 +161,7 @@ impl GpuScene {
             for prim in &mesh.primitives {
                 let base = verts.len() as u32;
                 for (k, p) in prim.positions.iter().enumerate() {
-                    let wp = world.transform_point3(DVec3::new(p[0] as f64, p[1] as f64, p[2] as f64)) - origin;
+                    let wp = world.transform_point3(DVec3::new(p[0] as f64, p[1] as f64, p[2] as f64)) - anchor;
                     let n = prim.normals.get(k).copied().unwrap_or([0.0, 1.0, 0.0]);
                     let wn = (normal_m * DVec3::new(n[0] as f64, n[1] as f64, n[2] as f64)).normalize_or_zero();
                     let t = prim.tangents.get(k).copied().unwrap_or([1.0, 0.0, 0.0, 1.0]);
@@ -231,8 +240,9 @@ impl GpuScene {
                 "{} vertices exceed this adapter's buffer limits ({max} bytes per storage binding)", verts.len()
             )));
         }
-        let extent = scene.bounds().diagonal();
+        let extent = bounds.diagonal();
         Ok(Self {
+            anchor,
             raster_vertex_count: raster.len() as u32,
             raster_vertices: gpu.device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
                 label: Some("scene_raster_vertex_buffer"),
