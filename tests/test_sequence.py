@@ -65,3 +65,39 @@ def test_sequence_checks_settings_at_once_and_frames_by_name(renderer):
     # A generator works, and an empty sequence yields nothing.
     assert len(list(renderer.render_sequence(scene, ({} for _ in range(2))))) == 2
     assert list(renderer.render_sequence(scene, [])) == []
+
+
+def test_the_next_frame_is_submitted_before_this_one_is_read(renderer):
+    # The sequence takes item k+1 of `frames` (and submits its frame) before it reads frame k
+    # back: when frame 0 is returned, the generator has handed out two items.
+    taken = []
+
+    def frames():
+        for i in range(3):
+            taken.append(i)
+            yield {}
+
+    seq = renderer.render_sequence(vsgl.scenes.cornell_box(), frames(), aovs=["image"])
+    got = [next(seq)]
+    assert taken == [0, 1]
+    got.append(next(seq))
+    assert taken == [0, 1, 2]
+    got.append(next(seq))
+    with pytest.raises(StopIteration):
+        next(seq)
+    # Frames 0 and 1 were read back while the next frame was on the GPU; the last had none.
+    assert [f.settings["frames_in_flight"] for f in got] == ["2", "2", "1"]
+    assert renderer.render(vsgl.scenes.cornell_box()).settings["frames_in_flight"] == "1"
+
+
+def test_a_steady_sequence_allocates_nothing_after_its_ring_is_made(renderer):
+    # Two frames are in flight at once, so two readback slots: frame 1 makes the second slot's
+    # staging buffer, and from frame 2 on nothing is allocated.
+    scene = vsgl.scenes.cornell_box()
+    frames = list(renderer.render_sequence(scene, [{}] * 5, method="vsgl", aovs=["image", "ldr"], **KW))
+    allocated = [int(f.settings["allocated_bytes"]) for f in frames]
+    assert all(a == 0 for a in allocated[2:]), allocated
+    # ...and the frames are the same image, read through alternating staging buffers.
+    for f in frames[1:]:
+        np.testing.assert_array_equal(f.image, frames[0].image)
+        np.testing.assert_array_equal(f.aov("ldr"), frames[0].aov("ldr"))

@@ -254,16 +254,63 @@ fn set_node_transform(scene: &mut Scene, node_name: &str, matrix: Vec<Vec<f64>>,
     Ok(())
 }
 
-/// The frames of `Renderer.render_sequence`, rendered one at a time as they are asked for.
+/// The frames of `Renderer.render_sequence`. Frame k+1 is recorded and submitted before frame
+/// k is read back, so the GPU works on the next frame while this one is copied out.
 #[pyclass(name = "FrameSequence", module = "vsgl", frozen)]
 struct PyFrameSequence {
     renderer: Arc<Renderer>,
-    /// The sequence's own copy of the scene, which the per-frame changes edit.
-    scene: std::sync::Mutex<Scene>,
-    camera: std::sync::Mutex<Option<Camera>>,
     frames: Py<PyIterator>,
     opts: RenderOptions,
-    index: std::sync::atomic::AtomicUsize,
+    state: std::sync::Mutex<SequenceState>,
+}
+
+/// What a sequence carries from frame to frame.
+struct SequenceState {
+    /// The sequence's own copy of the scene, which the per-frame changes edit.
+    scene: Scene,
+    camera: Option<Camera>,
+    /// Index of the next item of `frames`.
+    index: usize,
+    /// The frame submitted ahead of the one being returned.
+    in_flight: Option<vsgl_core::renderer::SubmittedFrame>,
+    /// An error met while submitting ahead, raised when its frame is asked for.
+    deferred: Option<PyErr>,
+}
+
+impl PyFrameSequence {
+    /// Applies the next item of `frames` to the scene copy and submits its frame (`None` when
+    /// `frames` is exhausted).
+    fn submit_next(&self, py: Python<'_>, st: &mut SequenceState) -> PyResult<Option<vsgl_core::renderer::SubmittedFrame>> {
+        let Some(item) = self.frames.bind(py).clone().next() else { return Ok(None) };
+        let item = item?;
+        let index = st.index;
+        st.index += 1;
+        let changes = item.cast::<PyDict>().map_err(|_| argument_error(format!("frames[{index}]: expected a dict of \"camera\", \"lights\", \"transforms\", got {}", item.get_type().name().map(|n| n.to_string()).unwrap_or_default())))?;
+        for (key, value) in changes.iter() {
+            let key: String = key.extract()?;
+            match key.as_str() {
+                "camera" => st.camera = Some(value.extract::<PyCamera>().map_err(|_| argument_error(format!("frames[{index}][\"camera\"]: expected a vsgl.Camera")))?.inner),
+                "lights" => {
+                    let lights: Vec<PySpotLight> = value.extract().map_err(|_| argument_error(format!("frames[{index}][\"lights\"]: expected a list of lights")))?;
+                    st.scene.lights = lights.into_iter().map(|l| Light::Spot(l.inner)).collect();
+                }
+                "transforms" => {
+                    let d = value.cast::<PyDict>().map_err(|_| argument_error(format!("frames[{index}][\"transforms\"]: expected a dict of node name -> 4x4 matrix")))?;
+                    for (node, matrix) in d.iter() {
+                        let node: String = node.extract()?;
+                        let matrix: Vec<Vec<f64>> = matrix.extract().map_err(|_| argument_error(format!("frames[{index}][\"transforms\"][{node:?}]: expected a 4x4 matrix")))?;
+                        let what = format!("frames[{index}][\"transforms\"]");
+                        set_node_transform(&mut st.scene, &node, matrix, &format!("{what}[{node:?}]"), &what)?;
+                    }
+                }
+                other => return Err(argument_error(format!("frames[{index}]: unknown key {other:?}; a frame may set \"camera\", \"lights\", \"transforms\""))),
+            }
+        }
+        let (r, scene, cam, opts) = (&self.renderer, &st.scene, st.camera, &self.opts);
+        // The submission reads nothing of the scene afterwards: the next item may edit it.
+        let submitted = py.detach(|| r.submit(scene, cam.as_ref(), opts)).map_err(to_py)?;
+        Ok(Some(submitted))
+    }
 }
 
 #[pymethods]
@@ -273,34 +320,28 @@ impl PyFrameSequence {
     }
 
     fn __next__(&self, py: Python<'_>) -> PyResult<Option<PyFrame>> {
-        let Some(item) = self.frames.bind(py).clone().next() else { return Ok(None) };
-        let item = item?;
-        let index = self.index.fetch_add(1, std::sync::atomic::Ordering::Relaxed);
-        let changes = item.cast::<PyDict>().map_err(|_| argument_error(format!("frames[{index}]: expected a dict of \"camera\", \"lights\", \"transforms\", got {}", item.get_type().name().map(|n| n.to_string()).unwrap_or_default())))?;
-        let mut scene = self.scene.lock().unwrap_or_else(|e| e.into_inner());
-        let mut camera = self.camera.lock().unwrap_or_else(|e| e.into_inner());
-        for (key, value) in changes.iter() {
-            let key: String = key.extract()?;
-            match key.as_str() {
-                "camera" => *camera = Some(value.extract::<PyCamera>().map_err(|_| argument_error(format!("frames[{index}][\"camera\"]: expected a vsgl.Camera")))?.inner),
-                "lights" => {
-                    let lights: Vec<PySpotLight> = value.extract().map_err(|_| argument_error(format!("frames[{index}][\"lights\"]: expected a list of lights")))?;
-                    scene.lights = lights.into_iter().map(|l| Light::Spot(l.inner)).collect();
+        // Never block on the lock while holding the GIL: a thread that holds it may be waiting
+        // for the GIL to come back from the GPU.
+        let mut st = self.state.try_lock().map_err(|_| pyo3::exceptions::PyRuntimeError::new_err("FrameSequence: another thread is advancing this sequence"))?;
+        let current = match st.in_flight.take() {
+            Some(f) => f,
+            None => {
+                if let Some(e) = st.deferred.take() {
+                    return Err(e);
                 }
-                "transforms" => {
-                    let d = value.cast::<PyDict>().map_err(|_| argument_error(format!("frames[{index}][\"transforms\"]: expected a dict of node name -> 4x4 matrix")))?;
-                    for (node, matrix) in d.iter() {
-                        let node: String = node.extract()?;
-                        let matrix: Vec<Vec<f64>> = matrix.extract().map_err(|_| argument_error(format!("frames[{index}][\"transforms\"][{node:?}]: expected a 4x4 matrix")))?;
-                        let what = format!("frames[{index}][\"transforms\"]");
-                        set_node_transform(&mut scene, &node, matrix, &format!("{what}[{node:?}]"), &what)?;
-                    }
+                match self.submit_next(py, &mut st)? {
+                    Some(f) => f,
+                    None => return Ok(None),
                 }
-                other => return Err(argument_error(format!("frames[{index}]: unknown key {other:?}; a frame may set \"camera\", \"lights\", \"transforms\""))),
             }
+        };
+        // Submit frame k+1 before reading frame k back; its errors wait for its turn.
+        match self.submit_next(py, &mut st) {
+            Ok(next) => st.in_flight = next,
+            Err(e) => st.deferred = Some(e),
         }
-        let (r, s, cam, opts) = (&self.renderer, &*scene, *camera, &self.opts);
-        let frame = py.detach(|| r.render(s, cam.as_ref(), opts)).map_err(to_py)?;
+        let r = &self.renderer;
+        let frame = py.detach(|| r.finish(current)).map_err(to_py)?;
         Ok(Some(PyFrame::new(py, frame)?))
     }
 }
@@ -588,9 +629,10 @@ impl PyRenderer {
     /// Renders a sequence: `frames` is an iterable of dicts, each of which may set `"camera"`
     /// (a Camera, kept for later frames), `"lights"` (a list that replaces the lights) and
     /// `"transforms"` ({node name: 4×4 matrix}); `camera=` is the first frame's camera. Returns
-    /// an iterator of Frames, each rendered when asked for, with the settings of `render`
-    /// (validated once, here). The sequence edits its own copy of `scene`, never `scene` itself.
-    /// Each frame equals a `render` call of the same scene state, bit for bit.
+    /// an iterator of Frames with the settings of `render` (validated once, here); frame k+1 is
+    /// recorded and submitted before frame k is read back, so the GPU never waits for the copy.
+    /// The sequence edits its own copy of `scene`, never `scene` itself. Each frame equals a
+    /// `render` call of the same scene state, bit for bit.
     #[pyo3(signature = (scene, frames, camera=None, method="direct", *, plan="auto", aovs=None, **options))]
     #[allow(clippy::too_many_arguments)]
     fn render_sequence(
@@ -606,14 +648,8 @@ impl PyRenderer {
         let opts = render_options(method, plan, aovs, options)?;
         opts.resolve().map_err(to_py)?;
         let frames = frames.try_iter().map_err(|_| argument_error("frames: expected an iterable of dicts"))?;
-        Ok(PyFrameSequence {
-            renderer: self.inner.clone(),
-            scene: std::sync::Mutex::new(scene.inner.clone()),
-            camera: std::sync::Mutex::new(camera.map(|c| c.inner)),
-            frames: frames.unbind(),
-            opts,
-            index: Default::default(),
-        })
+        let state = SequenceState { scene: scene.inner.clone(), camera: camera.map(|c| c.inner), index: 0, in_flight: None, deferred: None };
+        Ok(PyFrameSequence { renderer: self.inner.clone(), frames: frames.unbind(), opts, state: std::sync::Mutex::new(state) })
     }
     fn __repr__(&self) -> String {
         format!("Renderer(width={}, height={}, adapter={:?})", self.inner.width, self.inner.height, self.inner.gpu.adapter.name)

@@ -25,8 +25,8 @@ impl Gpu {
                 s
             })
             .collect();
-        self.queue.submit([enc.finish()]);
-        staging.iter().map(|s| read_staging::<u8>(self, s, s.size(), "readback")).collect()
+        let submission = self.queue.submit([enc.finish()]);
+        staging.iter().map(|s| read_staging::<u8>(self, s, s.size(), Some(&submission), "readback")).collect()
     }
 }
 
@@ -43,19 +43,36 @@ pub fn storage_buffer(gpu: &Gpu, label: &str, size: u64) -> wgpu::Buffer {
     })
 }
 
+/// A MAP_READ | COPY_DST buffer of `size` bytes (at least 16) for `kept`, which holds it from
+/// frame to frame: reused when its size matches, else made now (and logged as the frame's
+/// allocation). Whoever keeps it must not hand it to two frames in flight at once.
+pub fn kept_staging_buffer(gpu: &Gpu, kept: &mut Option<wgpu::Buffer>, label: &str, size: u64) -> wgpu::Buffer {
+    let size = size.max(16);
+    note_use(label, size);
+    if let Some(b) = kept.as_ref().filter(|b| b.size() == size) {
+        return b.clone();
+    }
+    note_allocation(label, size);
+    let usage = wgpu::BufferUsages::MAP_READ | wgpu::BufferUsages::COPY_DST;
+    let b = gpu.device.create_buffer(&wgpu::BufferDescriptor { label: Some(label), size, usage, mapped_at_creation: false });
+    *kept = Some(b.clone());
+    b
+}
+
 /// Calls `f` on the first `bytes` of a MAP_READ `staging` buffer whose copy is already
-/// submitted: maps it, waits for the GPU, and unmaps it on every path, so the next frame can
-/// copy into it again. `f` copies out what it keeps (the mapping may not be aligned).
-pub fn read_staging_with<R>(gpu: &Gpu, staging: &wgpu::Buffer, bytes: u64, context: &str, f: impl FnOnce(&[u8]) -> R) -> Result<R> {
+/// submitted (in `submission`; `None`: anything submitted so far): maps it, waits for that
+/// submission only, and unmaps it on every path, so a later frame can copy into it again.
+/// `f` copies out what it keeps (the mapping may not be aligned).
+pub fn read_staging_with<R>(gpu: &Gpu, staging: &wgpu::Buffer, bytes: u64, submission: Option<&wgpu::SubmissionIndex>, context: &str, f: impl FnOnce(&[u8]) -> R) -> Result<R> {
     let slice = staging.slice(..bytes);
     slice.map_async(wgpu::MapMode::Read, |_| {});
-    gpu.wait(context)?;
+    gpu.wait_for(submission, context)?;
     let value = slice.get_mapped_range().map(|view| f(&view));
     staging.unmap();
     value.map_err(|e| Error::Validation { context: context.into(), message: e.to_string() })
 }
 
 /// [`read_staging_with`] copying the bytes out as `T`s.
-pub fn read_staging<T: bytemuck::Pod>(gpu: &Gpu, staging: &wgpu::Buffer, bytes: u64, context: &str) -> Result<Vec<T>> {
-    read_staging_with(gpu, staging, bytes, context, |view| bytemuck::pod_collect_to_vec::<u8, T>(view))
+pub fn read_staging<T: bytemuck::Pod>(gpu: &Gpu, staging: &wgpu::Buffer, bytes: u64, submission: Option<&wgpu::SubmissionIndex>, context: &str) -> Result<Vec<T>> {
+    read_staging_with(gpu, staging, bytes, submission, context, |view| bytemuck::pod_collect_to_vec::<u8, T>(view))
 }

@@ -127,8 +127,14 @@ impl Gpu {
 
     /// Blocks until the queue is idle.
     pub fn wait(&self, context: &str) -> Result<()> {
+        self.wait_for(None, context)
+    }
+
+    /// Blocks until `submission` has finished (the whole queue when `None`), not waiting for
+    /// work submitted after it: a frame in flight reads back while the next one runs.
+    pub fn wait_for(&self, submission: Option<&wgpu::SubmissionIndex>, context: &str) -> Result<()> {
         self.device
-            .poll(wgpu::PollType::wait_indefinitely())
+            .poll(wgpu::PollType::Wait { submission_index: submission.cloned(), timeout: None })
             .map(|_| ())
             .map_err(|e| Error::Validation { context: context.into(), message: format!("device poll failed: {e}") })
     }

@@ -13,7 +13,7 @@ pub mod pipelines;
 pub mod resources;
 pub mod timer;
 
-pub use buffers::{read_staging, read_staging_with, storage_buffer};
+pub use buffers::{kept_staging_buffer, read_staging, read_staging_with, storage_buffer};
 pub use device::{adapters, AdapterSummary, Gpu};
 pub use pass_cache::{Pass, PassCache};
 pub use dispatch::{entries, for_each_chunk, groups, Recorder};

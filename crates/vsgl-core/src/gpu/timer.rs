@@ -101,13 +101,14 @@ impl PassTimer {
         }
     }
 
-    /// Milliseconds per pass (same name twice adds up), after the frame's submission.
-    pub fn read(&self, gpu: &Gpu) -> Result<Vec<(String, f64)>> {
+    /// Milliseconds per pass (same name twice adds up), once `submission` (the frame's last,
+    /// which resolved the queries) has finished.
+    pub fn read(&self, gpu: &Gpu, submission: &wgpu::SubmissionIndex) -> Result<Vec<(String, f64)>> {
         let Some(st) = &self.staging else { return Ok(Vec::new()) };
         if self.names.is_empty() {
             return Ok(Vec::new());
         }
-        let ticks: Vec<u64> = super::read_staging(gpu, st, self.names.len() as u64 * 16, "timestamp readback")?;
+        let ticks: Vec<u64> = super::read_staging(gpu, st, self.names.len() as u64 * 16, Some(submission), "timestamp readback")?;
         let mut out: Vec<(String, f64)> = Vec::new();
         for (i, name) in self.names.iter().enumerate() {
             let dt = ticks[2 * i + 1].saturating_sub(ticks[2 * i]) as f64 * self.period_ns as f64 * 1e-6;

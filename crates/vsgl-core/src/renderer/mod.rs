@@ -13,14 +13,15 @@ pub use options::{RenderOptions, AOV_NAMES};
 use crate::error::{Error, Result};
 use crate::frame::uniforms::{frame_uniforms, light_raw, light_view_proj};
 use crate::frame::{GBuffer, IndirectTargets, VisibilityTargets};
-use crate::gpu::{frame_log::log_frame, read_staging, FrameResources, Gpu, PassCache, PassTimer, Recorder};
+use crate::gpu::frame_log::{log_frame, FrameLog};
+use crate::gpu::{kept_staging_buffer, read_staging, FrameResources, Gpu, PassCache, PassTimer, Recorder};
 use crate::methods::{options::common, DirectLight, FrameContext, Method, MethodInfo, OptionValue, Options};
 use crate::passes::{direct::DirectPass, material::MaterialPass, shadow_map::ShadowMapPass, visibility::VisibilityPass};
 use crate::plan::{Plan, ShaderFeatures};
 use crate::scene::{Camera, Scene};
 use crate::upload::GpuScene;
 use crate::passes::aov_pack::{AovPackPass, PackSources};
-use readback::record_aovs;
+use readback::{record_aovs, PendingAovs};
 use std::sync::{Arc, Mutex};
 use std::time::Instant;
 
@@ -35,17 +36,57 @@ pub struct Renderer {
     passes: PassCache,
     /// The last scene uploaded and what it was uploaded from: reused while the key matches.
     scene_cache: Mutex<Option<(SceneUploadKey, Arc<GpuScene>)>>,
-    /// Kept from frame to frame; held for the whole of a frame (frames of one renderer are
+    /// Kept from frame to frame; held while a frame is recorded (frames of one renderer are
     /// recorded one at a time).
     frame_state: Mutex<FrameState>,
+    /// Idle readback slots: a frame takes one when it is recorded and gives it back when it
+    /// has been read, so a frame in flight never shares its staging buffers or queries with
+    /// the next one (a ring of two in `render_sequence`).
+    readback_slots: Mutex<Vec<ReadbackSlot>>,
+    /// Frames submitted and not yet finished (`frame.settings["frames_in_flight"]`).
+    in_flight: std::sync::atomic::AtomicUsize,
 }
 
-/// What a renderer keeps between frames besides passes and the scene upload.
+/// What a renderer keeps between frames besides passes, readback slots and the scene upload.
 #[derive(Default)]
 struct FrameState {
     resources: FrameResources,
-    /// Created by the first frame.
-    timer: Option<PassTimer>,
+}
+
+/// Idle readback slots kept beyond this many are dropped (more exist only while several
+/// threads render with one renderer).
+const READBACK_SLOTS_KEPT: usize = 4;
+
+/// What one frame in flight reads back through: its timestamp queries and staging buffers,
+/// kept from frame to frame.
+struct ReadbackSlot {
+    timer: PassTimer,
+    aov_staging: Option<wgpu::Buffer>,
+    vsgl_staging: Option<wgpu::Buffer>,
+}
+
+/// What the frame script hands [`Renderer::submit`]: see [`SubmittedFrame`].
+struct Recorded {
+    frame: Frame,
+    features: ShaderFeatures,
+    submission: wgpu::SubmissionIndex,
+    aovs: PendingAovs,
+    vsgl_bytes: Option<u64>,
+}
+
+/// A frame recorded and submitted, not yet read back: [`Renderer::finish`] waits for its
+/// submission only, so the next frame can be recorded and submitted meanwhile.
+pub struct SubmittedFrame {
+    /// The frame without its AOVs, timings and log-derived fields.
+    frame: Frame,
+    features: ShaderFeatures,
+    log: FrameLog,
+    slot: ReadbackSlot,
+    submission: wgpu::SubmissionIndex,
+    aovs: PendingAovs,
+    /// Bytes of the first light's VSGLs in the slot's VSGL staging buffer.
+    vsgl_bytes: Option<u64>,
+    started: Instant,
 }
 
 /// What [`GpuScene::upload`] reads: the scene instance and its geometry version (positions
@@ -80,10 +121,17 @@ impl Renderer {
             passes.get::<DirectPass>()?;
             Ok(())
         })?;
-        Ok(Self { gpu, width, height, passes, scene_cache: Mutex::new(None), frame_state: Mutex::default() })
+        Ok(Self { gpu, width, height, passes, scene_cache: Mutex::new(None), frame_state: Mutex::default(), readback_slots: Mutex::default(), in_flight: Default::default() })
     }
 
+    /// Renders one frame: [`Self::submit`] then [`Self::finish`].
     pub fn render(&self, scene: &Scene, camera: Option<&Camera>, opts: &RenderOptions) -> Result<Frame> {
+        self.finish(self.submit(scene, camera, opts)?)
+    }
+
+    /// Records and submits a frame without waiting for it. Nothing of `scene` is read after
+    /// this returns, so the caller may edit it for the next frame.
+    pub fn submit(&self, scene: &Scene, camera: Option<&Camera>, opts: &RenderOptions) -> Result<SubmittedFrame> {
         let (info, options) = opts.resolve()?;
         let method = (info.configure)(&options)?;
         method.check(&self.gpu)?;
@@ -92,14 +140,73 @@ impl Renderer {
             None => default_camera(scene)?,
         };
         let job = FrameJob { scene, camera: &camera, opts, info, options: &options, method: &*method };
-        let (frame, log) = log_frame(|| self.gpu.scoped("render", || self.render_inner(&job)));
-        let (frame, features) = frame?;
+        let started = Instant::now();
+        let slot = self.readback_slots.lock().unwrap_or_else(|e| e.into_inner()).pop();
+        let mut slot = slot.unwrap_or_else(|| ReadbackSlot { timer: PassTimer::new(&self.gpu, TIMER_CAPACITY), aov_staging: None, vsgl_staging: None });
+        let (recorded, log) = log_frame(|| self.gpu.scoped("render", || self.render_inner(&job, &mut slot)));
+        match recorded {
+            Ok(Recorded { frame, features, submission, aovs, vsgl_bytes }) => {
+                self.in_flight.fetch_add(1, std::sync::atomic::Ordering::SeqCst);
+                Ok(SubmittedFrame { frame, features, log, slot, submission, aovs, vsgl_bytes, started })
+            }
+            Err(e) => {
+                self.give_back(slot);
+                Err(e)
+            }
+        }
+    }
+
+    /// Waits for a submitted frame (and for nothing submitted after it) and reads it back.
+    pub fn finish(&self, submitted: SubmittedFrame) -> Result<Frame> {
+        let SubmittedFrame { frame, features, log, slot, submission, aovs, vsgl_bytes, started } = submitted;
+        // This frame and those submitted after it that are still unread: 2 when the next frame
+        // of a sequence was already on the GPU while this one was read back.
+        let in_flight = self.in_flight.fetch_sub(1, std::sync::atomic::Ordering::SeqCst);
+        let gpu = &*self.gpu;
+        let read = gpu.scoped("readback", || {
+            let aovs = aovs.read(gpu, &submission)?;
+            let vsgls = match (&slot.vsgl_staging, vsgl_bytes) {
+                (Some(st), Some(bytes)) => Some(read_staging::<f32>(gpu, st, bytes, Some(&submission), "VSGL readback")?),
+                _ => None,
+            };
+            Ok((aovs, vsgls, slot.timer.read(gpu, &submission)?))
+        });
+        self.give_back(slot);
+        let (aovs, vsgls, mut timings) = read?;
+        let wall_ms = started.elapsed().as_secs_f64() * 1e3;
+        let clock = if timings.is_empty() {
+            timings.push(("total".into(), wall_ms));
+            "cpu-wall"
+        } else {
+            let total: f64 = timings.iter().map(|(_, t)| t).sum();
+            timings.push(("total".into(), total));
+            "gpu-timestamp"
+        };
         // What ran is what the passes logged as they began, with their plan variants named.
         let passes = log.passes.iter().map(|p| features.pass_name(p)).collect();
         let mut settings = frame.settings;
         // What this frame created; 0 when it reused every target of an earlier frame.
         settings.push(("allocated_bytes".into(), log.allocations.iter().map(|(_, b)| b).sum::<u64>().to_string()));
-        Ok(Frame { memory_bytes: log.uses, variants: log.variants, passes, settings, ..frame })
+        settings.push(("frames_in_flight".into(), in_flight.to_string()));
+        Ok(Frame {
+            aovs: aovs.float,
+            ldr: aovs.ldr,
+            vsgls,
+            timings_ms: timings,
+            timings_clock: clock.into(),
+            memory_bytes: log.uses,
+            variants: log.variants,
+            passes,
+            settings,
+            ..frame
+        })
+    }
+
+    fn give_back(&self, slot: ReadbackSlot) {
+        let mut slots = self.readback_slots.lock().unwrap_or_else(|e| e.into_inner());
+        if slots.len() < READBACK_SLOTS_KEPT {
+            slots.push(slot);
+        }
     }
 
     /// The scene's GPU copy: the cached one when nothing it was made from has changed (then
@@ -122,12 +229,11 @@ impl Renderer {
         *self.scene_cache.lock().unwrap_or_else(|e| e.into_inner()) = None;
     }
 
-    /// The frame script. Returns the frame without its log-derived fields, and the plan's
-    /// shader features (to name the variants of the passes that ran).
-    fn render_inner(&self, job: &FrameJob<'_>) -> Result<(Frame, ShaderFeatures)> {
+    /// The frame script: records the frame, with `slot`'s timer and staging buffers, and
+    /// submits it.
+    fn render_inner(&self, job: &FrameJob<'_>, slot: &mut ReadbackSlot) -> Result<Recorded> {
         let (gpu, scene, camera, info) = (&*self.gpu, job.scene, job.camera, job.info);
         let (w, h) = (self.width, self.height);
-        let wall = Instant::now();
         let plan = Plan::new(scene, job.opts.plan == "full");
         let feat = plan.features;
         let mut skipped: Vec<(String, String)> = plan.skipped.clone();
@@ -144,8 +250,8 @@ impl Renderer {
 
         // What the renderer keeps from frame to frame: targets, buffers, the timer's queries.
         let mut state = self.frame_state.lock().unwrap_or_else(|e| e.into_inner());
-        let FrameState { resources, timer } = &mut *state;
-        let timer = timer.get_or_insert_with(|| PassTimer::new(gpu, TIMER_CAPACITY));
+        let FrameState { resources } = &mut *state;
+        let timer = &mut slot.timer;
         timer.reset();
         resources.begin_frame();
         let mut rec = Recorder::new(gpu, timer, resources);
@@ -230,33 +336,17 @@ impl Renderer {
         };
         let pack = self.passes.get::<AovPackPass>()?;
         // Timed like any pass (`aov_pack`): readback work is part of the frame's GPU time.
-        let pending = record_aovs(&mut rec, &pack, job.opts, info, &sources, (w, h));
-        // The first light's VSGLs, copied in the same submission into a kept staging buffer.
-        let vsgl_staging = vsgls.as_ref().map(|b| {
-            let usage = wgpu::BufferUsages::MAP_READ | wgpu::BufferUsages::COPY_DST;
-            let (staging, _) = rec.resources.buffer(gpu, "vsgl_readback_staging_buffer", b.size(), usage);
+        let pending = record_aovs(&mut rec, &pack, job.opts, info, &sources, (w, h), &mut slot.aov_staging);
+        // The first light's VSGLs, copied in the same submission into the slot's staging buffer.
+        let vsgl_bytes = vsgls.as_ref().map(|b| {
+            let staging = kept_staging_buffer(gpu, &mut slot.vsgl_staging, "vsgl_readback_staging_buffer", b.size());
             rec.enc.copy_buffer_to_buffer(b, 0, &staging, 0, b.size());
-            staging
+            b.size()
         });
         let mut enc = rec.finish();
         timer.resolve(&mut enc);
-        gpu.queue.submit([enc.finish()]);
+        let submission = gpu.queue.submit([enc.finish()]);
         resources.end_frame();
-        let aovs = pending.read(gpu)?;
-        let vsgls = match &vsgl_staging {
-            Some(st) => Some(read_staging::<f32>(gpu, st, st.size(), "VSGL readback")?),
-            None => None,
-        };
-        let wall_ms = wall.elapsed().as_secs_f64() * 1e3;
-        let mut timings = timer.read(gpu)?;
-        let clock = if timings.is_empty() {
-            timings.push(("total".into(), wall_ms));
-            "cpu-wall"
-        } else {
-            let total: f64 = timings.iter().map(|(_, t)| t).sum();
-            timings.push(("total".into(), total));
-            "gpu-timestamp"
-        };
         let mut settings = vec![
             ("method".into(), info.name.to_string()),
             ("width".into(), w.to_string()),
@@ -270,19 +360,19 @@ impl Renderer {
         let frame = Frame {
             width: w,
             height: h,
-            aovs: aovs.float,
-            ldr: aovs.ldr,
-            timings_ms: timings,
-            timings_clock: clock.into(),
+            aovs: Vec::new(),
+            ldr: None,
+            timings_ms: Vec::new(),
+            timings_clock: String::new(),
             passes: Vec::new(),
             skipped,
             settings,
             rsm: captured_rsm,
-            vsgls,
+            vsgls: None,
             memory_bytes: Vec::new(),
             variants: Vec::new(),
         };
-        Ok((frame, feat))
+        Ok(Recorded { frame, features: feat, submission, aovs: pending, vsgl_bytes })
     }
 }
 

@@ -1,10 +1,11 @@
 //! Reading a frame's AOVs back: the GPU packs the asked-for AOVs in NumPy's layout into one
-//! buffer (`passes/aov_pack.rs`), which is copied into a staging buffer kept from frame to frame
-//! in the frame's own submission; the CPU then only splits the mapped bytes into the AOVs.
+//! buffer (`passes/aov_pack.rs`), which is copied in the frame's own submission into a staging
+//! buffer of the frame's readback slot (kept from frame to frame, never shared by two frames in
+//! flight); the CPU then only splits the mapped bytes into the AOVs.
 
 use super::options::{RenderOptions, AOV_NAMES};
 use crate::error::Result;
-use crate::gpu::{read_staging_with, Gpu, Recorder};
+use crate::gpu::{kept_staging_buffer, read_staging_with, Gpu, Recorder};
 use crate::methods::MethodInfo;
 use crate::passes::aov_pack::{AovPackPass, PackEntry, PackSources, LDR_KIND, MAX_ENTRIES};
 
@@ -30,8 +31,9 @@ pub(super) struct PendingAovs {
 }
 
 /// Records the packing of the AOVs `opts` asks for (all float AOVs the method makes when it
-/// names none) and their copy into a staging buffer.
-pub(super) fn record_aovs(rec: &mut Recorder<'_>, pack: &AovPackPass, opts: &RenderOptions, info: &MethodInfo, src: &PackSources<'_>, size: (u32, u32)) -> PendingAovs {
+/// names none) and their copy into the staging buffer `kept` (made or resized as needed).
+#[allow(clippy::too_many_arguments)]
+pub(super) fn record_aovs(rec: &mut Recorder<'_>, pack: &AovPackPass, opts: &RenderOptions, info: &MethodInfo, src: &PackSources<'_>, size: (u32, u32), kept: &mut Option<wgpu::Buffer>) -> PendingAovs {
     let pixels = size.0 as usize * size.1 as usize;
     let mut layout = Vec::new();
     let mut entries = Vec::new();
@@ -54,18 +56,19 @@ pub(super) fn record_aovs(rec: &mut Recorder<'_>, pack: &AovPackPass, opts: &Ren
     // Every word is written by the pack pass: no clear needed on reuse.
     let packed = rec.storage_written("aov_pack_buffer", bytes);
     pack.record(rec, src, &entries, &packed, size);
-    let (staging, _) = rec.resources.buffer(rec.gpu, "aov_readback_staging_buffer", bytes, wgpu::BufferUsages::MAP_READ | wgpu::BufferUsages::COPY_DST);
+    let staging = kept_staging_buffer(rec.gpu, kept, "aov_readback_staging_buffer", bytes);
     rec.enc.copy_buffer_to_buffer(&packed, 0, &staging, 0, bytes);
     PendingAovs { layout, staging: Some(staging), pixels }
 }
 
 impl PendingAovs {
-    /// Waits for the frame's submission and splits the staging buffer into the AOVs.
-    pub(super) fn read(self, gpu: &Gpu) -> Result<Aovs> {
+    /// Waits for the frame's submission (not for later ones) and splits the staging buffer
+    /// into the AOVs.
+    pub(super) fn read(self, gpu: &Gpu, submission: &wgpu::SubmissionIndex) -> Result<Aovs> {
         let mut out = Aovs { float: Vec::new(), ldr: None };
         let Some(staging) = self.staging else { return Ok(out) };
         // One copy of each AOV, straight out of the mapped memory.
-        read_staging_with(gpu, &staging, staging.size(), "readback", |bytes| {
+        read_staging_with(gpu, &staging, staging.size(), Some(submission), "readback", |bytes| {
             for (name, words, offset) in &self.layout {
                 let start = *offset as usize;
                 let data = &bytes[start..start + words * self.pixels * 4];
