@@ -163,6 +163,7 @@ impl Renderer {
         // of a sequence was already on the GPU while this one was read back.
         let in_flight = self.in_flight.fetch_sub(1, std::sync::atomic::Ordering::SeqCst);
         let gpu = &*self.gpu;
+        let read_start = Instant::now();
         let read = gpu.scoped("readback", || {
             let aovs = aovs.read(gpu, &submission)?;
             let vsgls = match (&slot.vsgl_staging, vsgl_bytes) {
@@ -173,6 +174,9 @@ impl Renderer {
         });
         self.give_back(slot);
         let (aovs, vsgls, mut timings) = read?;
+        // Waiting for the GPU, mapping and copying out: the wall cost of the readback on top of
+        // the GPU frame (the GPU's own packing and copy are the `aov_pack` timing).
+        let readback_ms = read_start.elapsed().as_secs_f64() * 1e3;
         let wall_ms = started.elapsed().as_secs_f64() * 1e3;
         let clock = if timings.is_empty() {
             timings.push(("total".into(), wall_ms));
@@ -188,6 +192,7 @@ impl Renderer {
         // What this frame created; 0 when it reused every target of an earlier frame.
         settings.push(("allocated_bytes".into(), log.allocations.iter().map(|(_, b)| b).sum::<u64>().to_string()));
         settings.push(("frames_in_flight".into(), in_flight.to_string()));
+        settings.push(("readback_ms".into(), format!("{readback_ms:.3}")));
         Ok(Frame {
             aovs: aovs.float,
             ldr: aovs.ldr,
