@@ -33,8 +33,8 @@ SETTINGS: dict[str, dict] = {
     "vsgl2": {"shadow_size": 256, "rsm_size": 48},
     "pathtrace": {"spp": 4, "seed": 1},
 }
-# Rows of frame.settings that name the machine rather than the image.
-UNSTABLE_SETTINGS = {"adapter", "scene_upload"}
+# Rows of frame.settings that name the machine or the run rather than the image.
+UNSTABLE_SETTINGS = {"adapter", "scene_upload", "readback_ms"}
 
 
 def fingerprint(renderer: vsgl.Renderer, scene_name: str, method: str) -> dict:

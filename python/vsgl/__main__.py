@@ -114,7 +114,8 @@ def main(argv: list[str] | None = None) -> int:
     render.add_argument("--lights", type=int, default=1024, help="VPLs or VSGLs per spot light (default: 1024)")
     render.add_argument("--rsm-size", type=int, default=None, help="RSM side, power of two; any 32..4096 for vsgl2 (default: 256; reference 1024)")
     render.add_argument("--kernel", default="integral", choices=["integral", "density"], help="VSGL kernel size rule (default: integral)")
-    render.add_argument("--interleave", type=int, default=8, help="VSGL interleaving tile side (default: 8)")
+    render.add_argument("--interleave", type=int, default=None,
+                        help="interleaving tile side of vsgl and vpl (default: the method's, 8 for vsgl, 1 for vpl)")
     render.add_argument("--seed", type=int, default=0, help="sampling seed (default: 0)")
     render.add_argument("--spp", type=int, default=64, help="samples per pixel of pathtrace (default: 64)")
     render.add_argument("--reference-rsm", type=int, default=128, help="RSM side of the reference the error is measured against (default: 128; the library default 1024 takes minutes on a CPU adapter)")

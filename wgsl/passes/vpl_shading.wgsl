@@ -1,11 +1,16 @@
 // VPL shading (compute): every pixel sums the VPLs of the current batch, without visibility
-// (the papers' configuration for accuracy comparisons). VPLs are staged through workgroup
-// memory in tiles so each is read from device memory once per workgroup. Results are added to
-// the indirect buffers, so large VPL sets are shaded in several dispatches (the reference).
+// (the papers' configuration for accuracy comparisons). With interleave k, a pixel sums only
+// the VPLs of its class (j ≡ c mod k², common/interleave.wgsl) scaled by k², as VSGL shading
+// does [Tok15 §5 compares both with 8×8 interleaving]; the denoise pass recombines them.
+// A workgroup shades pixels of one class, so the VPLs it needs are the same for all its threads
+// and are staged through workgroup memory in tiles: each is read from device memory once per
+// workgroup. Results are added to the indirect buffers, so large VPL sets are shaded in several
+// dispatches (the reference).
 #include "common/constants.wgsl"
 #include "common/frame.wgsl"
 #include "common/gbuffer.wgsl"
 #include "common/vpl.wgsl"
+#include "common/interleave.wgsl"
 
 struct ShadeParams {
     // This dispatch shades VPLs first … first + vpl_count − 1.
@@ -13,7 +18,8 @@ struct ShadeParams {
     // Lower bound of the squared VPL distance (0 = unclamped).
     min_distance2: f32,
     first: u32,
-    _pad1: u32,
+    // Interleave factor k (1: every pixel sums every VPL).
+    interleave: u32,
 }
 
 const WORKGROUP: u32 = 8u;
@@ -32,9 +38,12 @@ const TILE: u32 = 64u; // = WORKGROUP², one VPL loaded per thread
 var<workgroup> tile: array<Vpl, TILE>;
 
 @compute @workgroup_size(WORKGROUP, WORKGROUP, 1)
-fn main(@builtin(global_invocation_id) gid: vec3u, @builtin(local_invocation_index) local: u32) {
-    let inside = gid.x < frame.size.x && gid.y < frame.size.y;
-    let index = gid.y * frame.size.x + gid.x;
+fn main(@builtin(workgroup_id) wg: vec3u, @builtin(local_invocation_id) lid: vec3u, @builtin(local_invocation_index) local: u32) {
+    let k = params.interleave;
+    let stride = k * k;
+    let ip = interleaved_pixel(wg, lid, frame.size, k, WORKGROUP);
+    let inside = ip.pixel.x < frame.size.x && ip.pixel.y < frame.size.y;
+    let index = ip.pixel.y * frame.size.x + ip.pixel.x;
     var p = vec3f(0.0);
     var n = vec3f(0.0, 0.0, 1.0);
     var v = vec3f(0.0, 0.0, 1.0);
@@ -58,14 +67,17 @@ fn main(@builtin(global_invocation_id) gid: vec3u, @builtin(local_invocation_ind
     }
     var diffuse = vec3f(0.0);
     var specular = vec3f(0.0);
+    // The class's VPLs are params.first + class_index + m·k², m = 0 … class_count − 1.
+    let class_first = params.first + ip.class_index;
+    let class_count = class_light_count(ip.class_index, params.vpl_count, k);
     // Every thread takes part in the tile loads and barriers, with a surface or not.
-    for (var base_index = 0u; base_index < params.vpl_count; base_index += TILE) {
-        let load = base_index + local;
-        if (load < params.vpl_count) {
-            tile[local] = vpls[params.first + load];
+    for (var tile_start = 0u; tile_start < class_count; tile_start += TILE) {
+        let m = tile_start + local;
+        if (m < class_count) {
+            tile[local] = vpls[class_first + m * stride];
         }
         workgroupBarrier();
-        let n_tile = min(TILE, params.vpl_count - base_index);
+        let n_tile = min(TILE, class_count - tile_start);
         if (has_surface) {
             for (var k = 0u; k < n_tile; k++) {
                 let r = vpl_radiance(tile[k], p, n, v, rd, rs, alpha, params.min_distance2);
@@ -76,9 +88,11 @@ fn main(@builtin(global_invocation_id) gid: vec3u, @builtin(local_invocation_ind
         workgroupBarrier();
     }
     if (inside) {
-        indirect_diffuse[index] += vec4f(min(diffuse, vec3f(FLT_MAX)), 0.0);
+        // × k² (exactly 1 without interleaving): each class stands for all k² of them.
+        let scale = f32(stride);
+        indirect_diffuse[index] += vec4f(min(diffuse * scale, vec3f(FLT_MAX)), 0.0);
         if (HAS_SPECULAR) {
-            indirect_specular[index] += vec4f(min(specular, vec3f(FLT_MAX)), 0.0);
+            indirect_specular[index] += vec4f(min(specular * scale, vec3f(FLT_MAX)), 0.0);
         }
     }
 }

@@ -3,7 +3,10 @@
 // option) and GGX specular by the SG–ASG product integral. With interleave k, the pixel at
 // (x, y) evaluates only VSGLs j ≡ (y mod k)·k + (x mod k) (mod k²) and scales by k²
 // [interleaved sampling, Keller & Heidrich 2001; Tok15 §5]; the denoise pass recombines them.
-// Visibility is not evaluated (visibility = "none").
+// A workgroup shades pixels of one interleave class (common/interleave.wgsl), so the VSGLs it
+// needs are the same for all its threads and are staged through workgroup memory in tiles of
+// TILE: one device-memory load serves WORKGROUP² pixels. Visibility is not evaluated
+// (visibility = "none").
 #include "common/constants.wgsl"
 #include "common/math.wgsl"
 #include "common/sg.wgsl"
@@ -12,6 +15,7 @@
 #include "common/frame.wgsl"
 #include "common/gbuffer.wgsl"
 #include "common/plan.wgsl"
+#include "common/interleave.wgsl"
 
 struct ShadeParams {
     // This dispatch shades VSGLs first … first + count − 1 (first is a multiple of k²).
@@ -24,6 +28,7 @@ struct ShadeParams {
 }
 
 const WORKGROUP: u32 = 8u;
+const TILE: u32 = 64u; // = WORKGROUP², one VSGL loaded per thread
 
 @group(0) @binding(0) var<uniform> frame: FrameUniforms;
 @group(1) @binding(0) var<uniform> params: ShadeParams;
@@ -34,6 +39,8 @@ const WORKGROUP: u32 = 8u;
 @group(1) @binding(5) var<storage, read> gbuf_base_color: array<vec4f>;
 @group(1) @binding(6) var<storage, read_write> indirect_diffuse: array<vec4f>;
 @group(1) @binding(7) var<storage, read_write> indirect_specular: array<vec4f>;
+
+var<workgroup> tile: array<VsglRaw, TILE>;
 
 fn diffuse_over_rd(radiance: Sg, n: vec3f) -> f32 {
     if (params.diffuse_mode == 1u) {
@@ -46,54 +53,77 @@ fn diffuse_over_rd(radiance: Sg, n: vec3f) -> f32 {
 }
 
 @compute @workgroup_size(WORKGROUP, WORKGROUP, 1)
-fn main(@builtin(global_invocation_id) gid: vec3u) {
-    if (gid.x >= frame.size.x || gid.y >= frame.size.y) {
-        return;
-    }
-    let index = gid.y * frame.size.x + gid.x;
-    let pos = gbuf_position[index];
-    if (pos.w == GBUFFER_BACKGROUND) {
-        return;
-    }
-    let p = pos.xyz;
-    let n = gbuf_normal[index].xyz;
-    let alpha = ggx_alpha_from_roughness(gbuf_normal[index].w);
-    let metallic = gbuf_geo_normal[index].w;
-    let base = gbuf_base_color[index].rgb;
-    let rd = gbuffer_diffuse_reflectance(base, metallic);
-    let rs = gbuffer_specular_reflectance(base, metallic, gbuf_base_color[index].w);
-    let v = -p / max(length(p), FLT_MIN);
+fn main(@builtin(workgroup_id) wg: vec3u, @builtin(local_invocation_id) lid: vec3u, @builtin(local_invocation_index) local: u32) {
     let k = params.interleave;
     let stride = k * k;
-    let first = params.first + (gid.y % k) * k + (gid.x % k);
-    let end = params.first + params.count;
-    var diffuse = vec3f(0.0);
-    var specular = vec3f(0.0);
-    for (var j = first; j < end; j += stride) {
-        let light = vsgls[j];
-        let position = VsglPosition(light.mean, light.variance);
-        // Each lobe: radiance SG per unit power (amplitude 1/A(λ)), times its rgb power. A lobe
-        // without power (vsgl2's records carry one lobe each; metal clusters have no diffuse
-        // lobe) is skipped: it would add exactly 0. The test is uniform over the dispatch.
-        if (any(light.diffuse_power > vec3f(0.0))) {
-            let lobe_d = Sg(light.diffuse_axis, light.diffuse_sharpness, 1.0 / sg_integral(light.diffuse_sharpness));
-            let in_d = vsgl_incoming_radiance(lobe_d, position, p);
-            diffuse += light.diffuse_power * diffuse_over_rd(in_d, n);
-            if (HAS_SPECULAR) {
-                specular += light.diffuse_power * vsgl_specular(in_d, n, v, alpha);
-            }
-        }
-        // Without specular materials no record has specular power (and R_s = 0 here).
-        if (HAS_SPECULAR && any(light.specular_power > vec3f(0.0))) {
-            let lobe_s = Sg(light.specular_axis, light.specular_sharpness, 1.0 / sg_integral(light.specular_sharpness));
-            let in_s = vsgl_incoming_radiance(lobe_s, position, p);
-            diffuse += light.specular_power * diffuse_over_rd(in_s, n);
-            specular += light.specular_power * vsgl_specular(in_s, n, v, alpha);
+    let ip = interleaved_pixel(wg, lid, frame.size, k, WORKGROUP);
+    let inside = ip.pixel.x < frame.size.x && ip.pixel.y < frame.size.y;
+    let index = ip.pixel.y * frame.size.x + ip.pixel.x;
+    var p = vec3f(0.0);
+    var n = vec3f(0.0, 0.0, 1.0);
+    var v = vec3f(0.0, 0.0, 1.0);
+    var alpha = 1.0;
+    var rd = vec3f(0.0);
+    var rs = vec3f(0.0);
+    var has_surface = false;
+    if (inside) {
+        let pos = gbuf_position[index];
+        if (pos.w != GBUFFER_BACKGROUND) {
+            has_surface = true;
+            p = pos.xyz;
+            n = gbuf_normal[index].xyz;
+            alpha = ggx_alpha_from_roughness(gbuf_normal[index].w);
+            let metallic = gbuf_geo_normal[index].w;
+            let base = gbuf_base_color[index].rgb;
+            rd = gbuffer_diffuse_reflectance(base, metallic);
+            rs = gbuffer_specular_reflectance(base, metallic, gbuf_base_color[index].w);
+            v = -p / max(length(p), FLT_MIN);
         }
     }
-    let scale = f32(stride);
-    indirect_diffuse[index] += vec4f(min(rd * diffuse * scale, vec3f(FLT_MAX)), 0.0);
-    if (HAS_SPECULAR) {
-        indirect_specular[index] += vec4f(min(rs * specular * scale, vec3f(FLT_MAX)), 0.0);
+    // The class's VSGLs are params.first + class_index + m·k², m = 0 … class_count − 1.
+    let class_first = params.first + ip.class_index;
+    let class_count = class_light_count(ip.class_index, params.count, k);
+    var diffuse = vec3f(0.0);
+    var specular = vec3f(0.0);
+    // Every thread takes part in the tile loads and barriers, with a surface or not.
+    for (var tile_start = 0u; tile_start < class_count; tile_start += TILE) {
+        let m = tile_start + local;
+        if (m < class_count) {
+            tile[local] = vsgls[class_first + m * stride];
+        }
+        workgroupBarrier();
+        let n_tile = min(TILE, class_count - tile_start);
+        if (has_surface) {
+            for (var t = 0u; t < n_tile; t++) {
+                let light = tile[t];
+                let position = VsglPosition(light.mean, light.variance);
+                // Each lobe: radiance SG per unit power (amplitude 1/A(λ)), times its rgb
+                // power. A lobe without power (vsgl2's records carry one lobe each; metal
+                // clusters have no diffuse lobe) is skipped: it would add exactly 0.
+                if (any(light.diffuse_power > vec3f(0.0))) {
+                    let lobe_d = Sg(light.diffuse_axis, light.diffuse_sharpness, 1.0 / sg_integral(light.diffuse_sharpness));
+                    let in_d = vsgl_incoming_radiance(lobe_d, position, p);
+                    diffuse += light.diffuse_power * diffuse_over_rd(in_d, n);
+                    if (HAS_SPECULAR) {
+                        specular += light.diffuse_power * vsgl_specular(in_d, n, v, alpha);
+                    }
+                }
+                // Without specular materials no record has specular power (and R_s = 0 here).
+                if (HAS_SPECULAR && any(light.specular_power > vec3f(0.0))) {
+                    let lobe_s = Sg(light.specular_axis, light.specular_sharpness, 1.0 / sg_integral(light.specular_sharpness));
+                    let in_s = vsgl_incoming_radiance(lobe_s, position, p);
+                    diffuse += light.specular_power * diffuse_over_rd(in_s, n);
+                    specular += light.specular_power * vsgl_specular(in_s, n, v, alpha);
+                }
+            }
+        }
+        workgroupBarrier();
+    }
+    if (has_surface) {
+        let scale = f32(stride);
+        indirect_diffuse[index] += vec4f(min(rd * diffuse * scale, vec3f(FLT_MAX)), 0.0);
+        if (HAS_SPECULAR) {
+            indirect_specular[index] += vec4f(min(rs * specular * scale, vec3f(FLT_MAX)), 0.0);
+        }
     }
 }

@@ -595,7 +595,7 @@ impl PyRenderer {
     /// - "vpl": num_lights VPLs per light importance-sampled from an rsm_size² reflective
     ///   shadow map. shadow_size, num_lights, rsm_size, sampling ("stratified" | "random"),
     ///   seed, vpl_clamp (minimum VPL distance as a fraction of the scene size; 0 = unbiased),
-    ///   visibility, capture_rsm.
+    ///   interleave (default 1), denoise, visibility, capture_rsm.
     /// - "vsgl": num_lights VSGLs per light by filtered importance sampling. shadow_size,
     ///   num_lights, rsm_size, sampling, seed, kernel ("integral" | "density"), K,
     ///   bisection_steps, interleave, denoise, diffuse ("papers" | "accurate" | "sg_product"),

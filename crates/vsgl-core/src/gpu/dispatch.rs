@@ -9,6 +9,12 @@ pub fn groups(threads: u32, group: u32) -> u32 {
     threads.div_ceil(group)
 }
 
+/// Workgroups of an interleaved shading pass over `size` pixels (`wgsl/common/interleave.wgsl`):
+/// per axis, k classes × the workgroups one class's pixels need.
+pub fn interleaved_groups(size: (u32, u32), k: u32, group: u32) -> (u32, u32, u32) {
+    (k * groups(size.0.div_ceil(k), group), k * groups(size.1.div_ceil(k), group), 1)
+}
+
 /// Bind group entries for buffers/views in binding order 0, 1, 2, …
 pub fn entries<'a>(resources: &[wgpu::BindingResource<'a>]) -> Vec<wgpu::BindGroupEntry<'a>> {
     resources

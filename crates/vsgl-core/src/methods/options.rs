@@ -261,6 +261,18 @@ pub mod common {
         help: "keep the first light's RSM for Frame.rsm(name)",
         note: "",
     };
+    /// Interleaved sampling (`wgsl/common/interleave.wgsl`); the default differs by method
+    /// (8 for VSGLs as in the papers, 1 for VPLs so `vpl` stays the every-pixel baseline).
+    pub const fn interleave(default: i64) -> OptionSpec {
+        int("interleave", 1, 16, default, "interleaved sampling tile side k: each pixel evaluates num_lights/k² virtual lights")
+    }
+    pub const DENOISE: OptionSpec = OptionSpec {
+        name: "denoise",
+        kind: OptionKind::Bool,
+        default: OptionValue::Bool(true),
+        help: "run the geometry-aware filter after interleaved shading",
+        note: "",
+    };
     pub const DIFFUSE: OptionSpec = choice(
         "diffuse",
         &["papers", "accurate", "sg_product"],

@@ -67,7 +67,7 @@ impl Method for Reference {
             while first < texels {
                 let count = per_batch.min(texels - first);
                 sample.record_every_texel(&mut ctx.rec, light.light.as_entire_binding(), light.rsm, first as u32, count as u32, &vpls, feat);
-                shading.record(&mut ctx.rec, ctx.frame_uniforms, &vpls, count as u32, min_distance2, ctx.gbuffer, ctx.indirect, feat, ctx.size);
+                shading.record(&mut ctx.rec, ctx.frame_uniforms, &vpls, count as u32, 1, min_distance2, ctx.gbuffer, ctx.indirect, feat, ctx.size);
                 first += count;
                 if first < texels && count * pixels >= BATCH_EVALUATIONS / 2 {
                     // Submit this batch on its own so no submission runs for long.

@@ -1,7 +1,8 @@
 //! `method="vpl"`: N virtual point lights per light, importance-sampled from its RSM by
 //! hierarchical sample warping over the weight pyramid (the papers' baseline; Dachsbacher and
-//! Stamminger 2005 for the RSM).
+//! Stamminger 2005 for the RSM), optionally interleaved and denoised like `vsgl`.
 
+use super::interleaved::InterleavedShading;
 use super::rsm_lights::{check_rsm_size, for_each_light, RsmSettings};
 use super::{options::common, DirectLight, FrameContext, Method, MethodInfo, OptionSpec, Options};
 use crate::error::Result;
@@ -27,6 +28,8 @@ const OPTIONS: &[OptionSpec] = &[
     common::SAMPLING,
     common::SEED,
     common::VPL_CLAMP,
+    common::interleave(1),
+    common::DENOISE,
     common::VISIBILITY,
     common::CAPTURE_RSM,
 ];
@@ -38,6 +41,8 @@ struct Vpl {
     sampling: Sampling,
     seed: u32,
     vpl_clamp: f32,
+    interleave: u32,
+    denoise: bool,
     capture_rsm: bool,
 }
 
@@ -55,6 +60,8 @@ impl Vpl {
             sampling: sampling(o)?,
             seed: o.u32("seed")?,
             vpl_clamp: o.f32("vpl_clamp")?,
+            interleave: o.u32("interleave")?,
+            denoise: o.bool("denoise")?,
             capture_rsm: o.bool("capture_rsm")?,
         })
     }
@@ -70,14 +77,19 @@ impl Method for Vpl {
         let vpls = ctx.rec.storage("vpl_buffer", self.num_lights as u64 * VPL_BYTES);
         // Distances below the clamp count as the clamp (0: unbiased).
         let min_distance2 = (self.vpl_clamp as f64 * ctx.extent).powi(2) as f32;
+        let shading_out = InterleavedShading::new(ctx, self.interleave, self.denoise);
         let rsm = RsmSettings { size: self.rsm_size, sampling: true, capture: self.capture_rsm };
-        for_each_light(ctx, &rsm, |ctx, light| {
+        let lit = for_each_light(ctx, &rsm, |ctx, light| {
             let feat = ctx.features;
             pdf_mips.record(&mut ctx.rec, light.rsm);
             sample.record_importance(&mut ctx.rec, light.light.as_entire_binding(), light.rsm, self.num_lights, self.sampling, self.seed, &vpls, feat);
-            shading.record(&mut ctx.rec, ctx.frame_uniforms, &vpls, self.num_lights, min_distance2, ctx.gbuffer, ctx.indirect, feat, ctx.size);
+            let target = shading_out.target(ctx.indirect);
+            shading.record(&mut ctx.rec, ctx.frame_uniforms, &vpls, self.num_lights, self.interleave, min_distance2, ctx.gbuffer, target, feat, ctx.size);
             Ok(())
         })?;
+        if lit {
+            shading_out.resolve(ctx)?;
+        }
         Ok(())
     }
 

@@ -2,12 +2,12 @@
 //! sampling of the mipmapped RSM (Tokuyoshi 2015 with the 2016 integral kernel), shaded with
 //! interleaving and a geometry-aware filter.
 
+use super::interleaved::InterleavedShading;
 use super::rsm_lights::{check_rsm_size, for_each_light, RsmSettings};
 use super::{options::common, DirectLight, FrameContext, Method, MethodInfo, OptionKind, OptionSpec, OptionValue, Options};
 use crate::error::{Error, Result};
-use crate::frame::{IndirectTargets, MomentChains};
+use crate::frame::MomentChains;
 use crate::gpu::Gpu;
-use crate::passes::denoise::DenoisePass;
 use crate::passes::moment_mips::MomentMipsPass;
 use crate::passes::pdf_mips::PdfMipsPass;
 use crate::passes::vpl_sample::Sampling;
@@ -53,20 +53,8 @@ const OPTIONS: &[OptionSpec] = &[
         help: "bisection iterations of the integral kernel",
         note: "",
     },
-    OptionSpec {
-        name: "interleave",
-        kind: OptionKind::Int { min: 1, max: 16, power_of_two: false },
-        default: OptionValue::Int(8),
-        help: "interleaved sampling tile side k: each pixel evaluates num_lights/k² VSGLs",
-        note: "",
-    },
-    OptionSpec {
-        name: "denoise",
-        kind: OptionKind::Bool,
-        default: OptionValue::Bool(true),
-        help: "run the geometry-aware filter after interleaved shading",
-        note: "",
-    },
+    common::interleave(8),
+    common::DENOISE,
     common::DIFFUSE,
     common::VISIBILITY,
     common::CAPTURE_RSM,
@@ -114,10 +102,6 @@ impl Vsgl {
         })
     }
 
-    /// Interleaved shading goes into a noisy target that the filter resolves.
-    fn filtered(&self) -> bool {
-        self.interleave > 1 && self.denoise
-    }
 }
 
 impl Method for Vsgl {
@@ -136,16 +120,7 @@ impl Method for Vsgl {
         let passes = ctx.passes;
         let (pdf_mips, moments, moment_mips) = (passes.get::<PdfMipsPass>()?, passes.get::<VsglMomentsPass>()?, passes.get::<MomentMipsPass>()?);
         let (gen, shading) = (passes.get::<VsglGenPass>()?, passes.get::<VsglShadingPass>()?);
-        let filter = self.filtered();
-        let (w, h) = ctx.size;
-        let pixel_bytes = w as u64 * h as u64 * 16;
-        // Without specular materials the specular targets are never written: a 16-byte
-        // placeholder keeps the bind group layouts of the full variants.
-        let specular_bytes = if ctx.features.specular { pixel_bytes } else { 16 };
-        let noisy = IndirectTargets {
-            diffuse: ctx.rec.storage("indirect_noisy_diffuse_buffer", if filter { pixel_bytes } else { 16 }),
-            specular: ctx.rec.storage("indirect_noisy_specular_buffer", if filter { specular_bytes } else { 16 }),
-        };
+        let shading_out = InterleavedShading::new(ctx, self.interleave, self.denoise);
         let mut chains: Option<MomentChains> = None;
         let rsm = RsmSettings { size: self.rsm_size, sampling: true, capture: self.capture_rsm };
         let lit = for_each_light(ctx, &rsm, |ctx, light| {
@@ -165,7 +140,7 @@ impl Method for Vsgl {
                 light_offset: light.raw.position,
             };
             gen.record(&mut ctx.rec, light.rsm, chains, &settings, &buf);
-            let target = if filter { &noisy } else { ctx.indirect };
+            let target = shading_out.target(ctx.indirect);
             shading.record(&mut ctx.rec, ctx.frame_uniforms, &buf, self.num_lights, self.interleave, self.diffuse, ctx.gbuffer, target, feat, ctx.size);
             if light.index == 0 {
                 ctx.vsgls = Some(buf);
@@ -175,15 +150,7 @@ impl Method for Vsgl {
         if !lit {
             return Ok(());
         }
-        if filter {
-            let denoise = passes.get::<DenoisePass>()?;
-            denoise.record(&mut ctx.rec, ctx.frame_uniforms, self.interleave, ctx.gbuffer, &noisy, ctx.indirect, ctx.features, ctx.size);
-        } else if self.interleave == 1 {
-            ctx.skip("denoise", "interleave=1: every pixel evaluates every VSGL");
-        } else {
-            ctx.skip("denoise", "denoise=False");
-        }
-        Ok(())
+        shading_out.resolve(ctx)
     }
 
     fn settings(&self, _gpu: &Gpu) -> Result<Vec<(String, String)>> {

@@ -3,7 +3,7 @@
 use crate::frame::IndirectTargets;
 use crate::error::Result;
 use crate::frame::GBuffer;
-use crate::gpu::{for_each_chunk, groups, Gpu, PipelineVariants, Recorder};
+use crate::gpu::{for_each_chunk, interleaved_groups, Gpu, PipelineVariants, Recorder};
 use crate::plan::ShaderFeatures;
 
 const WORKGROUP: u32 = 8;
@@ -14,7 +14,7 @@ struct ShadeParamsRaw {
     vpl_count: u32,
     min_distance2: f32,
     first: u32,
-    _pad: u32,
+    interleave: u32,
 }
 
 /// Most VPLs one dispatch loops over. lavapipe (Mesa 22.3) silently ends shader loops after
@@ -39,6 +39,7 @@ impl VplShadingPass {
         frame: &wgpu::Buffer,
         vpls: &wgpu::Buffer,
         vpl_count: u32,
+        interleave: u32,
         min_distance2: f32,
         gbuffer: &GBuffer,
         out: &IndirectTargets,
@@ -47,13 +48,14 @@ impl VplShadingPass {
     ) {
         let gpu = rec.gpu;
         let pipeline = self.pipelines.get(gpu, &features.specular_flags());
-        for_each_chunk(vpl_count, VPLS_PER_DISPATCH, |first, count| {
-            let uniform = rec.uniform("vpl_shading_params_uniform_buffer", &ShadeParamsRaw { vpl_count: count, min_distance2, first, _pad: 0 });
+        // Chunks are multiples of k² so the interleaved classes stay j ≡ c (mod k²).
+        for_each_chunk(vpl_count, VPLS_PER_DISPATCH * interleave * interleave, |first, count| {
+            let uniform = rec.uniform("vpl_shading_params_uniform_buffer", &ShadeParamsRaw { vpl_count: count, min_distance2, first, interleave });
             rec.compute(
                 "vpl_shading",
                 &pipeline,
                 &[&[frame.as_entire_binding()], &out.shading_bindings(&uniform, vpls, gbuffer)],
-                (groups(size.0, WORKGROUP), groups(size.1, WORKGROUP), 1),
+                interleaved_groups(size, interleave, WORKGROUP),
             );
         });
     }

@@ -2,7 +2,7 @@
 
 use crate::error::Result;
 use crate::frame::{GBuffer, IndirectTargets};
-use crate::gpu::{for_each_chunk, groups, Gpu, PipelineVariants, Recorder};
+use crate::gpu::{for_each_chunk, interleaved_groups, Gpu, PipelineVariants, Recorder};
 use crate::plan::ShaderFeatures;
 
 const WORKGROUP: u32 = 8;
@@ -87,7 +87,7 @@ impl VsglShadingPass {
                 "vsgl_shading",
                 &pipeline,
                 &[&[frame.as_entire_binding()], &out.shading_bindings(&uniform, vsgls, gbuffer)],
-                (groups(size.0, WORKGROUP), groups(size.1, WORKGROUP), 1),
+                interleaved_groups(size, interleave, WORKGROUP),
             );
         });
     }

@@ -1,0 +1,35 @@
+// Interleaved sampling [Keller & Heidrich 2001; Tok15 §5] with deinterleaved workgroups. With
+// interleave k, pixel (x, y) belongs to class c = (y mod k)·k + (x mod k) and evaluates only
+// the virtual lights j ≡ c (mod k²). A workgroup of the shading passes covers pixels of one
+// class only (every k-th pixel in x and y), so its WORKGROUP² pixels need the same lights and
+// one light load from device memory, staged in workgroup memory, serves all of them. k = 1 is
+// the plain mapping (one class, every pixel evaluates every light).
+//
+// Dispatch size (crates/vsgl-core/src/gpu/dispatch.rs, `interleaved_groups`): per axis, k
+// classes × ceil(ceil(size/k)/WORKGROUP) workgroups.
+
+struct InterleavedPixel {
+    pixel: vec2u,
+    // c = (y mod k)·k + (x mod k): the first light of the class (relative to the list's start).
+    class_index: u32,
+}
+
+// The pixel of local thread `lid` of workgroup `wg` (workgroups of `workgroup`² threads).
+fn interleaved_pixel(wg: vec3u, lid: vec3u, size: vec2u, k: u32, workgroup: u32) -> InterleavedPixel {
+    // Workgroups per class along each axis.
+    let per_class = (((size + vec2u(k - 1u)) / k) + vec2u(workgroup - 1u)) / workgroup;
+    let class_xy = wg.xy / per_class;
+    let block = wg.xy % per_class;
+    let pixel = class_xy + k * (block * workgroup + lid.xy);
+    return InterleavedPixel(pixel, class_xy.y * k + class_xy.x);
+}
+
+// How many of the lights first … first + count − 1 a class evaluates (uniform over a
+// workgroup, so the tile loop's barriers are in uniform control flow).
+fn class_light_count(class_index: u32, count: u32, k: u32) -> u32 {
+    let stride = k * k;
+    if (class_index >= count) {
+        return 0u;
+    }
+    return (count - class_index + stride - 1u) / stride;
+}
