@@ -1,5 +1,6 @@
-"""Frame resources persist: an unchanged configuration creates no GPU buffer or target on its
-second frame, and a reused target never carries the previous frame's data into the next."""
+"""Frame resources persist: an unchanged configuration creates no GPU buffer, target or bind
+group on its second frame, and a reused target never carries the previous frame's data into
+the next."""
 
 from __future__ import annotations
 
@@ -24,6 +25,9 @@ def test_second_frame_allocates_nothing_and_renders_the_same(method):
     second = r.render(scene, method=method, **_kw(method))
     assert int(first.settings["allocated_bytes"]) > 0
     assert second.settings["allocated_bytes"] == "0", second.settings
+    # ...and binds what the first frame bound: every bind group (and view) is kept.
+    assert int(first.settings["bind_groups_created"]) > 0
+    assert second.settings["bind_groups_created"] == "0", second.settings
     # memory_bytes reports what the frame uses, new or kept.
     assert second.memory_bytes == first.memory_bytes
     for name in first.aovs:

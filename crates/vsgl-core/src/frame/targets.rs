@@ -29,7 +29,8 @@ impl VisibilityTargets {
                 view_formats: &[],
             };
             // Both formats are 4 bytes a texel (r32uint ids, depth32float).
-            rec.texture(&desc, width as u64 * height as u64 * 4).create_view(&Default::default())
+            let texture = rec.texture(&desc, width as u64 * height as u64 * 4);
+            rec.texture_view(&texture, &Default::default())
         };
         let usage = wgpu::TextureUsages::RENDER_ATTACHMENT | wgpu::TextureUsages::TEXTURE_BINDING;
         Self {

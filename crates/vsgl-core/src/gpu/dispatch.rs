@@ -1,7 +1,7 @@
 //! Recording compute work: bind groups in binding order, timed and labelled dispatches, and
 //! workgroup counts from thread counts.
 
-use super::{FrameResources, Gpu, PassTimer};
+use super::{FrameResources, Gpu, PassTimer, PipelineRef};
 
 /// Workgroups needed to cover `threads` with groups of `group` (callers count threads, not
 /// groups, as kajiya does).
@@ -81,6 +81,11 @@ impl<'a> Recorder<'a> {
         self.resources.texture(self.gpu, desc, bytes)
     }
 
+    /// A view of a kept texture, the same every frame (see [`FrameResources::texture_view`]).
+    pub fn texture_view(&mut self, texture: &wgpu::Texture, desc: &wgpu::TextureViewDescriptor<'_>) -> wgpu::TextureView {
+        self.resources.texture_view(texture, desc)
+    }
+
     fn encoder(gpu: &Gpu) -> wgpu::CommandEncoder {
         gpu.device.create_command_encoder(&wgpu::CommandEncoderDescriptor { label: Some("frame_encoder") })
     }
@@ -107,13 +112,7 @@ impl<'a> Recorder<'a> {
         let binds: Vec<wgpu::BindGroup> = groups
             .iter()
             .enumerate()
-            .map(|(g, resources)| {
-                self.gpu.device.create_bind_group(&wgpu::BindGroupDescriptor {
-                    label: Some(label),
-                    layout: &pipeline.get_bind_group_layout(g as u32),
-                    entries: &entries(resources),
-                })
-            })
+            .map(|(g, resources)| self.bind_group(label, PipelineRef::Compute(pipeline), g as u32, resources))
             .collect();
         self.in_debug_group(label, |rec| {
             let q = rec.timer.begin(label);
@@ -126,6 +125,12 @@ impl<'a> Recorder<'a> {
                 pass.dispatch_workgroups(workgroups.0, workgroups.1, workgroups.2);
             }
         });
+    }
+
+    /// The bind group of `pipeline`'s group `group` with `resources` in binding order 0, 1, …,
+    /// kept from frame to frame.
+    pub fn bind_group(&mut self, label: &str, pipeline: PipelineRef<'_>, group: u32, resources: &[wgpu::BindingResource<'_>]) -> wgpu::BindGroup {
+        self.resources.bind_group(self.gpu, label, pipeline, group, resources)
     }
 
     /// Records `f`'s passes without timing or logging them (work that is not a pass of the

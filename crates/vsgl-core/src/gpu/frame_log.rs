@@ -17,6 +17,8 @@ pub struct FrameLog {
     /// Every pass that ran (GPU passes as they begin, CPU work such as a BVH build as it is
     /// done), once each, in first-run order.
     pub passes: Vec<String>,
+    /// Bind groups the frame had to make (0 when every one was kept from an earlier frame).
+    pub bind_groups_created: u64,
 }
 
 thread_local! {
@@ -42,6 +44,11 @@ fn add(list: &mut Vec<(String, u64)>, label: &str, bytes: u64) {
 /// Notes that the frame created `bytes` for `label` (a no-op outside [`log_frame`]).
 pub fn note_allocation(label: &str, bytes: u64) {
     with_frame_log(|log| add(&mut log.allocations, label, bytes));
+}
+
+/// Notes that the frame made a bind group (a no-op outside [`log_frame`]).
+pub fn note_bind_group_created() {
+    with_frame_log(|log| log.bind_groups_created += 1);
 }
 
 /// Notes that the frame used `bytes` for `label`, new or kept (a no-op outside [`log_frame`]).

@@ -9,6 +9,7 @@
 //! are written with `Queue::write_buffer`, which the queue orders after earlier submissions and
 //! before the next one, so a frame never changes what an earlier frame still reads.
 
+use super::bind_groups::{BindGroupCache, PipelineRef};
 use super::frame_log::{note_allocation, note_use};
 use super::Gpu;
 use std::collections::HashMap;
@@ -41,6 +42,17 @@ pub struct FrameResources {
     entries: HashMap<(String, u32), Entry>,
     requests: HashMap<String, u32>,
     frame: u64,
+    bind_groups: BindGroupCache,
+    /// Views of kept textures, so the bind groups over them can be kept too.
+    views: HashMap<(wgpu::Texture, ViewKey), (wgpu::TextureView, u64)>,
+}
+
+/// What distinguishes the views of one texture that the passes make.
+#[derive(Clone, Copy, PartialEq, Eq, Hash)]
+struct ViewKey {
+    dimension: Option<wgpu::TextureViewDimension>,
+    base_array_layer: u32,
+    array_layer_count: Option<u32>,
 }
 
 impl FrameResources {
@@ -54,6 +66,25 @@ impl FrameResources {
     pub fn end_frame(&mut self) {
         let frame = self.frame;
         self.entries.retain(|_, e| frame - e.last_frame < RETAIN_FRAMES);
+        let oldest_kept = (frame + 1).saturating_sub(RETAIN_FRAMES);
+        self.bind_groups.retain_since(oldest_kept);
+        self.views.retain(|_, (_, last)| *last >= oldest_kept);
+    }
+
+    /// A view of `texture` (one this renderer keeps): the same view every frame, so bind groups
+    /// over it are kept too. `desc` may set the label, dimension and array layers.
+    pub fn texture_view(&mut self, texture: &wgpu::Texture, desc: &wgpu::TextureViewDescriptor<'_>) -> wgpu::TextureView {
+        let key = ViewKey { dimension: desc.dimension, base_array_layer: desc.base_array_layer, array_layer_count: desc.array_layer_count };
+        let frame = self.frame;
+        let (view, last) = self.views.entry((texture.clone(), key)).or_insert_with(|| (texture.create_view(desc), frame));
+        *last = frame;
+        view.clone()
+    }
+
+    /// The bind group of `pipeline`'s group `group` with `resources` in binding order, kept
+    /// from an earlier frame when it bound the same resources ([`BindGroupCache`]).
+    pub fn bind_group(&mut self, gpu: &Gpu, label: &str, pipeline: PipelineRef<'_>, group: u32, resources: &[wgpu::BindingResource<'_>]) -> wgpu::BindGroup {
+        self.bind_groups.get(gpu, self.frame, label, pipeline, group, resources)
     }
 
     /// The resource for this request and whether it is new; `make` creates it when none fits.

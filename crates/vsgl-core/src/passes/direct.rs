@@ -2,7 +2,7 @@
 
 use crate::error::Result;
 use crate::frame::GBuffer;
-use crate::gpu::{entries, groups, Gpu, PipelineVariants, Recorder};
+use crate::gpu::{groups, Gpu, PipelineRef, PipelineVariants, Recorder};
 use crate::plan::ShaderFeatures;
 
 const WORKGROUP: u32 = 8;
@@ -42,25 +42,18 @@ impl DirectPass {
     ) {
         let gpu = rec.gpu;
         let pipeline = &self.pipelines.get(gpu, &features.specular_flags());
-        let frame_bind = gpu.device.create_bind_group(&wgpu::BindGroupDescriptor {
-            label: Some("direct_frame_bind_group"),
-            layout: &pipeline.get_bind_group_layout(0),
-            entries: &[wgpu::BindGroupEntry { binding: 0, resource: frame_uniforms.as_entire_binding() }],
-        });
-        let pass_bind = gpu.device.create_bind_group(&wgpu::BindGroupDescriptor {
-            label: Some("direct_pass_bind_group"),
-            layout: &pipeline.get_bind_group_layout(1),
-            entries: &entries(&[
-                lights.as_entire_binding(),
-                wgpu::BindingResource::TextureView(shadow_maps),
-                wgpu::BindingResource::Sampler(&self.sampler),
-                gbuffer.position.as_entire_binding(),
-                gbuffer.normal.as_entire_binding(),
-                gbuffer.geo_normal.as_entire_binding(),
-                gbuffer.base_color.as_entire_binding(),
-                out.as_entire_binding(),
-            ]),
-        });
+        let frame_bind = rec.bind_group("direct_frame_bind_group", PipelineRef::Compute(pipeline), 0, &[frame_uniforms.as_entire_binding()]);
+        let pass_resources = [
+            lights.as_entire_binding(),
+            wgpu::BindingResource::TextureView(shadow_maps),
+            wgpu::BindingResource::Sampler(&self.sampler),
+            gbuffer.position.as_entire_binding(),
+            gbuffer.normal.as_entire_binding(),
+            gbuffer.geo_normal.as_entire_binding(),
+            gbuffer.base_color.as_entire_binding(),
+            out.as_entire_binding(),
+        ];
+        let pass_bind = rec.bind_group("direct_pass_bind_group", PipelineRef::Compute(pipeline), 1, &pass_resources);
         rec.in_debug_group("direct", |rec| {
             let q = rec.timer.begin("direct");
             let mut pass = rec.enc.begin_compute_pass(&wgpu::ComputePassDescriptor {

@@ -4,7 +4,7 @@
 
 use crate::frame::GBuffer;
 use crate::error::Result;
-use crate::gpu::{entries, groups, Gpu, PipelineVariants, Recorder};
+use crate::gpu::{groups, Gpu, PipelineRef, PipelineVariants, Recorder};
 use crate::plan::ShaderFeatures;
 use crate::upload::GpuScene;
 
@@ -44,11 +44,7 @@ impl MaterialPass {
     ) {
         let gpu = rec.gpu;
         let pipeline = &self.pipelines.get(gpu, &[("HAS_TEXTURES", features.textures), ("HAS_NORMAL_MAPS", features.normal_maps)]);
-        let frame_bind = gpu.device.create_bind_group(&wgpu::BindGroupDescriptor {
-            label: Some("material_frame_bind_group"),
-            layout: &pipeline.get_bind_group_layout(0),
-            entries: &[wgpu::BindGroupEntry { binding: 0, resource: frame_uniforms.as_entire_binding() }],
-        });
+        let frame_bind = rec.bind_group("material_frame_bind_group", PipelineRef::Compute(pipeline), 0, &[frame_uniforms.as_entire_binding()]);
         // Every variant binds the same resources: the auto layout is derived before override
         // constants are applied, so the untextured one still declares bindings 5–7.
         let resources = vec![
@@ -65,12 +61,7 @@ impl MaterialPass {
             gbuffer.geo_normal.as_entire_binding(),
             gbuffer.base_color.as_entire_binding(),
         ];
-        let e = entries(&resources);
-        let pass_bind = gpu.device.create_bind_group(&wgpu::BindGroupDescriptor {
-            label: Some("material_pass_bind_group"),
-            layout: &pipeline.get_bind_group_layout(1),
-            entries: &e,
-        });
+        let pass_bind = rec.bind_group("material_pass_bind_group", PipelineRef::Compute(pipeline), 1, &resources);
         rec.in_debug_group(label, |rec| {
             let q = rec.timer.begin(label);
             let mut pass = rec.enc.begin_compute_pass(&wgpu::ComputePassDescriptor {

@@ -6,7 +6,7 @@
 use crate::error::Result;
 use crate::frame::{GBuffer, IndirectTargets};
 use crate::gpu::frame_log::note_pass;
-use crate::gpu::{entries, groups, storage_binding, uniform_binding, Gpu, PipelineVariants, Recorder};
+use crate::gpu::{groups, storage_binding, PipelineRef, uniform_binding, Gpu, PipelineVariants, Recorder};
 use crate::plan::ShaderFeatures;
 use crate::scene::Scene;
 use crate::upload::GpuScene;
@@ -171,11 +171,7 @@ impl PathTracePass {
                 direct_out.as_entire_binding(),
                 stderr.as_entire_binding(),
             ];
-            let bind = gpu.device.create_bind_group(&wgpu::BindGroupDescriptor {
-                label: Some("pathtrace_bind_group"),
-                layout: &pipeline.get_bind_group_layout(0),
-                entries: &entries(&resources),
-            });
+            let bind = rec.bind_group("pathtrace_bind_group", PipelineRef::Compute(pipeline), 0, &resources);
             rec.in_debug_group(label, |rec| {
                 let q = rec.timer.begin(label);
                 let mut pass = rec.enc.begin_compute_pass(&wgpu::ComputePassDescriptor { label: Some(label), timestamp_writes: rec.timer.compute_writes(q) });

@@ -1,7 +1,7 @@
 //! Spot-light shadow maps: depth only, one array layer per light, reverse-Z.
 
 use crate::error::Result;
-use crate::gpu::{Gpu, Recorder};
+use crate::gpu::{Gpu, PipelineRef, Recorder};
 
 pub const FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Depth32Float;
 
@@ -66,35 +66,34 @@ impl ShadowMapPass {
         vertices: &wgpu::Buffer,
         vertex_count: u32,
     ) {
-        let gpu = rec.gpu;
         let layers = view_projs.len().max(1);
         // Each layer's view uniform, made before the passes borrow the encoder.
         let binds: Vec<wgpu::BindGroup> = view_projs
             .iter()
             .map(|vp| {
                 let uniform = rec.uniform("shadow_map_view_uniform_buffer", vp);
-                gpu.device.create_bind_group(&wgpu::BindGroupDescriptor {
-                    label: Some("shadow_map_bind_group"),
-                    layout: &self.pipeline.get_bind_group_layout(0),
-                    entries: &[wgpu::BindGroupEntry { binding: 0, resource: uniform.as_entire_binding() }],
-                })
+                rec.bind_group("shadow_map_bind_group", PipelineRef::Render(&self.pipeline), 0, &[uniform.as_entire_binding()])
             })
             .collect();
-        rec.in_debug_group("shadow_map", |rec| {
-            for layer in 0..layers {
-                let view = target.create_view(&wgpu::TextureViewDescriptor {
+        let views: Vec<wgpu::TextureView> = (0..layers)
+            .map(|layer| {
+                rec.texture_view(target, &wgpu::TextureViewDescriptor {
                     label: Some("shadow_map_layer_view"),
                     dimension: Some(wgpu::TextureViewDimension::D2),
                     base_array_layer: layer as u32,
                     array_layer_count: Some(1),
                     ..Default::default()
-                });
+                })
+            })
+            .collect();
+        rec.in_debug_group("shadow_map", |rec| {
+            for (layer, view) in views.iter().enumerate() {
                 let q = rec.timer.begin("shadow_map");
                 let mut pass = rec.enc.begin_render_pass(&wgpu::RenderPassDescriptor {
                     label: Some("shadow_map_pass"),
                     color_attachments: &[],
                     depth_stencil_attachment: Some(wgpu::RenderPassDepthStencilAttachment {
-                        view: &view,
+                        view,
                         depth_ops: Some(wgpu::Operations { load: wgpu::LoadOp::Clear(0.0), store: wgpu::StoreOp::Store }),
                         stencil_ops: None,
                     }),

@@ -2,7 +2,7 @@
 
 use crate::error::Result;
 use crate::frame::targets::{VisibilityTargets, VISIBILITY_DEPTH_FORMAT as DEPTH_FORMAT, VISIBILITY_ID_FORMAT as ID_FORMAT};
-use crate::gpu::{Gpu, Recorder};
+use crate::gpu::{Gpu, PipelineRef, Recorder};
 
 
 pub struct VisibilityPass {
@@ -58,12 +58,7 @@ impl VisibilityPass {
         vertex_count: u32,
         targets: &VisibilityTargets,
     ) {
-        let gpu = rec.gpu;
-        let bind = gpu.device.create_bind_group(&wgpu::BindGroupDescriptor {
-            label: Some("visibility_frame_bind_group"),
-            layout: &self.pipeline.get_bind_group_layout(0),
-            entries: &[wgpu::BindGroupEntry { binding: 0, resource: frame_uniforms.as_entire_binding() }],
-        });
+        let bind = rec.bind_group("visibility_frame_bind_group", PipelineRef::Render(&self.pipeline), 0, &[frame_uniforms.as_entire_binding()]);
         rec.in_debug_group(label, |rec| {
             let q = rec.timer.begin(label);
             let mut pass = rec.enc.begin_render_pass(&wgpu::RenderPassDescriptor {

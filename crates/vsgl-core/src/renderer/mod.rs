@@ -191,6 +191,8 @@ impl Renderer {
         let mut settings = frame.settings;
         // What this frame created; 0 when it reused every target of an earlier frame.
         settings.push(("allocated_bytes".into(), log.allocations.iter().map(|(_, b)| b).sum::<u64>().to_string()));
+        // Bind groups made now (0 when every pass bound what an earlier frame bound).
+        settings.push(("bind_groups_created".into(), log.bind_groups_created.to_string()));
         settings.push(("frames_in_flight".into(), in_flight.to_string()));
         settings.push(("readback_ms".into(), format!("{readback_ms:.3}")));
         Ok(Frame {
@@ -289,7 +291,7 @@ impl Renderer {
         // Written for every pixel by the direct pass (or the path tracer's direct entry point).
         let direct_out = rec.storage_written("direct_radiance_buffer", w as u64 * h as u64 * 16);
         if shadow_mapped {
-            let shadow_view = shadow_tex.create_view(&wgpu::TextureViewDescriptor {
+            let shadow_view = rec.texture_view(&shadow_tex, &wgpu::TextureViewDescriptor {
                 label: Some("shadow_map_array_view"),
                 dimension: Some(wgpu::TextureViewDimension::D2Array),
                 ..Default::default()
