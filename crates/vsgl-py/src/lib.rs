@@ -162,9 +162,17 @@ struct PyScene {
 #[pymethods]
 impl PyScene {
     /// Loads a glTF 2.0 file (`.gltf` or `.glb`). Raises `SceneError` naming the file and element.
+    /// `max_texture_bytes` (default 512 MiB) bounds the decoded texture memory: an image that
+    /// would take the scene's textures past it is refused (from its header, before decoding)
+    /// with a `SceneError` naming it; raise the budget for trusted files with large textures.
     #[staticmethod]
-    fn load(py: Python<'_>, path: std::path::PathBuf) -> PyResult<Self> {
-        let scene = py.detach(|| vsgl_core::scene::gltf::load(&path)).map_err(to_py)?;
+    #[pyo3(signature = (path, *, max_texture_bytes=None))]
+    fn load(py: Python<'_>, path: std::path::PathBuf, max_texture_bytes: Option<&Bound<'_, PyAny>>) -> PyResult<Self> {
+        let mut options = vsgl_core::scene::gltf::LoadOptions::default();
+        if let Some(v) = max_texture_bytes {
+            options.max_texture_bytes = positive_bytes("max_texture_bytes", v)?;
+        }
+        let scene = py.detach(|| vsgl_core::scene::gltf::load_with(&path, &options)).map_err(to_py)?;
         Ok(Self { inner: scene })
     }
     /// Triangle, mesh, material, texture and light counts and the features the scene uses.
@@ -230,6 +238,17 @@ impl PyScene {
     fn __repr__(&self) -> String {
         let s = self.inner.stats();
         format!("Scene({:?}, triangles={}, materials={}, lights={})", self.inner.source, s.triangles, s.materials, s.lights)
+    }
+}
+
+/// A byte count given as a positive Python int (not a bool, not a float).
+fn positive_bytes(name: &str, value: &Bound<'_, PyAny>) -> PyResult<u64> {
+    if value.is_instance_of::<PyBool>() || !value.is_instance_of::<PyInt>() {
+        return Err(argument_error(format!("{name}: expected a positive int (bytes), got {}", value.get_type().name()?)));
+    }
+    match value.extract::<u64>() {
+        Ok(v) if v > 0 => Ok(v),
+        _ => Err(argument_error(format!("{name}: expected a positive int (bytes) below 2**64, got {value}"))),
     }
 }
 
