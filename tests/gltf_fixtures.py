@@ -435,6 +435,31 @@ def write_unsupported_required_extension(dirpath) -> pathlib.Path:
     return _write_json(path, root)
 
 
+def write_root_listed_twice(dirpath) -> pathlib.Path:
+    """scenes[0].nodes lists nodes[0] twice (glTF requires unique root nodes)."""
+    path = _quad(dirpath)
+    root = json.loads(path.read_text())
+    root["scenes"] = [{"nodes": [0, 0]}]
+    return _write_json(path, root)
+
+
+def write_root_with_a_parent(dirpath) -> pathlib.Path:
+    """scenes[0].nodes lists nodes[1], a child of nodes[0] (a scene must list root nodes)."""
+    path = _quad(dirpath)
+    root = json.loads(path.read_text())
+    root["nodes"] = [{"children": [1]}, {"mesh": 0}]
+    root["scenes"] = [{"nodes": [0, 1]}]
+    return _write_json(path, root)
+
+
+def write_required_extension_not_used(dirpath) -> pathlib.Path:
+    """extensionsRequired names an extension that extensionsUsed does not list."""
+    path = _quad(dirpath)
+    root = json.loads(path.read_text())
+    root["extensionsRequired"] = ["KHR_mesh_quantization"]
+    return _write_json(path, root)
+
+
 # ------------------------------------------------------------------------------------------
 # Tables
 # ------------------------------------------------------------------------------------------
@@ -451,6 +476,9 @@ VALID = {
 WARNING_CASES = {
     "points_primitive": (write_points_primitive, "meshes[0].primitives[0]"),
     "normal_map_without_uvs": (write_normal_map_without_uvs, "normal map dropped"),
+    "root_listed_twice": (write_root_listed_twice, "nodes[0] is listed twice as a root"),
+    "root_with_a_parent": (write_root_with_a_parent, "nodes[1] is not a root node"),
+    "required_extension_not_used": (write_required_extension_not_used, "not listed in extensionsUsed"),
 }
 
 HOSTILE = {

@@ -181,6 +181,7 @@ pub fn load_with(path: &Path, options: &LoadOptions) -> Result<Scene> {
         material_map: HashMap::new(),
         texture_map: HashMap::new(),
     };
+    ctx.warn_extensions(&mut b);
     build_scene(&ctx, &mut b)?;
     Ok(b.scene)
 }
@@ -223,6 +224,20 @@ impl Ctx<'_> {
             }
         }
         Ok(())
+    }
+
+    /// glTF 2.0: every entry of `extensionsRequired` must also be in `extensionsUsed`.
+    /// The loader does not need the second list, so a file that breaks the rule loads, but
+    /// says so: other tools may refuse it.
+    fn warn_extensions(&self, b: &mut Builder) {
+        for (i, ext) in self.root.extensions_required.iter().enumerate() {
+            if !self.root.extensions_used.contains(ext) {
+                b.warn(format!(
+                    "extensionsRequired[{i}]: {ext} is not listed in extensionsUsed \
+                     (glTF 2.0 requires every required extension to be listed as used)"
+                ));
+            }
+        }
     }
 }
 
