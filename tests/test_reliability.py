@@ -1,5 +1,7 @@
-"""Reliability against hostile input (issue #20): the texture memory budget of `Scene.load`
-holds against decompression bombs."""
+"""Reliability against hostile input and misuse (issue #20): the texture memory budget of
+`Scene.load` holds against decompression bombs, `Frame.save` failures are `OSError`s, and a
+frame says how to get an AOV it did not read back. (The loader's spec-violation warnings are
+cases of `gltf_fixtures.WARNING_CASES`, tested in test_gltf.py.)"""
 
 from __future__ import annotations
 
@@ -97,3 +99,35 @@ def test_max_texture_bytes_is_keyword_only(tmp_path):
     path = fx.write_textured(tmp_path)
     with pytest.raises(TypeError):
         vsgl.Scene.load(path, 1 << 30)  # type: ignore[misc]
+
+
+def test_save_to_an_unwritable_path_raises_os_error_naming_it(tmp_path, renderer):
+    frame = renderer.render(vsgl.scenes.cornell_box(), method="direct", aovs=["image"])
+    target = tmp_path / "no such folder" / "out.png"
+    with pytest.raises(OSError) as info:
+        frame.save(target)
+    assert not isinstance(info.value, ValueError)
+    assert isinstance(info.value, FileNotFoundError)
+    assert str(target) in str(info.value) and info.value.filename == str(target)
+    # A path that is a folder: IsADirectoryError, also an OSError naming the path.
+    (tmp_path / "dir.png").mkdir()
+    with pytest.raises(OSError, match="dir.png"):
+        frame.save(tmp_path / "dir.png")
+    # A bad extension is still a bad argument value, not an I/O failure.
+    with pytest.raises(vsgl.ArgumentError, match="extension"):
+        frame.save(tmp_path / "out.bmp")
+
+
+def test_an_aov_not_read_back_says_how_to_ask_for_it(renderer):
+    scene = vsgl.scenes.cornell_box()
+    frame = renderer.render(scene, method="direct", aovs=[])
+    for get in (lambda: frame.image, lambda: frame.aov("image"), lambda: frame.aov("depth")):
+        with pytest.raises(vsgl.ArgumentError, match="was not read back") as info:
+            get()
+        assert "aovs=[" in str(info.value), str(info.value)
+    frame = renderer.render(scene, method="direct", aovs=["depth"])
+    with pytest.raises(vsgl.ArgumentError, match=r'aovs=\["depth", "image"\]'):
+        frame.image
+    # An AOV the method never makes is a different mistake, and says so.
+    with pytest.raises(vsgl.ArgumentError, match="does not make AOV"):
+        frame.aov("indirect")
