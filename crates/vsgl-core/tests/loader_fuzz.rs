@@ -23,7 +23,7 @@ use serde_json::{json, Value};
 use vsgl_core::scene::gltf::{load_with, LoadOptions};
 use vsgl_core::Error;
 
-/// Mutated files per seed file; with the 7 seeds of today about 4200 cases (6 to 14 s in release on
+/// Mutated files per seed file; with the 7 seeds of today about 4200 cases (6 to 25 s in release on
 /// two CPU cores).
 const CASES_PER_SEED: usize = 600;
 /// Wall-clock cap of the whole run: a slow machine or a debug build stops early (the cases
