@@ -231,6 +231,42 @@ def _textured(dirpath, *, with_uvs=True, missing_image=False, huge_image=False, 
     return _write_json(d / "textured.gltf", root)
 
 
+def write_png_of_zeros(path, side: int, channels: int = 1) -> pathlib.Path:
+    """A valid 8-bit PNG of ``side`` x ``side`` black pixels (1 channel: grey, 3: RGB, 4: RGBA).
+    Zeros compress about 200:1 at zlib level 1, so a 16384² grey image is a file of about a
+    megabyte that decodes to 256 MiB (1 GiB as RGBA8): a decompression bomb. Rows are fed to
+    zlib one block at a time, so writing it never holds the raw image in memory."""
+    colour_type = {1: 0, 3: 2, 4: 6}[channels]
+
+    def chunk(kind: bytes, payload: bytes) -> bytes:
+        body = kind + payload
+        return struct.pack(">I", len(payload)) + body + struct.pack(">I", zlib.crc32(body) & 0xFFFFFFFF)
+
+    z = zlib.compressobj(1)
+    rows_per_block = 64
+    block = bytes((1 + side * channels) * rows_per_block)  # filter byte 0 + pixels, per row
+    idat = []
+    for start in range(0, side, rows_per_block):
+        n = min(rows_per_block, side - start)
+        idat.append(z.compress(block if n == rows_per_block else block[: (1 + side * channels) * n]))
+    idat.append(z.flush())
+    path = pathlib.Path(path)
+    path.write_bytes(
+        b"\x89PNG\r\n\x1a\n"
+        + chunk(b"IHDR", struct.pack(">IIBBBBB", side, side, 8, colour_type, 0, 0, 0))
+        + chunk(b"IDAT", b"".join(idat))
+        + chunk(b"IEND", b"")
+    )
+    return path
+
+
+def write_texture_bomb(dirpath, side: int = 16384, channels: int = 1) -> pathlib.Path:
+    """`write_textured` whose metallicRoughness image ``mr.png`` is ``write_png_of_zeros``."""
+    path = _textured(dirpath)
+    write_png_of_zeros(pathlib.Path(dirpath) / "mr.png", side, channels)
+    return path
+
+
 def write_textured(dirpath) -> pathlib.Path:
     """Quad with UVs, no NORMAL/TANGENT; baseColor + metallicRoughness + normal PNG textures.
     The loader generates normals (+z) and tangents (+x, w = +1)."""
@@ -399,6 +435,31 @@ def write_unsupported_required_extension(dirpath) -> pathlib.Path:
     return _write_json(path, root)
 
 
+def write_root_listed_twice(dirpath) -> pathlib.Path:
+    """scenes[0].nodes lists nodes[0] twice (glTF requires unique root nodes)."""
+    path = _quad(dirpath)
+    root = json.loads(path.read_text())
+    root["scenes"] = [{"nodes": [0, 0]}]
+    return _write_json(path, root)
+
+
+def write_root_with_a_parent(dirpath) -> pathlib.Path:
+    """scenes[0].nodes lists nodes[1], a child of nodes[0] (a scene must list root nodes)."""
+    path = _quad(dirpath)
+    root = json.loads(path.read_text())
+    root["nodes"] = [{"children": [1]}, {"mesh": 0}]
+    root["scenes"] = [{"nodes": [0, 1]}]
+    return _write_json(path, root)
+
+
+def write_required_extension_not_used(dirpath) -> pathlib.Path:
+    """extensionsRequired names an extension that extensionsUsed does not list."""
+    path = _quad(dirpath)
+    root = json.loads(path.read_text())
+    root["extensionsRequired"] = ["KHR_mesh_quantization"]
+    return _write_json(path, root)
+
+
 # ------------------------------------------------------------------------------------------
 # Tables
 # ------------------------------------------------------------------------------------------
@@ -415,6 +476,9 @@ VALID = {
 WARNING_CASES = {
     "points_primitive": (write_points_primitive, "meshes[0].primitives[0]"),
     "normal_map_without_uvs": (write_normal_map_without_uvs, "normal map dropped"),
+    "root_listed_twice": (write_root_listed_twice, "nodes[0] is listed twice as a root"),
+    "root_with_a_parent": (write_root_with_a_parent, "nodes[1] is not a root node"),
+    "required_extension_not_used": (write_required_extension_not_used, "not listed in extensionsUsed"),
 }
 
 HOSTILE = {

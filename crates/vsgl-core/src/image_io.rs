@@ -69,10 +69,12 @@ pub fn encode_npy(data: &[f32], shape: &[usize]) -> Vec<u8> {
     out
 }
 
-pub fn write_file(path: &Path, bytes: &[u8]) -> Result<()> {
-    let mut f = std::fs::File::create(path)
-        .map_err(|e| Error::invalid("path", format!("cannot create {}: {e}", path.display())))?;
-    f.write_all(bytes).map_err(|e| Error::invalid("path", format!("cannot write {}: {e}", path.display())))
+/// Writes `bytes` to `path`. The error is the operating system's, unchanged: a path that
+/// cannot be written is not a bad argument value but an I/O failure, and the caller (the
+/// Python binding raises `OSError`) names the path with it.
+pub fn write_file(path: &Path, bytes: &[u8]) -> std::io::Result<()> {
+    let mut f = std::fs::File::create(path)?;
+    f.write_all(bytes)
 }
 
 #[cfg(test)]

@@ -5,7 +5,7 @@ use std::time::Instant;
 
 use glam::{DVec3, Vec3};
 use serde_json::{json, Value};
-use vsgl_core::scene::gltf::load;
+use vsgl_core::scene::gltf::{load, load_with, LoadOptions, DEFAULT_MAX_TEXTURE_BYTES};
 use vsgl_core::scene::{Scene, TextureUsage};
 use vsgl_core::Error;
 
@@ -750,6 +750,29 @@ fn oversized_image_is_refused_before_decoding() {
     // Not an image at all.
     std::fs::write(dir.join("mr.png"), b"this is not a PNG").unwrap();
     expect_scene_error(&path, &["images[1]"]);
+}
+
+#[test]
+fn texture_budget_is_checked_from_the_header_and_counts_every_texture() {
+    let dir = tmpdir("texture_budget");
+    let path = textured_scene(&dir, true);
+    // mr.png as a 64×64 grey PNG: 16 KiB as RGBA8 plus 4 KiB of grey decoder output. The base
+    // colour (4×2 RGBA8, 32 bytes) is decoded before it; the 2×2 normal map (16 bytes) after.
+    image::GrayImage::new(64, 64).save(dir.join("mr.png")).unwrap();
+    let peak = 32 + 64 * 64 * 4 + 64 * 64;
+    let with = |max_texture_bytes| load_with(&path, &LoadOptions { max_texture_bytes });
+    let scene = with(peak).unwrap();
+    assert_eq!(scene.textures.len(), 3);
+    let text = with(peak - 1).unwrap_err().to_string();
+    for needle in ["tex.gltf", "images[1]", "\"mr.png\"", "64×64", &(peak - 1).to_string(), "max_texture_bytes="] {
+        assert!(text.contains(needle), "{text:?} does not mention {needle:?}");
+    }
+    // An RGBA8 file needs no conversion buffer: its own size is enough.
+    write_png(&dir.join("mr.png"), 64, 64, [1, 2, 3, 4]);
+    assert!(with(32 + 64 * 64 * 4 + 16).is_ok());
+    assert!(with(32 + 64 * 64 * 4 + 15).is_err(), "the normal map decoded after it counts too");
+    assert!(matches!(with(0), Err(Error::InvalidArgument { .. })));
+    assert_eq!(LoadOptions::default().max_texture_bytes, DEFAULT_MAX_TEXTURE_BYTES);
 }
 
 #[test]

@@ -162,9 +162,17 @@ struct PyScene {
 #[pymethods]
 impl PyScene {
     /// Loads a glTF 2.0 file (`.gltf` or `.glb`). Raises `SceneError` naming the file and element.
+    /// `max_texture_bytes` (default 512 MiB) bounds the decoded texture memory: an image that
+    /// would take the scene's textures past it is refused (from its header, before decoding)
+    /// with a `SceneError` naming it; raise the budget for trusted files with large textures.
     #[staticmethod]
-    fn load(py: Python<'_>, path: std::path::PathBuf) -> PyResult<Self> {
-        let scene = py.detach(|| vsgl_core::scene::gltf::load(&path)).map_err(to_py)?;
+    #[pyo3(signature = (path, *, max_texture_bytes=None))]
+    fn load(py: Python<'_>, path: std::path::PathBuf, max_texture_bytes: Option<&Bound<'_, PyAny>>) -> PyResult<Self> {
+        let mut options = vsgl_core::scene::gltf::LoadOptions::default();
+        if let Some(v) = max_texture_bytes {
+            options.max_texture_bytes = positive_bytes("max_texture_bytes", v)?;
+        }
+        let scene = py.detach(|| vsgl_core::scene::gltf::load_with(&path, &options)).map_err(to_py)?;
         Ok(Self { inner: scene })
     }
     /// Triangle, mesh, material, texture and light counts and the features the scene uses.
@@ -230,6 +238,34 @@ impl PyScene {
     fn __repr__(&self) -> String {
         let s = self.inner.stats();
         format!("Scene({:?}, triangles={}, materials={}, lights={})", self.inner.source, s.triangles, s.materials, s.lights)
+    }
+}
+
+/// The `OSError` that Python's own `open()` would raise for `e` on `path`: the subclass of its
+/// kind (`PermissionError`, `FileNotFoundError`, `IsADirectoryError`, ...) with `errno`,
+/// `strerror` and `filename` set, so the message names the path.
+fn os_error(py: Python<'_>, path: &std::path::Path, e: std::io::Error) -> PyErr {
+    let ty = PyErr::from(std::io::Error::from(e.kind())).get_type(py);
+    let filename = path.display().to_string();
+    match e.raw_os_error() {
+        Some(code) => {
+            let text = e.to_string();
+            // Rust appends " (os error N)"; errno already says it.
+            let strerror = text.split(" (os error").next().unwrap_or(&text).to_string();
+            PyErr::from_type(ty, (code, strerror, filename))
+        }
+        None => PyErr::from_type(ty, format!("cannot write {filename}: {e}")),
+    }
+}
+
+/// A byte count given as a positive Python int (not a bool, not a float).
+fn positive_bytes(name: &str, value: &Bound<'_, PyAny>) -> PyResult<u64> {
+    if value.is_instance_of::<PyBool>() || !value.is_instance_of::<PyInt>() {
+        return Err(argument_error(format!("{name}: expected a positive int (bytes), got {}", value.get_type().name()?)));
+    }
+    match value.extract::<u64>() {
+        Ok(v) if v > 0 => Ok(v),
+        _ => Err(argument_error(format!("{name}: expected a positive int (bytes) below 2**64, got {value}"))),
     }
 }
 
@@ -385,14 +421,29 @@ impl PyFrame {
         if let Some((_, a)) = self.arrays.iter().find(|(n, _)| n == name) {
             return Ok(a.bind(py).clone());
         }
-        Err({
-            let available = self.inner.aov_names().join(", ");
-            if vsgl_core::renderer::AOV_NAMES.contains(&name) {
+        // `self.names()`, not `inner.aov_names()`: the AOV data moved into `arrays`.
+        let read = self.names();
+        let available = if read.is_empty() { "none (rendered with aovs=[])".to_string() } else { read.join(", ") };
+        if !vsgl_core::renderer::AOV_NAMES.contains(&name) {
+            return Err(argument_error(format!("name: unknown AOV {name:?}; read back: {available}")));
+        }
+        let method = self.inner.settings.iter().find(|(k, _)| k == "method").map(|(_, v)| v.as_str());
+        let made = method.and_then(|m| methods::info(m).ok()).map(|info| info.makes_aov(name));
+        Err(match (method, made) {
+            (Some(method), Some(false)) => argument_error(format!(
+                "name: method={method:?} does not make AOV {name:?} ({} does); read back: {available}",
+                methods::aov_makers(name)
+            )),
+            // The method makes it: the render's `aovs=` did not ask for it, so it never left
+            // the GPU. Say how to get it rather than only that it is missing.
+            _ => {
+                let mut ask: Vec<&str> = read.iter().map(String::as_str).collect();
+                ask.push(name);
                 argument_error(format!(
-                    "name: this frame has no AOV {name:?} (its method does not make it, or the render's aovs= left it out); available: {available}"
+                    "name: AOV {name:?} was not read back (the render's aovs= left it out); ask for it \
+                     with render(..., aovs={ask:?}), or leave aovs out to read back every AOV the \
+                     method makes; read back: {available}"
                 ))
-            } else {
-                argument_error(format!("name: unknown AOV {name:?}; available: {available}"))
             }
         })
     }
@@ -522,7 +573,7 @@ impl PyFrame {
             _ => Err(vsgl_core::Error::invalid("path", format!("unsupported extension {ext:?}; use .png, .exr or .npy"))),
         });
         let bytes = bytes.map_err(to_py)?;
-        image_io::write_file(&path, &bytes).map_err(to_py)
+        image_io::write_file(&path, &bytes).map_err(|e| os_error(py, &path, e))
     }
     /// PNG bytes for Jupyter.
     fn _repr_png_<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyBytes>> {

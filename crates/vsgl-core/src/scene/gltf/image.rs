@@ -1,14 +1,16 @@
 //! Images and textures: an image is read from a file, data: URI or bufferView, its size is
-//! checked from the header against the limits before it is decoded (PNG and JPEG only) to
-//! RGBA8, and each (image, colour or data use) pair becomes one scene texture.
+//! checked from the header against the limits and the texture memory budget
+//! (`LoadOptions::max_texture_bytes`) before it is decoded (PNG and JPEG only) to RGBA8, and
+//! each (image, colour or data use) pair becomes one scene texture.
 
 use std::borrow::Cow;
 use std::io::Cursor;
 
+use image::ImageDecoder;
+
 use super::uri::uri_scheme;
 use super::{
-    Builder, Ctx, MAX_IMAGE_FILE_BYTES, MAX_IMAGE_SIDE, MAX_TEXTURE_BYTES,
-    MAX_TOTAL_IMAGE_FILE_BYTES,
+    Builder, Ctx, MAX_IMAGE_FILE_BYTES, MAX_IMAGE_SIDE, MAX_TOTAL_IMAGE_FILE_BYTES,
 };
 use crate::error::Result;
 use crate::scene::{Texture, TextureUsage};
@@ -71,9 +73,14 @@ impl Ctx<'_> {
                 None => Err(self.err(el.clone(), "unrecognised image format (PNG and JPEG only)")),
             }
         };
-        let (w, h) = reader()?
-            .into_dimensions()
+        // Everything the checks need comes from the header; nothing is decoded yet.
+        let probe = reader()?
+            .into_decoder()
             .map_err(|e| self.err(el.clone(), format!("cannot read the image header: {e}")))?;
+        let (w, h) = probe.dimensions();
+        let native = probe.total_bytes();
+        let converts = probe.color_type() != image::ColorType::Rgba8;
+        drop(probe);
         if w == 0 || h == 0 || w > MAX_IMAGE_SIDE || h > MAX_IMAGE_SIDE {
             return Err(self.err(
                 el,
@@ -82,27 +89,49 @@ impl Ctx<'_> {
                 ),
             ));
         }
-        let texels = u64::from(w) * u64::from(h) * 4;
-        let total = self.texture_bytes.get().saturating_add(texels);
-        if total > MAX_TEXTURE_BYTES {
+        // The budget: while an image is converted, the decoder's output
+        // in the file's own format (1 to 8 bytes a pixel) and the RGBA8 copy kept for the GPU
+        // exist together, on top of the textures kept so far. Counting both makes the budget
+        // a bound on the loader's peak texel memory, not only on what it returns.
+        let rgba8 = u64::from(w) * u64::from(h) * 4;
+        let transient = if converts { native } else { 0 };
+        let kept = self.texture_bytes.get();
+        let peak = kept.saturating_add(rgba8).saturating_add(transient);
+        if peak > self.max_texture_bytes {
+            let what = match &image.uri {
+                Some(u) if uri_scheme(u).is_none() => format!("\"{u}\" "),
+                _ => String::new(),
+            };
+            let decoding = if converts {
+                format!(" plus {transient} while it is decoded")
+            } else {
+                String::new()
+            };
             return Err(self.err(
                 el,
-                format!("the scene's textures exceed the limit of {MAX_TEXTURE_BYTES} bytes"),
+                format!(
+                    "image {what}is {w}×{h} pixels: {rgba8} bytes as RGBA8{decoding}; with the \
+                     {kept} bytes of textures loaded before it, that exceeds the texture memory \
+                     budget of {} bytes. If the file is trusted, raise the budget with \
+                     max_texture_bytes= (vsgl.Scene.load; LoadOptions::max_texture_bytes in Rust)",
+                    self.max_texture_bytes
+                ),
             ));
         }
-        self.texture_bytes.set(total);
         let mut r = reader()?;
         let mut limits = image::Limits::default();
         limits.max_image_width = Some(MAX_IMAGE_SIDE);
         limits.max_image_height = Some(MAX_IMAGE_SIDE);
-        // Room for 16-bit RGBA plus decoder scratch.
-        limits.max_alloc = Some(u64::from(w) * u64::from(h) * 8 + (64 << 20));
+        // The decoder's output buffer (already within the budget) plus room for its scratch.
+        limits.max_alloc = Some(native.saturating_add(64 << 20));
         r.limits(limits);
         let img = r
             .decode()
             .map_err(|e| self.err(el.clone(), format!("cannot decode image: {e}")))?;
-        let rgba = img.to_rgba8();
+        // `into_rgba8` keeps an RGBA8 image's own buffer instead of copying it.
+        let rgba = img.into_rgba8();
         let (w, h) = rgba.dimensions();
+        self.texture_bytes.set(kept.saturating_add(u64::from(w) * u64::from(h) * 4));
         Ok((w, h, rgba.into_raw()))
     }
 }

@@ -52,8 +52,11 @@ const MAX_BUFFER_BYTES: u64 = 2 << 30;
 const MAX_IMAGE_FILE_BYTES: u64 = 256 << 20;
 /// Largest accepted image side, checked from the header before decoding.
 const MAX_IMAGE_SIDE: u32 = 16384;
-/// Cap on all decoded RGBA8 texels of one scene.
-const MAX_TEXTURE_BYTES: u64 = 4 << 30;
+/// Default of [`LoadOptions::max_texture_bytes`]: 512 MiB holds 32 textures of 2048² RGBA8
+/// (BoomBox, the scene of `shared/scenes` with the largest textures, keeps three of them,
+/// 48 MiB), while a 16384² image (1 GiB as RGBA8, from a PNG of a few hundred kilobytes) is
+/// refused.
+pub const DEFAULT_MAX_TEXTURE_BYTES: u64 = 512 << 20;
 /// Cap on all vertex and index data produced for one scene (guards against one accessor
 /// being referenced by thousands of meshes).
 const MAX_GEOMETRY_BYTES: u64 = 4 << 30;
@@ -73,9 +76,35 @@ const SUPPORTED_REQUIRED_EXTENSIONS: &[&str] = &[
     "KHR_mesh_quantization",
 ];
 
+/// Limits of one load that a caller may change (the others are constants of this module).
+#[derive(Clone, Debug)]
+pub struct LoadOptions {
+    /// Budget for decoded texture memory, in bytes: the RGBA8 texels of every texture kept
+    /// so far plus, while an image is decoded, its decoder output in the file's own pixel
+    /// format (the budget is checked from the image header, before anything is decoded). An
+    /// image that does not fit is refused with an [`Error::Scene`]; it is not downscaled,
+    /// because the JPEG decoder cannot decode at reduced size, so a downscale would first
+    /// allocate the full image (docs/security.md).
+    pub max_texture_bytes: u64,
+}
+
+impl Default for LoadOptions {
+    fn default() -> Self {
+        Self { max_texture_bytes: DEFAULT_MAX_TEXTURE_BYTES }
+    }
+}
+
+/// Loads a `.gltf` or `.glb` scene with the default [`LoadOptions`].
+pub fn load(path: &Path) -> Result<Scene> {
+    load_with(path, &LoadOptions::default())
+}
+
 /// Loads a `.gltf` or `.glb` scene. Only nodes reachable from the default scene (or scene 0,
 /// or every root node when the file has no scene) instance meshes, lights and cameras.
-pub fn load(path: &Path) -> Result<Scene> {
+pub fn load_with(path: &Path, options: &LoadOptions) -> Result<Scene> {
+    if options.max_texture_bytes == 0 {
+        return Err(Error::invalid("max_texture_bytes", "must be a positive number of bytes, got 0"));
+    }
     let meta = std::fs::metadata(path)
         .map_err(|e| Error::scene(path, "file", format!("cannot read the scene file: {e}")))?;
     if !meta.is_file() {
@@ -136,6 +165,7 @@ pub fn load(path: &Path) -> Result<Scene> {
         geometry_bytes: Cell::new(0),
         unbacked_elements: Cell::new(0),
         texture_bytes: Cell::new(0),
+        max_texture_bytes: options.max_texture_bytes,
         image_file_bytes: Cell::new(0),
     };
     ctx.check_header()?;
@@ -151,6 +181,7 @@ pub fn load(path: &Path) -> Result<Scene> {
         material_map: HashMap::new(),
         texture_map: HashMap::new(),
     };
+    ctx.warn_extensions(&mut b);
     build_scene(&ctx, &mut b)?;
     Ok(b.scene)
 }
@@ -165,7 +196,9 @@ struct Ctx<'a> {
     views: Vec<ViewInfo>,
     geometry_bytes: Cell<u64>,
     unbacked_elements: Cell<u64>,
+    /// Decoded RGBA8 bytes of the textures kept so far.
     texture_bytes: Cell<u64>,
+    max_texture_bytes: u64,
     image_file_bytes: Cell<u64>,
 }
 
@@ -191,6 +224,20 @@ impl Ctx<'_> {
             }
         }
         Ok(())
+    }
+
+    /// glTF 2.0: every entry of `extensionsRequired` must also be in `extensionsUsed`.
+    /// The loader does not need the second list, so a file that breaks the rule loads, but
+    /// says so: other tools may refuse it.
+    fn warn_extensions(&self, b: &mut Builder) {
+        for (i, ext) in self.root.extensions_required.iter().enumerate() {
+            if !self.root.extensions_used.contains(ext) {
+                b.warn(format!(
+                    "extensionsRequired[{i}]: {ext} is not listed in extensionsUsed \
+                     (glTF 2.0 requires every required extension to be listed as used)"
+                ));
+            }
+        }
     }
 }
 

@@ -1,5 +1,5 @@
 //! Nodes and cameras: the node hierarchy (checked for missing children, second parents and
-//! cycles), the nodes reachable from the displayed scene, local and world transforms, and
+//! cycles; roots listed twice or that have a parent are warned about), the nodes reachable from the displayed scene, local and world transforms, and
 //! the perspective cameras of reachable nodes. Meshes and lights are instanced from here.
 
 use glam::{DMat4, DQuat, DVec3};
@@ -123,6 +123,8 @@ pub(super) fn build_scene(ctx: &Ctx, b: &mut Builder) -> Result<()> {
                     .get(s)
                     .ok_or_else(|| ctx.err(el, format!("scenes[{s}] does not exist")))?;
                 let mut roots = Vec::with_capacity(scene.nodes.len());
+                let mut listed_at: Vec<Option<usize>> = vec![None; nn];
+                let (mut twice, mut not_root) = (FirstOf::default(), FirstOf::default());
                 for (k, n) in scene.nodes.iter().enumerate() {
                     let n = n.value();
                     if n >= nn {
@@ -131,8 +133,31 @@ pub(super) fn build_scene(ctx: &Ctx, b: &mut Builder) -> Result<()> {
                             format!("nodes[{n}] does not exist"),
                         ));
                     }
+                    // glTF 2.0: `scene.nodes` lists root nodes, each once. Both rules
+                    // can be broken without harm here (a node is instanced once however
+                    // often it is reached, under its parent's transform), so the file loads,
+                    // with a warning: other tools may show it differently.
+                    if let Some(slot) = listed_at.get_mut(n) {
+                        if let Some(first) = *slot {
+                            twice.note(format!(
+                                "scenes[{s}].nodes[{k}]: nodes[{n}] is listed twice as a root \
+                                 of the scene (also at scenes[{s}].nodes[{first}]); it is \
+                                 instanced once"
+                            ));
+                            continue;
+                        }
+                        *slot = Some(k);
+                    }
+                    if let Some(p) = parent.get(n).copied().flatten() {
+                        not_root.note(format!(
+                            "scenes[{s}].nodes[{k}]: nodes[{n}] is not a root node (it is a \
+                             child of nodes[{p}]); it is instanced once, under its parent"
+                        ));
+                    }
                     roots.push(n);
                 }
+                twice.warn(b);
+                not_root.warn(b);
                 roots
             }
             None => (0..nn)
@@ -222,6 +247,32 @@ pub(super) fn build_scene(ctx: &Ctx, b: &mut Builder) -> Result<()> {
         }
     }
     Ok(())
+}
+
+/// The first of a kind of warning and how many more there were: one line per kind, so that
+/// a file repeating a mistake a million times cannot make a million warnings.
+#[derive(Default)]
+struct FirstOf {
+    first: Option<String>,
+    more: usize,
+}
+
+impl FirstOf {
+    fn note(&mut self, msg: String) {
+        if self.first.is_none() {
+            self.first = Some(msg);
+        } else {
+            self.more += 1;
+        }
+    }
+
+    fn warn(self, b: &mut Builder) {
+        match (self.first, self.more) {
+            (Some(m), 0) => b.warn(m),
+            (Some(m), n) => b.warn(format!("{m} (and {n} more like it)")),
+            (None, _) => {}
+        }
+    }
 }
 
 /// World transform of node `i`, memoised so that a deep hierarchy costs O(nodes) in all
