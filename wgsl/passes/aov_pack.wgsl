@@ -40,6 +40,9 @@ struct PackParams {
 @group(0) @binding(7) var<storage, read> stderr_in: array<vec4f>;
 // Words: float AOVs as their bit patterns, `ldr` as one RGBA8 word a pixel.
 @group(0) @binding(8) var<storage, read_write> packed: array<u32>;
+// Per packed AOV, how many of its values are NaN or ±Inf (the image's, for `ldr`): read back
+// with the AOVs, so no frame hands out a non-finite value unnoticed. Zero before the pass.
+@group(0) @binding(9) var<storage, read_write> nonfinite: array<atomic<u32>, MAX_ENTRIES>;
 
 fn indirect_sum(i: u32) -> vec3f {
     var s = vec3f(0.0);
@@ -77,6 +80,14 @@ fn ldr_channel(v: f32) -> u32 {
     return min(u32(srgb_encode(x) * 255.0 + 0.5), 255u);
 }
 
+fn count_nonfinite(e: u32, v: vec3f) {
+    let bad = u32(!is_finite(v.x)) + u32(!is_finite(v.y)) + u32(!is_finite(v.z));
+    // Rare by design: the atomic runs only for a non-finite value.
+    if (bad > 0u) {
+        atomicAdd(&nonfinite[e], bad);
+    }
+}
+
 fn put3(base: u32, i: u32, v: vec3f) {
     packed[base + 3u * i] = bitcast<u32>(v.x);
     packed[base + 3u * i + 1u] = bitcast<u32>(v.y);
@@ -93,27 +104,29 @@ fn main(@builtin(global_invocation_id) id: vec3u) {
         let kind = params.entries[e].x;
         let base = params.entries[e].y;
         switch kind {
-            case AOV_IMAGE: { put3(base, i, image(i)); }
-            case AOV_INDIRECT: { put3(base, i, indirect_sum(i)); }
-            case AOV_INDIRECT_DIFFUSE: { put3(base, i, indirect_diffuse[i].rgb); }
+            case AOV_IMAGE: { put3(base, i, image(i)); count_nonfinite(e, image(i)); }
+            case AOV_INDIRECT: { put3(base, i, indirect_sum(i)); count_nonfinite(e, indirect_sum(i)); }
+            case AOV_INDIRECT_DIFFUSE: { put3(base, i, indirect_diffuse[i].rgb); count_nonfinite(e, indirect_diffuse[i].rgb); }
             case AOV_INDIRECT_SPECULAR: {
                 var s = vec3f(0.0);
                 if ((params.flags & 2u) != 0u) {
                     s = indirect_specular[i].rgb;
                 }
                 put3(base, i, s);
+                count_nonfinite(e, s);
             }
-            case AOV_DIRECT: { put3(base, i, direct[i].rgb); }
-            case AOV_ALBEDO: { put3(base, i, gbuf_base_color[i].rgb); }
-            case AOV_NORMAL: { put3(base, i, gbuf_normal[i].xyz); }
+            case AOV_DIRECT: { put3(base, i, direct[i].rgb); count_nonfinite(e, direct[i].rgb); }
+            case AOV_ALBEDO: { put3(base, i, gbuf_base_color[i].rgb); count_nonfinite(e, gbuf_base_color[i].rgb); }
+            case AOV_NORMAL: { put3(base, i, gbuf_normal[i].xyz); count_nonfinite(e, gbuf_normal[i].xyz); }
             case AOV_DEPTH: {
                 // View depth; 0 where no surface was hit (never Inf).
                 let w = gbuf_position[i].w;
                 packed[base + i] = bitcast<u32>(select(0.0, w, w > 0.0));
             }
-            case AOV_STDERR: { put3(base, i, stderr_in[i].rgb); }
+            case AOV_STDERR: { put3(base, i, stderr_in[i].rgb); count_nonfinite(e, stderr_in[i].rgb); }
             case AOV_LDR: {
                 let c = image(i);
+                count_nonfinite(e, c);
                 packed[base + i] = ldr_channel(c.x) | (ldr_channel(c.y) << 8u) | (ldr_channel(c.z) << 16u) | (255u << 24u);
             }
             default: {}

@@ -19,6 +19,10 @@ pub enum Error {
     Validation { context: String, message: String },
     #[error("GPU out of memory in {context}")]
     OutOfMemory { context: String },
+    /// A frame computed NaN or Inf values (counted on the GPU as the AOVs are packed): the
+    /// message names the AOVs and counts. vsgl never hands such a frame out.
+    #[error("{message}; the inputs are beyond what f32 shading represents (extreme intensities or scales), or this is a bug in vsgl: please report it with the scene and settings")]
+    NonFinite { message: String },
     /// A bad argument value, naming the argument and what was expected.
     #[error("{argument}: {message}")]
     InvalidArgument { argument: String, message: String },

@@ -13,6 +13,7 @@ create_exception!(vsgl, SceneError, VsglError, "A malformed or hostile scene fil
 create_exception!(vsgl, NoAdapterError, VsglError, "No usable GPU or CPU adapter; the message says how to install one.");
 create_exception!(vsgl, ShaderError, VsglError, "A shader failed to compose or compile (a bug in vsgl).");
 create_exception!(vsgl, GpuError, VsglError, "The GPU reported a validation error or ran out of memory.");
+create_exception!(vsgl, NumericsError, VsglError, "A frame computed NaN or Inf values; the message names the AOVs and counts.");
 
 /// `vsgl.ArgumentError(VsglError, ValueError)`: both `except vsgl.VsglError` and
 /// `except ValueError` catch a bad argument. `create_exception!` takes one base, so the class is
@@ -48,6 +49,7 @@ pub fn to_py(e: Error) -> PyErr {
         Error::Scene { .. } => SceneError::new_err(msg),
         Error::ShaderCompile { .. } => ShaderError::new_err(msg),
         Error::Validation { .. } | Error::OutOfMemory { .. } => GpuError::new_err(msg),
+        Error::NonFinite { .. } => NumericsError::new_err(msg),
         Error::InvalidArgument { .. } => argument_error(msg),
     }
 }

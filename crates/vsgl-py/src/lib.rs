@@ -13,7 +13,7 @@ use pyo3::types::{PyBool, PyBytes, PyDict, PyFloat, PyInt, PyIterator, PyString,
 use std::sync::Arc;
 use vsgl_core::methods::{self, OptionValue};
 use vsgl_core::passes::vsgl_gen::{VSGL_FIELDS, VSGL_FLOATS};
-use vsgl_core::scene::{builtin, Camera, Light, Scene, SpotLight};
+use vsgl_core::scene::{builtin, limits, Camera, Light, Scene, SpotLight};
 use vsgl_core::{image_io, Frame, RenderOptions, Renderer};
 
 fn vec3(name: &str, v: Vec<f64>) -> PyResult<DVec3> {
@@ -44,15 +44,9 @@ impl PySpotLight {
     #[new]
     #[pyo3(signature = (position, direction, intensity, color=vec![1.0, 1.0, 1.0], inner_cone_deg=30.0, outer_cone_deg=40.0))]
     fn new(position: Vec<f64>, direction: Vec<f64>, intensity: f64, color: Vec<f64>, inner_cone_deg: f64, outer_cone_deg: f64) -> PyResult<Self> {
-        let position = vec3("position", position)?;
-        let direction = vec3("direction", direction)?;
-        if !(direction.length() > 0.0) {
-            return Err(argument_error("direction: must be a non-zero vector"));
-        }
-        let intensity = finite("intensity", intensity)?;
-        if !(intensity > 0.0) || intensity > f32::MAX as f64 {
-            return Err(argument_error(format!("intensity: must be positive (candela), got {intensity}")));
-        }
+        let position = limits::position("position", vec3("position", position)?).map_err(to_py)?;
+        let direction = limits::unit_direction("direction", vec3("direction", direction)?).map_err(to_py)?;
+        let intensity = limits::intensity("intensity", "candela", finite("intensity", intensity)?).map_err(to_py)?;
         let color = vec3("color", color)?;
         if color.min_element() < 0.0 {
             return Err(argument_error(format!("color: components must be >= 0, got {color:?}")));
@@ -68,8 +62,8 @@ impl PySpotLight {
         Ok(Self {
             inner: SpotLight {
                 position,
-                direction: direction.normalize(),
-                intensity: intensity as f32,
+                direction,
+                intensity,
                 color: color.as_vec3(),
                 inner_cone: (inner as f32).to_radians(),
                 outer_cone: (outer as f32).to_radians(),
@@ -283,9 +277,21 @@ fn set_node_transform(scene: &mut Scene, node_name: &str, matrix: Vec<Vec<f64>>,
     if m.determinant() == 0.0 {
         return Err(argument_error(format!("{what}: must be invertible")));
     }
+    let before: Vec<(usize, DMat4)> = scene.nodes.iter().enumerate().filter(|(_, n)| n.name == node_name).map(|(i, n)| (i, n.local)).collect();
     if scene.set_transform(node_name, m) == 0 {
         let names: Vec<&str> = scene.nodes.iter().map(|n| n.name.as_str()).collect();
         return Err(argument_error(format!("{node_arg}: no node named {node_name:?}; nodes: {names:?}")));
+    }
+    // The geometry must stay where f32 distances are finite (scene::limits); else undo.
+    let b = scene.bounds();
+    if !b.is_empty() && (!b.min.is_finite() || !b.max.is_finite() || b.min.abs().max(b.max.abs()).max_element() > limits::MAX_COORDINATE) {
+        for (i, local) in before {
+            scene.nodes[i].local = local;
+        }
+        return Err(argument_error(format!(
+            "{what}: moves the geometry to {:?} .. {:?}, beyond ±{:e} m (squared distances are formed in f32); the transform was not applied",
+            b.min.to_array(), b.max.to_array(), limits::MAX_COORDINATE
+        )));
     }
     Ok(())
 }
@@ -821,6 +827,7 @@ fn _vsgl(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add("NoAdapterError", py.get_type::<errors::NoAdapterError>())?;
     m.add("ShaderError", py.get_type::<errors::ShaderError>())?;
     m.add("GpuError", py.get_type::<errors::GpuError>())?;
+    m.add("NumericsError", py.get_type::<errors::NumericsError>())?;
     m.add("ArgumentError", errors::argument_error_type(py)?)?;
     m.add("METHODS", method_names(py)?)?;
     m.add_class::<PyRenderer>()?;

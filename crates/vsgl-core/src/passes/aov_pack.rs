@@ -55,8 +55,10 @@ impl AovPackPass {
         Ok(Self { pipeline: gpu.compute_pipeline("aov_pack_pipeline", &module, "main") })
     }
 
-    /// Packs `entries` (at most [`MAX_ENTRIES`]) of a `size` frame into `out`.
-    pub fn record(&self, rec: &mut Recorder<'_>, src: &PackSources<'_>, entries: &[PackEntry], out: &wgpu::Buffer, size: (u32, u32)) {
+    /// Packs `entries` (at most [`MAX_ENTRIES`]) of a `size` frame into `out`, and counts each
+    /// entry's non-finite values into `nonfinite` (one u32 per entry, zero before the pass).
+    #[allow(clippy::too_many_arguments)]
+    pub fn record(&self, rec: &mut Recorder<'_>, src: &PackSources<'_>, entries: &[PackEntry], out: &wgpu::Buffer, nonfinite: &wgpu::Buffer, size: (u32, u32)) {
         let mut raw = PackParamsRaw {
             width: size.0,
             height: size.1,
@@ -82,6 +84,7 @@ impl AovPackPass {
                 src.gbuffer.base_color.as_entire_binding(),
                 stderr.as_entire_binding(),
                 out.as_entire_binding(),
+                nonfinite.as_entire_binding(),
             ]],
             (groups(size.0, WORKGROUP), groups(size.1, WORKGROUP), 1),
         );

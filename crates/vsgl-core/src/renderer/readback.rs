@@ -4,7 +4,7 @@
 //! flight); the CPU then only splits the mapped bytes into the AOVs.
 
 use super::options::{RenderOptions, AOV_NAMES};
-use crate::error::Result;
+use crate::error::{Error, Result};
 use crate::gpu::{kept_staging_buffer, read_staging_with, Gpu, Recorder};
 use crate::methods::MethodInfo;
 use crate::passes::aov_pack::{AovPackPass, PackEntry, PackSources, LDR_KIND, MAX_ENTRIES};
@@ -28,7 +28,12 @@ pub(super) struct PendingAovs {
     layout: Vec<(&'static str, usize, u64)>,
     staging: Option<wgpu::Buffer>,
     pixels: usize,
+    /// Where the per-AOV counts of non-finite values lie in the staging buffer.
+    counts_offset: u64,
 }
+
+/// Bytes of the non-finite counts (one u32 per pack entry) after the packed AOVs.
+const COUNTS_BYTES: u64 = MAX_ENTRIES as u64 * 4;
 
 /// Records the packing of the AOVs `opts` asks for (all float AOVs the method makes when it
 /// names none) and their copy into the staging buffer `kept` (made or resized as needed).
@@ -50,25 +55,34 @@ pub(super) fn record_aovs(rec: &mut Recorder<'_>, pack: &AovPackPass, opts: &Ren
     }
     debug_assert!(entries.len() <= MAX_ENTRIES);
     if entries.is_empty() {
-        return PendingAovs { layout, staging: None, pixels };
+        return PendingAovs { layout, staging: None, pixels, counts_offset: 0 };
     }
     let bytes = words * 4;
     // Every word is written by the pack pass: no clear needed on reuse.
     let packed = rec.storage_written("aov_pack_buffer", bytes);
-    pack.record(rec, src, &entries, &packed, size);
-    let staging = kept_staging_buffer(rec.gpu, kept, "aov_readback_staging_buffer", bytes);
+    // Zeroed for every frame (storage() clears a kept buffer).
+    let nonfinite = rec.storage("aov_nonfinite_count_buffer", COUNTS_BYTES);
+    pack.record(rec, src, &entries, &packed, &nonfinite, size);
+    let staging = kept_staging_buffer(rec.gpu, kept, "aov_readback_staging_buffer", bytes + COUNTS_BYTES);
     rec.enc.copy_buffer_to_buffer(&packed, 0, &staging, 0, bytes);
-    PendingAovs { layout, staging: Some(staging), pixels }
+    rec.enc.copy_buffer_to_buffer(&nonfinite, 0, &staging, bytes, COUNTS_BYTES);
+    PendingAovs { layout, staging: Some(staging), pixels, counts_offset: bytes }
 }
 
 impl PendingAovs {
     /// Waits for the frame's submission (not for later ones) and splits the staging buffer
-    /// into the AOVs.
+    /// into the AOVs; an AOV with a NaN or Inf value is an [`Error::NonFinite`] naming it.
     pub(super) fn read(self, gpu: &Gpu, submission: &wgpu::SubmissionIndex) -> Result<Aovs> {
         let mut out = Aovs { float: Vec::new(), ldr: None };
         let Some(staging) = self.staging else { return Ok(out) };
+        let mut nonfinite: Vec<(&str, u32)> = Vec::new();
         // One copy of each AOV, straight out of the mapped memory.
         read_staging_with(gpu, &staging, staging.size(), Some(submission), "readback", |bytes| {
+            let counts: Vec<u32> = bytemuck::pod_collect_to_vec(&bytes[self.counts_offset as usize..(self.counts_offset + COUNTS_BYTES) as usize]);
+            nonfinite = self.layout.iter().zip(&counts).filter(|(_, c)| **c > 0).map(|((name, _, _), c)| (*name, *c)).collect();
+            if !nonfinite.is_empty() {
+                return;
+            }
             for (name, words, offset) in &self.layout {
                 let start = *offset as usize;
                 let data = &bytes[start..start + words * self.pixels * 4];
@@ -79,6 +93,10 @@ impl PendingAovs {
                 }
             }
         })?;
+        if !nonfinite.is_empty() {
+            let what: Vec<String> = nonfinite.iter().map(|(name, c)| format!("{c} in {name:?}")).collect();
+            return Err(Error::NonFinite { message: format!("non-finite values (NaN or Inf) in the frame: {}", what.join(", ")) });
+        }
         Ok(out)
     }
 }

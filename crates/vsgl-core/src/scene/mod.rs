@@ -7,6 +7,7 @@
 pub mod builtin;
 pub mod gltf;
 mod light;
+pub mod limits;
 
 pub use light::{DirectionalLight, Light, PointLight, SpotLight};
 
@@ -149,14 +150,19 @@ pub struct Camera {
 
 impl Camera {
     /// A camera at `eye` looking at `target`; `up` need not be orthogonal to the view.
+    /// Positions beyond ±[`limits::MAX_COORDINATE`] are refused with that cause, and every
+    /// vector is normalised without overflow.
     pub fn look_at(eye: DVec3, target: DVec3, up: DVec3, fov_y: f32) -> Result<Self, String> {
+        let eye = limits::position("eye", eye).map_err(|e| e.to_string())?;
+        let target = limits::position("target", target).map_err(|e| e.to_string())?;
         let forward = target - eye;
         if !(forward.length() > 0.0) {
             return Err("eye and target must differ".into());
         }
         let forward = forward.normalize();
+        let up = limits::unit_direction("up", up).map_err(|e| e.to_string())?;
         let right = forward.cross(up);
-        if !(right.length() > 1e-9 * up.length()) || !right.is_finite() {
+        if !(right.length() > 1e-9) || !right.is_finite() {
             return Err("up must not be parallel to the viewing direction".into());
         }
         let up = right.normalize().cross(forward);

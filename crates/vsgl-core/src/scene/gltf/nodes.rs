@@ -246,6 +246,51 @@ pub(super) fn build_scene(ctx: &Ctx, b: &mut Builder) -> Result<()> {
             add_camera(ctx, b, i, ci, camera, world)?;
         }
     }
+    check_world_bounds(ctx, b, &mut world_memo)
+}
+
+/// Refuses a mesh node whose world-space geometry lies beyond ±`limits::MAX_COORDINATE` (or is
+/// not finite): a node translated to 3e38 would otherwise load and fail at render with a
+/// misleading message. The corners of each mesh's local bounds are transformed, once per node.
+fn check_world_bounds(ctx: &Ctx, b: &Builder, world_memo: &mut [Option<DMat4>]) -> Result<()> {
+    use crate::scene::limits::MAX_COORDINATE;
+    let mut local_bounds: Vec<Option<(DVec3, DVec3)>> = vec![None; b.scene.meshes.len()];
+    for i in 0..b.scene.nodes.len() {
+        let Some(m) = b.scene.nodes[i].mesh else { continue };
+        let Some(mesh) = b.scene.meshes.get(m) else { continue };
+        let (lo, hi) = *local_bounds[m].get_or_insert_with(|| {
+            let mut lo = DVec3::splat(f64::INFINITY);
+            let mut hi = DVec3::splat(f64::NEG_INFINITY);
+            for p in mesh.primitives.iter().flat_map(|p| &p.positions) {
+                let v = DVec3::new(p[0] as f64, p[1] as f64, p[2] as f64);
+                lo = lo.min(v);
+                hi = hi.max(v);
+            }
+            (lo, hi)
+        });
+        if !(lo.x <= hi.x) {
+            continue; // no vertices
+        }
+        let world = world_transform(&b.scene.nodes, world_memo, i);
+        for corner in 0..8 {
+            let c = DVec3::new(
+                if corner & 1 == 0 { lo.x } else { hi.x },
+                if corner & 2 == 0 { lo.y } else { hi.y },
+                if corner & 4 == 0 { lo.z } else { hi.z },
+            );
+            let w = world.transform_point3(c);
+            if !w.is_finite() || w.abs().max_element() > MAX_COORDINATE {
+                return Err(ctx.err(
+                    format!("nodes[{i}]"),
+                    format!(
+                        "its mesh reaches world position {:?}, beyond ±{MAX_COORDINATE:e} m \
+                         (squared distances are formed in f32)",
+                        w.to_array()
+                    ),
+                ));
+            }
+        }
+    }
     Ok(())
 }
 
@@ -333,6 +378,12 @@ fn add_camera(
     let eye = world.transform_point3(DVec3::ZERO);
     let forward = world.transform_vector3(DVec3::NEG_Z);
     let up = world.transform_vector3(DVec3::Y);
+    if eye.is_finite() && eye.abs().max_element() > crate::scene::limits::MAX_COORDINATE {
+        return Err(ctx.err(
+            format!("nodes[{node}]"),
+            format!("camera {el} at {:?} is beyond ±{:e} m", eye.to_array(), crate::scene::limits::MAX_COORDINATE),
+        ));
+    }
     let ok = eye.is_finite() && forward.length() > 1e-12 && forward.is_finite() && up.is_finite();
     let forward = forward.normalize_or_zero();
     let up = (up - forward * up.dot(forward)).normalize_or_zero();
