@@ -40,6 +40,8 @@ def _render(args: argparse.Namespace) -> int:
     print(f"scene     {scene!r}")
     print(f"adapter   {renderer.adapter['name']} ({renderer.adapter['device_type']})")
     print(f"method    {args.method}, {width}x{height}")
+    for warning in frame.warnings:
+        print(f"warning   {warning}")
     if args.explain:
         print("passes    " + ", ".join(frame.passes))
         for name, why in frame.skipped.items():

@@ -40,9 +40,17 @@ struct PackParams {
 @group(0) @binding(7) var<storage, read> stderr_in: array<vec4f>;
 // Words: float AOVs as their bit patterns, `ldr` as one RGBA8 word a pixel.
 @group(0) @binding(8) var<storage, read_write> packed: array<u32>;
-// Per packed AOV, how many of its values are NaN or ±Inf (the image's, for `ldr`): read back
-// with the AOVs, so no frame hands out a non-finite value unnoticed. Zero before the pass.
-@group(0) @binding(9) var<storage, read_write> nonfinite: array<atomic<u32>, MAX_ENTRIES>;
+// Words 0 … MAX_ENTRIES − 1: per packed AOV, how many of its values are NaN or ±Inf (the
+// image's, for `ldr`), so no frame hands out a non-finite value unnoticed. Word COVERED: pixels
+// that see a surface; word LIT: pixels whose image is not black (the frame's warnings about
+// black images). Zero before the pass; read back with the AOVs.
+const COVERED: u32 = MAX_ENTRIES;
+const LIT: u32 = MAX_ENTRIES + 1u;
+@group(0) @binding(9) var<storage, read_write> counts: array<atomic<u32>, 12>;
+
+// The workgroup's COVERED and LIT counts, added to `counts` once per workgroup.
+var<workgroup> group_covered: atomic<u32>;
+var<workgroup> group_lit: atomic<u32>;
 
 fn indirect_sum(i: u32) -> vec3f {
     var s = vec3f(0.0);
@@ -84,7 +92,7 @@ fn count_nonfinite(e: u32, v: vec3f) {
     let bad = u32(!is_finite(v.x)) + u32(!is_finite(v.y)) + u32(!is_finite(v.z));
     // Rare by design: the atomic runs only for a non-finite value.
     if (bad > 0u) {
-        atomicAdd(&nonfinite[e], bad);
+        atomicAdd(&counts[e], bad);
     }
 }
 
@@ -95,11 +103,31 @@ fn put3(base: u32, i: u32, v: vec3f) {
 }
 
 @compute @workgroup_size(WORKGROUP, WORKGROUP)
-fn main(@builtin(global_invocation_id) id: vec3u) {
-    if (id.x >= params.width || id.y >= params.height) {
-        return;
+fn main(@builtin(global_invocation_id) id: vec3u, @builtin(local_invocation_index) local: u32) {
+    let inside = id.x < params.width && id.y < params.height;
+    if (inside) {
+        pack_pixel(id.y * params.width + id.x);
     }
-    let i = id.y * params.width + id.x;
+    workgroupBarrier();
+    if (local == 0u) {
+        let covered = atomicLoad(&group_covered);
+        let lit = atomicLoad(&group_lit);
+        if (covered > 0u) {
+            atomicAdd(&counts[COVERED], covered);
+        }
+        if (lit > 0u) {
+            atomicAdd(&counts[LIT], lit);
+        }
+    }
+}
+
+fn pack_pixel(i: u32) {
+    if (gbuf_position[i].w != GBUFFER_BACKGROUND) {
+        atomicAdd(&group_covered, 1u);
+    }
+    if (any(image(i) != vec3f(0.0))) {
+        atomicAdd(&group_lit, 1u);
+    }
     for (var e = 0u; e < min(params.count, MAX_ENTRIES); e++) {
         let kind = params.entries[e].x;
         let base = params.entries[e].y;

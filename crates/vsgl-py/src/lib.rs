@@ -545,6 +545,13 @@ impl PyFrame {
         }
         Ok(d)
     }
+    /// Why the image may not be what was expected, in words: a black image and its cause (no
+    /// light in the scene, no geometry in view, no light reaching anything visible). Empty for
+    /// an ordinary frame. The black-image checks need an AOV read back (not with `aovs=[]`).
+    #[getter]
+    fn warnings(&self) -> Vec<String> {
+        self.inner.warnings.clone()
+    }
     /// Left-out passes or variants mapped to the reason, in words.
     #[getter]
     fn skipped<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyDict>> {

@@ -55,10 +55,11 @@ impl AovPackPass {
         Ok(Self { pipeline: gpu.compute_pipeline("aov_pack_pipeline", &module, "main") })
     }
 
-    /// Packs `entries` (at most [`MAX_ENTRIES`]) of a `size` frame into `out`, and counts each
-    /// entry's non-finite values into `nonfinite` (one u32 per entry, zero before the pass).
+    /// Packs `entries` (at most [`MAX_ENTRIES`]) of a `size` frame into `out`, and counts into
+    /// `counts` (zero before the pass) each entry's non-finite values, then the pixels that see
+    /// a surface and those whose image is not black.
     #[allow(clippy::too_many_arguments)]
-    pub fn record(&self, rec: &mut Recorder<'_>, src: &PackSources<'_>, entries: &[PackEntry], out: &wgpu::Buffer, nonfinite: &wgpu::Buffer, size: (u32, u32)) {
+    pub fn record(&self, rec: &mut Recorder<'_>, src: &PackSources<'_>, entries: &[PackEntry], out: &wgpu::Buffer, counts: &wgpu::Buffer, size: (u32, u32)) {
         let mut raw = PackParamsRaw {
             width: size.0,
             height: size.1,
@@ -84,7 +85,7 @@ impl AovPackPass {
                 src.gbuffer.base_color.as_entire_binding(),
                 stderr.as_entire_binding(),
                 out.as_entire_binding(),
-                nonfinite.as_entire_binding(),
+                counts.as_entire_binding(),
             ]],
             (groups(size.0, WORKGROUP), groups(size.1, WORKGROUP), 1),
         );

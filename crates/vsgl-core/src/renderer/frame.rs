@@ -17,6 +17,8 @@ pub struct Frame {
     pub passes: Vec<String>,
     pub skipped: Vec<(String, String)>,
     pub settings: Vec<(String, String)>,
+    /// Why the image may not be what the caller expects (a black image and its cause), in words.
+    pub warnings: Vec<String>,
     /// The first light's RSM when `capture_rsm` was set: side and (name, channels, data).
     pub rsm: Option<(u32, Vec<(String, usize, Vec<f32>)>)>,
     /// The first light's VSGLs (`vsgl`): VSGL_FLOATS floats each, fields in VSGL_FIELDS order.

@@ -174,6 +174,17 @@ impl Renderer {
         });
         self.give_back(slot);
         let (aovs, vsgls, mut timings) = read?;
+        let mut warnings = frame.warnings;
+        if let Some((covered, lit)) = aovs.coverage {
+            let pixels = frame.width as u64 * frame.height as u64;
+            if covered == 0 {
+                warnings.push(format!("the camera sees no geometry: all {pixels} pixels are background (is the scene behind the camera, or the camera inside an object facing away?)"));
+            } else if lit == 0 && !warnings.iter().any(|w| w.starts_with("the scene has no light")) {
+                warnings.push(format!(
+                    "the image is black: no light reaches any of the {covered} visible surface pixels (lights outside the view, pointing away, occluded, or with cones too narrow to hit anything)"
+                ));
+            }
+        }
         // Waiting for the GPU, mapping and copying out: the wall cost of the readback on top of
         // the GPU frame (the GPU's own packing and copy are the `aov_pack` timing).
         let readback_ms = read_start.elapsed().as_secs_f64() * 1e3;
@@ -205,6 +216,7 @@ impl Renderer {
             variants: log.variants,
             passes,
             settings,
+            warnings,
             ..frame
         })
     }
@@ -374,6 +386,11 @@ impl Renderer {
             passes: Vec::new(),
             skipped,
             settings,
+            warnings: if scene.lights.is_empty() {
+                vec!["the scene has no light: the image is black (add one with scene.add_light, or load a file with KHR_lights_punctual lights)".to_string()]
+            } else {
+                Vec::new()
+            },
             rsm: captured_rsm,
             vsgls: None,
             memory_bytes: Vec::new(),

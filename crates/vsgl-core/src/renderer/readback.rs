@@ -13,6 +13,9 @@ use crate::passes::aov_pack::{AovPackPass, PackEntry, PackSources, LDR_KIND, MAX
 pub(super) struct Aovs {
     pub float: Vec<(String, usize, Vec<f32>)>,
     pub ldr: Option<Vec<u8>>,
+    /// Pixels that see a surface and pixels whose image is not black (`None` when nothing was
+    /// packed, i.e. `aovs=[]`).
+    pub coverage: Option<(u32, u32)>,
 }
 
 /// Channels of a float AOV (4-byte words per pixel of any AOV).
@@ -32,8 +35,9 @@ pub(super) struct PendingAovs {
     counts_offset: u64,
 }
 
-/// Bytes of the non-finite counts (one u32 per pack entry) after the packed AOVs.
-const COUNTS_BYTES: u64 = MAX_ENTRIES as u64 * 4;
+/// Bytes of the counts after the packed AOVs: non-finite values per pack entry, then pixels
+/// that see a surface, then pixels whose image is not black (`wgsl/passes/aov_pack.wgsl`).
+const COUNTS_BYTES: u64 = (MAX_ENTRIES as u64 + 2) * 4;
 
 /// Records the packing of the AOVs `opts` asks for (all float AOVs the method makes when it
 /// names none) and their copy into the staging buffer `kept` (made or resized as needed).
@@ -61,11 +65,11 @@ pub(super) fn record_aovs(rec: &mut Recorder<'_>, pack: &AovPackPass, opts: &Ren
     // Every word is written by the pack pass: no clear needed on reuse.
     let packed = rec.storage_written("aov_pack_buffer", bytes);
     // Zeroed for every frame (storage() clears a kept buffer).
-    let nonfinite = rec.storage("aov_nonfinite_count_buffer", COUNTS_BYTES);
-    pack.record(rec, src, &entries, &packed, &nonfinite, size);
+    let counts = rec.storage("aov_count_buffer", COUNTS_BYTES);
+    pack.record(rec, src, &entries, &packed, &counts, size);
     let staging = kept_staging_buffer(rec.gpu, kept, "aov_readback_staging_buffer", bytes + COUNTS_BYTES);
     rec.enc.copy_buffer_to_buffer(&packed, 0, &staging, 0, bytes);
-    rec.enc.copy_buffer_to_buffer(&nonfinite, 0, &staging, bytes, COUNTS_BYTES);
+    rec.enc.copy_buffer_to_buffer(&counts, 0, &staging, bytes, COUNTS_BYTES);
     PendingAovs { layout, staging: Some(staging), pixels, counts_offset: bytes }
 }
 
@@ -73,13 +77,14 @@ impl PendingAovs {
     /// Waits for the frame's submission (not for later ones) and splits the staging buffer
     /// into the AOVs; an AOV with a NaN or Inf value is an [`Error::NonFinite`] naming it.
     pub(super) fn read(self, gpu: &Gpu, submission: &wgpu::SubmissionIndex) -> Result<Aovs> {
-        let mut out = Aovs { float: Vec::new(), ldr: None };
+        let mut out = Aovs { float: Vec::new(), ldr: None, coverage: None };
         let Some(staging) = self.staging else { return Ok(out) };
         let mut nonfinite: Vec<(&str, u32)> = Vec::new();
         // One copy of each AOV, straight out of the mapped memory.
         read_staging_with(gpu, &staging, staging.size(), Some(submission), "readback", |bytes| {
             let counts: Vec<u32> = bytemuck::pod_collect_to_vec(&bytes[self.counts_offset as usize..(self.counts_offset + COUNTS_BYTES) as usize]);
             nonfinite = self.layout.iter().zip(&counts).filter(|(_, c)| **c > 0).map(|((name, _, _), c)| (*name, *c)).collect();
+            out.coverage = Some((counts[MAX_ENTRIES], counts[MAX_ENTRIES + 1]));
             if !nonfinite.is_empty() {
                 return;
             }
