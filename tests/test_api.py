@@ -116,7 +116,7 @@ def test_aovs_reads_back_only_what_is_asked_and_the_same_values(renderer, method
             np.testing.assert_array_equal(frame.aov(name), full.aov(name), err_msg=f"{method}: {name}")
         left_out = [a for a in full.aovs if a not in asked]
         for name in left_out:
-            with pytest.raises(ValueError, match="aovs= left it out"):
+            with pytest.raises(ValueError, match="aovs= did not name it"):
                 frame.aov(name)
     if method != "direct":
         assert full.aov("indirect").max() > 0.0, "the comparison above would be vacuous"

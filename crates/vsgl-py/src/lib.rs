@@ -445,10 +445,15 @@ impl PyFrame {
             _ => {
                 let mut ask: Vec<&str> = read.iter().map(String::as_str).collect();
                 ask.push(name);
+                // AOVs made only on request (such as "ldr") are not in the default set.
+                let default_too = if vsgl_core::renderer::ON_REQUEST_AOVS.contains(&name) {
+                    format!("({name:?} is read back only when named)")
+                } else {
+                    "or leave aovs out to read back every AOV the method makes".to_string()
+                };
                 argument_error(format!(
-                    "name: AOV {name:?} was not read back (the render's aovs= left it out); ask for it \
-                     with render(..., aovs={ask:?}), or leave aovs out to read back every AOV the \
-                     method makes; read back: {available}"
+                    "name: AOV {name:?} was not read back (the render's aovs= did not name it); ask for it \
+                     with render(..., aovs={ask:?}), {default_too}; read back: {available}"
                 ))
             }
         })

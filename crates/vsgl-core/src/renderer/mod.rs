@@ -8,7 +8,7 @@ mod options;
 mod readback;
 
 pub use frame::Frame;
-pub use options::{RenderOptions, AOV_NAMES};
+pub use options::{RenderOptions, AOV_NAMES, ON_REQUEST_AOVS};
 
 use crate::error::{Error, Result};
 use crate::frame::uniforms::{frame_uniforms, light_raw, light_view_proj};
