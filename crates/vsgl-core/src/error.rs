@@ -23,6 +23,9 @@ pub enum Error {
     /// message names the AOVs and counts. vsgl never hands such a frame out.
     #[error("{message}; the inputs are beyond what f32 shading represents (extreme intensities or scales), or this is a bug in vsgl: please report it with the scene and settings")]
     NonFinite { message: String },
+    /// A long render stopped between GPU batches at the caller's request (Ctrl-C).
+    #[error("{0}")]
+    Interrupted(String),
     /// A bad argument value, naming the argument and what was expected.
     #[error("{argument}: {message}")]
     InvalidArgument { argument: String, message: String },

@@ -50,6 +50,7 @@ pub fn to_py(e: Error) -> PyErr {
         Error::ShaderCompile { .. } => ShaderError::new_err(msg),
         Error::Validation { .. } | Error::OutOfMemory { .. } => GpuError::new_err(msg),
         Error::NonFinite { .. } => NumericsError::new_err(msg),
+        Error::Interrupted(_) => pyo3::exceptions::PyKeyboardInterrupt::new_err(msg),
         Error::InvalidArgument { .. } => argument_error(msg),
     }
 }

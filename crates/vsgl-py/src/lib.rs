@@ -350,7 +350,8 @@ impl PyFrameSequence {
         }
         let (r, scene, cam, opts) = (&self.renderer, &st.scene, st.camera, &self.opts);
         // The submission reads nothing of the scene afterwards: the next item may edit it.
-        let submitted = py.detach(|| r.submit(scene, cam.as_ref(), opts)).map_err(to_py)?;
+        let (opts, interrupt) = interruptible(opts.clone());
+        let submitted = py.detach(|| r.submit(scene, cam.as_ref(), &opts)).map_err(|e| interrupt.raise(e))?;
         Ok(Some(submitted))
     }
 }
@@ -692,7 +693,8 @@ impl PyRenderer {
         let s: &Scene = &scene.inner;
         let cam = camera.map(|c| c.inner);
         let r = &self.inner;
-        let frame = py.detach(|| r.render(s, cam.as_ref(), &opts)).map_err(to_py)?;
+        let (opts, interrupt) = interruptible(opts);
+        let frame = py.detach(|| r.render(s, cam.as_ref(), &opts)).map_err(|e| interrupt.raise(e))?;
         PyFrame::new(py, frame)
     }
     /// Renders a sequence: `frames` is an iterable of dicts, each of which may set `"camera"`
@@ -723,6 +725,36 @@ impl PyRenderer {
     fn __repr__(&self) -> String {
         format!("Renderer(width={}, height={}, adapter={:?})", self.inner.width, self.inner.height, self.inner.gpu.adapter.name)
     }
+}
+
+/// The Python exception a render's stop check caught (KeyboardInterrupt for Ctrl-C, or what a
+/// signal handler raised), to raise in place of the core's `Interrupted`.
+#[derive(Clone, Default)]
+struct Interrupt(Arc<std::sync::Mutex<Option<PyErr>>>);
+
+impl Interrupt {
+    fn raise(&self, e: vsgl_core::Error) -> PyErr {
+        match e {
+            vsgl_core::Error::Interrupted(_) => self.0.lock().unwrap_or_else(|p| p.into_inner()).take().unwrap_or_else(|| to_py(e)),
+            e => to_py(e),
+        }
+    }
+}
+
+/// `opts` with a stop check that runs Python's signal handlers between the GPU batches of a
+/// long render (the GIL is taken only for that), so Ctrl-C stops a `pathtrace` or `reference`
+/// render within a batch and the renderer stays usable.
+fn interruptible(mut opts: RenderOptions) -> (RenderOptions, Interrupt) {
+    let interrupt = Interrupt::default();
+    let slot = interrupt.clone();
+    opts.stop = Some(vsgl_core::renderer::StopCheck(Arc::new(move || {
+        Python::attach(|py| py.check_signals()).map_err(|e| {
+            let message = e.to_string();
+            *slot.0.lock().unwrap_or_else(|p| p.into_inner()) = Some(e);
+            vsgl_core::Error::Interrupted(message)
+        })
+    })));
+    (opts, interrupt)
 }
 
 /// The settings of `render` and `render_sequence` as the core takes them.
@@ -833,6 +865,10 @@ fn builtin_scene(name: &str) -> PyResult<PyScene> {
 #[pymodule(gil_used = false)]
 fn _vsgl(m: &Bound<'_, PyModule>) -> PyResult<()> {
     let py = m.py();
+    // Load NumPy's C API now, at import: loading it lazily with the first frame runs Python
+    // code (numpy's version check) that a pending KeyboardInterrupt can fail, which the numpy
+    // crate turns into a panic.
+    PyArray1::<f32>::zeros(py, [0], false);
     m.add("__version__", env!("CARGO_PKG_VERSION"))?;
     m.add("VsglError", py.get_type::<errors::VsglError>())?;
     m.add("SceneError", py.get_type::<errors::SceneError>())?;

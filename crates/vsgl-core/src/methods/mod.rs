@@ -184,6 +184,8 @@ pub struct FrameContext<'a> {
     pub stderr: Option<wgpu::Buffer>,
     /// Extra `frame.settings` rows the method learnt while recording.
     pub settings: Vec<(String, String)>,
+    /// Asked between the GPU batches of long renders; an error stops the render.
+    pub stop: Option<&'a crate::renderer::StopCheck>,
 }
 
 impl FrameContext<'_> {

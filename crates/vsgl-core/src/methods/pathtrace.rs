@@ -14,7 +14,7 @@ pub const INFO: MethodInfo = MethodInfo {
     direct_light: DirectLight::ByMethod,
     indirect: true,
     extra_aovs: &["stderr"],
-    configure: |o| Ok(Box::new(PathTrace { options: o.clone(), spp: o.u32("spp")?, seed: o.u32("seed")? })),
+    configure: |o| Ok(Box::new(PathTrace { options: o.clone(), spp: o.u32("spp")?, seed: o.u32("seed")?, time_budget_s: o.f32("time_budget_s")? as f64 })),
 };
 
 const OPTIONS: &[OptionSpec] = &[
@@ -26,12 +26,20 @@ const OPTIONS: &[OptionSpec] = &[
         note: "",
     },
     common::SEED,
+    OptionSpec {
+        name: "time_budget_s",
+        kind: OptionKind::Float { min: 0.0, min_exclusive: false },
+        default: OptionValue::Float(0.0),
+        help: "stop adding samples after this many seconds (0: no budget); frame.settings['spp_done'] says how many were taken",
+        note: "",
+    },
 ];
 
 struct PathTrace {
     options: Options,
     spp: u32,
     seed: u32,
+    time_budget_s: f64,
 }
 
 impl Method for PathTrace {
@@ -45,8 +53,11 @@ impl Method for PathTrace {
             gbuffer: ctx.gbuffer,
             ids: &ctx.visibility.ids,
             features: ctx.features,
+            stop: ctx.stop,
+            time_budget_s: (self.time_budget_s > 0.0).then_some(self.time_budget_s),
         };
         let out = pass.record(&mut ctx.rec, &input, ctx.indirect, ctx.direct, self.spp, self.seed, ctx.size)?;
+        ctx.settings.push(("spp_done".into(), out.spp_done.to_string()));
         if !out.bvh_built {
             ctx.skip("bvh_build", "the BVH built for this scene upload is reused");
         }

@@ -73,6 +73,9 @@ impl Method for Reference {
                     // Submit this batch on its own so no submission runs for long.
                     ctx.submit_so_far();
                     gpu.wait("reference batch")?;
+                    if let Some(stop) = ctx.stop {
+                        stop.check()?;
+                    }
                 }
             }
             Ok(())

@@ -20,6 +20,8 @@ const WORKGROUP: u32 = 8;
 const PATHS_PER_BATCH: u64 = 1 << 24;
 /// Submissions queued before the CPU waits for the GPU (bounds queued work and memory).
 const SUBMISSIONS_IN_FLIGHT: u32 = 4;
+/// A wait for the queued batches longer than this makes the path tracer queue one at a time.
+const SLOW_WAIT: std::time::Duration = std::time::Duration::from_millis(250);
 /// Most samples one thread takes in one dispatch (bounds a dispatch on tiny images too).
 const MAX_SAMPLES_PER_DISPATCH: u32 = 1024;
 
@@ -41,6 +43,10 @@ pub struct PathTraceInputs<'a> {
     pub gscene: &'a GpuScene,
     pub gbuffer: &'a GBuffer,
     pub ids: &'a wgpu::TextureView,
+    /// Asked between batches; an error stops the render.
+    pub stop: Option<&'a crate::renderer::StopCheck>,
+    /// Stop adding samples once this many seconds have passed (the mean so far is the image).
+    pub time_budget_s: Option<f64>,
     /// The plan's features: no texture fetches at bounce points without textured materials,
     /// no tangent frames without normal maps.
     pub features: ShaderFeatures,
@@ -56,6 +62,8 @@ pub struct PathTraceOutput {
     pub bvh_depth: usize,
     /// Samples per dispatch (the last may have fewer).
     pub samples_per_batch: u32,
+    /// Samples per pixel taken (fewer than asked when a time budget ended the sampling).
+    pub spp_done: u32,
 }
 
 pub struct PathTracePass {
@@ -189,28 +197,46 @@ impl PathTracePass {
         // `frame.passes` names the untextured variant of the bounce pass (timed as `pathtrace`).
         let indirect_label = if input.features.textures { "pathtrace" } else { "pathtrace[untextured]" };
         let per_batch = (PATHS_PER_BATCH / pixels.max(1)).clamp(1, MAX_SAMPLES_PER_DISPATCH as u64) as u32;
+        let started = std::time::Instant::now();
         let mut done = 0u32;
         let mut batch = 0u32;
+        // Batches queued before waiting: a few keep a fast GPU busy; on a device where one wait
+        // takes long (lavapipe), one at a time, so a stop or the time budget is seen within
+        // about one batch. Only the waiting adapts: batch sizes, and so the image, do not.
+        let mut in_flight = SUBMISSIONS_IN_FLIGHT;
         while done < spp {
             let count = per_batch.min(spp - done);
             if done > 0 {
                 // Submit what is recorded so far on its own, so no submission runs for long.
                 rec.submit_so_far();
                 batch += 1;
-                if batch % SUBMISSIONS_IN_FLIGHT == 0 {
+                if batch % in_flight == 0 {
+                    let waited = std::time::Instant::now();
                     gpu.wait("pathtrace batch")?;
+                    if waited.elapsed() > SLOW_WAIT {
+                        in_flight = 1;
+                    }
+                }
+                // Between batches: the caller may stop the render (Ctrl-C), and a time budget
+                // ends the sampling with the samples taken so far (a valid, noisier estimate).
+                if let Some(stop) = input.stop {
+                    stop.check()?;
+                }
+                if input.time_budget_s.is_some_and(|b| started.elapsed().as_secs_f64() >= b) {
+                    break;
                 }
             }
             dispatch(rec, indirect_label, indirect_pipeline, params(done, count));
             done += count;
         }
-        dispatch(rec, "pathtrace_resolve", &self.resolve.get(gpu, &flags), params(spp, 0));
+        dispatch(rec, "pathtrace_resolve", &self.resolve.get(gpu, &flags), params(done, 0));
         Ok(PathTraceOutput {
             stderr,
             bvh_built,
             bvh_nodes: bvh.node_count,
             bvh_depth: bvh.depth,
             samples_per_batch: per_batch,
+            spp_done: done,
         })
     }
 }

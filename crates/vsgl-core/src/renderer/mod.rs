@@ -8,7 +8,7 @@ mod options;
 mod readback;
 
 pub use frame::Frame;
-pub use options::{RenderOptions, AOV_NAMES, ON_REQUEST_AOVS};
+pub use options::{RenderOptions, StopCheck, AOV_NAMES, ON_REQUEST_AOVS};
 
 use crate::error::{Error, Result};
 use crate::frame::uniforms::{frame_uniforms, light_raw, light_view_proj};
@@ -340,6 +340,7 @@ impl Renderer {
             captured_rsm: None,
             stderr: None,
             settings: Vec::new(),
+            stop: job.opts.stop.as_ref(),
         };
         job.method.record(&mut ctx)?;
         let FrameContext { mut rec, skipped: method_skipped, vsgls, captured_rsm, stderr, settings: method_settings, .. } = ctx;

@@ -25,6 +25,26 @@ pub struct RenderOptions {
     pub aovs: Option<Vec<String>>,
     /// The method's keyword options as given (validated by [`RenderOptions::resolve`]).
     pub options: Vec<(String, OptionValue)>,
+    /// Asked between the GPU batches of long renders (`pathtrace`, `reference`): an error
+    /// stops the render there (Python: Ctrl-C raises `KeyboardInterrupt` within a batch).
+    pub stop: Option<StopCheck>,
+}
+
+/// A check that a long render makes between GPU batches; `Err` stops it (e.g.
+/// [`Error::Interrupted`] when the user pressed Ctrl-C).
+#[derive(Clone)]
+pub struct StopCheck(pub std::sync::Arc<dyn Fn() -> Result<()> + Send + Sync>);
+
+impl StopCheck {
+    pub fn check(&self) -> Result<()> {
+        (self.0)()
+    }
+}
+
+impl std::fmt::Debug for StopCheck {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.write_str("StopCheck")
+    }
 }
 
 impl Default for RenderOptions {
@@ -35,7 +55,7 @@ impl Default for RenderOptions {
 
 impl RenderOptions {
     pub fn new(method: &str) -> Self {
-        Self { method: method.into(), plan: "auto".into(), aovs: None, options: Vec::new() }
+        Self { method: method.into(), plan: "auto".into(), aovs: None, options: Vec::new(), stop: None }
     }
 
     /// Sets one keyword option of the method (`RenderOptions::new("vsgl").set("num_lights", 64u32)`).
