@@ -1,4 +1,7 @@
-"""Point and directional lights (issue 16): the Python classes and the glTF loader."""
+"""Point and directional lights (issue 16): the Python classes, the glTF loader, direct light
+against closed forms (KHR_lights_punctual units), point-light cube shadows on every face,
+additivity of several lights, NaN/Inf safety, and the clear refusal of the virtual-light
+methods, which take spot lights only so far."""
 
 from __future__ import annotations
 
@@ -9,6 +12,14 @@ import pytest
 
 import vsgl
 import gltf_fixtures as fx
+from scene_builders import write_quad, write_quads
+
+SIZE = 33  # odd, so the centre pixel's ray is exactly the optical axis
+
+
+def centre(frame: vsgl.Frame, aov: str = "direct") -> np.ndarray:
+    return frame.aov(aov)[SIZE // 2, SIZE // 2]
+
 
 # ------------------------------------------------------------------------------------------
 # API and loader
@@ -68,3 +79,234 @@ def test_loader_reads_point_and_directional_lights_with_gltf_conventions(tmp_pat
     np.testing.assert_allclose(sun.direction, (0, -1, 0), atol=1e-6)
     assert sun.intensity == 2.0 and sun.color == (0.5, 1.0, 1.0)
     assert any("range = 3 is ignored" in w for w in scene.warnings), scene.warnings
+
+
+# ------------------------------------------------------------------------------------------
+# Direct light against closed forms
+# ------------------------------------------------------------------------------------------
+
+
+@pytest.mark.parametrize("method", ["direct", "pathtrace"])
+@pytest.mark.parametrize("rho,intensity", [(0.8, 20.0), (0.3, 1e4)])
+def test_diffuse_plane_under_point_light_matches_closed_form(tmp_path, make_renderer, method, rho, intensity):
+    d = 2.0
+    # specularFactor 0: a purely Lambertian plane, so L = ρ/π · I/d² exactly (l = n).
+    scene = vsgl.Scene.load(write_quad(tmp_path, half_size=4.0, base_color=(rho, rho, rho), specular=0.0))
+    scene.add_light(vsgl.PointLight(position=(0, d, 0), intensity=intensity))
+    cam = vsgl.Camera.look_at(eye=(0, 1.5 * d, 0.5), target=(0, 0, 0), up=(0, 0, -1), fov_y_deg=30)
+    frame = make_renderer(SIZE, SIZE).render(scene, camera=cam, method=method, **({"spp": 1} if method == "pathtrace" else {}))
+    np.testing.assert_allclose(centre(frame), rho / math.pi * intensity / d**2, rtol=0.01)
+
+
+@pytest.mark.parametrize("method", ["direct", "pathtrace"])
+@pytest.mark.parametrize("theta_deg", [0.0, 60.0, 80.0])
+def test_diffuse_plane_under_directional_light_matches_closed_form(tmp_path, make_renderer, method, theta_deg):
+    rho, e = 0.7, 3.0
+    scene = vsgl.Scene.load(write_quad(tmp_path, half_size=4.0, base_color=(rho, rho, rho), specular=0.0))
+    t = math.radians(theta_deg)
+    scene.add_light(vsgl.DirectionalLight(direction=(math.sin(t), -math.cos(t), 0), intensity=e))
+    cam = vsgl.Camera.look_at(eye=(0, 3, 0), target=(0, 0, 0), up=(0, 0, -1), fov_y_deg=30)
+    frame = make_renderer(SIZE, SIZE).render(scene, camera=cam, method=method, **({"spp": 1} if method == "pathtrace" else {}))
+    # Lambert under an illuminance E at θ from the normal: L = ρ/π · E · cosθ, everywhere.
+    expected = rho / math.pi * e * math.cos(t)
+    np.testing.assert_allclose(centre(frame), expected, rtol=0.01)
+    # No falloff and no self-shadowing anywhere on the plane (the shadow map's slope bias).
+    np.testing.assert_allclose(frame.aov("direct"), expected, rtol=0.01)
+
+
+@pytest.mark.parametrize("method", ["direct", "pathtrace"])
+def test_occluder_under_directional_light_casts_its_shadow(tmp_path, make_renderer, method):
+    rho, e = 0.6, 2.0
+    t = math.radians(30.0)
+    quads = [square((0, 0, 0), (0, 1, 0), 3.0, base_color=(rho, rho, rho), name="floor"),
+             square((0, 1, 0), (0, 1, 0), 0.5, name="occluder")]
+    scene = vsgl.Scene.load(write_quads(tmp_path, quads, name="sun.gltf"))
+    scene.add_light(vsgl.DirectionalLight(direction=(math.sin(t), -math.cos(t), 0), intensity=e))
+    r = make_renderer(SIZE, SIZE)
+    opts = {"spp": 1} if method == "pathtrace" else {}
+    # The occluder's shadow is centred tan30° × its height downwind; seen past the occluder.
+    shadow = (math.tan(t), 0.0, 0.0)
+    f = r.render(scene, camera=vsgl.Camera.look_at(eye=(shadow[0] + 2.0, 2.5, 0), target=shadow, fov_y_deg=20), method=method, **opts)
+    lit = rho / math.pi * e * math.cos(t)
+    assert centre(f).max() < 0.01 * lit, f"{centre(f)} not shadowed"
+    f = r.render(scene, camera=vsgl.Camera.look_at(eye=(-1.5, 2.5, 2.0), target=(-1.5, 0, 0), fov_y_deg=20), method=method, **opts)
+    np.testing.assert_allclose(centre(f), lit, rtol=0.01)
+
+
+# ------------------------------------------------------------------------------------------
+# Point-light shadows: every cube face
+# ------------------------------------------------------------------------------------------
+
+H = 1.0  # half side of the box around the light
+AXES = [np.eye(3)[k] for k in range(3)]
+
+
+def square(c, n, half, **kw) -> dict:
+    """A square quad centred at c with unit normal n (corners ordered so that the quad's
+    normal is n) and half side `half`."""
+    n = np.asarray(n, float)
+    u = np.cross(n, AXES[1] if abs(n[1]) < 0.9 else AXES[0])
+    u /= np.linalg.norm(u)
+    v = np.cross(n, u)  # u × v = n
+    c = np.asarray(c, float)
+    corners = [c - half * u - half * v, c + half * u - half * v, c + half * u + half * v, c - half * u + half * v]
+    return {"corners": [tuple(p) for p in corners], "specular": 0.0, **kw}
+
+
+FACES = [(k, s) for k in range(3) for s in (1.0, -1.0)]
+
+
+def off_axis(k: int, b: float, c: float) -> np.ndarray:
+    """b along axis (k + 1) % 3 plus c along axis (k + 2) % 3."""
+    return b * AXES[(k + 1) % 3] + c * AXES[(k + 2) % 3]
+
+
+def box_scene(tmp_path, occluders: bool, rho: float = 0.6) -> vsgl.Scene:
+    """Six inward-facing walls of a cube of half side H around the origin; with `occluders`,
+    a small square (half side 0.05·H) halfway to each wall, off the axis by (0.15, 0.05)·H so
+    that its shadow (centred at (0.3, 0.1)·H on the wall, half side 0.1·H) is asymmetric: a
+    cube face looked up flipped or transposed puts it elsewhere."""
+    quads = [square(s * H * AXES[k], -s * AXES[k], H, base_color=(rho, rho, rho), name=f"wall{k}{s:+.0f}") for k, s in FACES]
+    if occluders:
+        quads += [square(s * 0.5 * H * AXES[k] + off_axis(k, 0.15 * H, 0.05 * H), -s * AXES[k], 0.05 * H, name=f"occluder{k}{s:+.0f}") for k, s in FACES]
+    name = "box_occluded.gltf" if occluders else "box.gltf"
+    return vsgl.Scene.load(write_quads(tmp_path, quads, name=name))
+
+
+def wall_camera(k: int, s: float, target: np.ndarray) -> vsgl.Camera:
+    """A camera inside the box looking at `target` on wall (k, s) obliquely, past the
+    occluders: from 0.2·H along the wall's axis and 0.7·H along both other axes."""
+    others = [j for j in range(3) if j != k]
+    eye = s * 0.2 * H * AXES[k] + 0.7 * H * (AXES[others[0]] + AXES[others[1]])
+    up = AXES[k] if k != 1 else AXES[2]
+    return vsgl.Camera.look_at(eye=tuple(eye), target=tuple(target), up=tuple(up), fov_y_deg=20)
+
+
+@pytest.mark.parametrize("method", ["direct", "pathtrace"])
+def test_point_light_in_a_closed_box_lights_six_walls_and_occluders_shadow_each_face(tmp_path, make_renderer, method):
+    rho, intensity = 0.6, 5.0
+    r = make_renderer(SIZE, SIZE)
+    light = vsgl.PointLight(position=(0, 0, 0), intensity=intensity)
+    open_box, shadowed_box = box_scene(tmp_path, occluders=False, rho=rho), box_scene(tmp_path, occluders=True, rho=rho)
+    for scene in (open_box, shadowed_box):
+        scene.lights = [light]
+    opts = {"spp": 1} if method == "pathtrace" else {}
+    lit = rho / math.pi * intensity / H**2
+    for k, s in FACES:
+        wall_centre = s * H * AXES[k]
+        # Without occluders each wall's centre gets ρ/π·I/H² (normal incidence at distance H).
+        f = r.render(open_box, camera=wall_camera(k, s, wall_centre), method=method, **opts)
+        np.testing.assert_allclose(centre(f), lit, rtol=0.01, err_msg=f"wall {k}{s:+}")
+        # The occluder darkens the centre of its shadow...
+        f = r.render(shadowed_box, camera=wall_camera(k, s, wall_centre + off_axis(k, 0.3 * H, 0.1 * H)), method=method, **opts)
+        assert centre(f).max() < 0.01 * lit, f"wall {k}{s:+}: {centre(f)} not shadowed"
+        # ... and not the mirror point through the wall's centre, lit by ρ/π·I·cosθ/d² with
+        # d² = (1 + 0.3² + 0.1²)·H², cosθ = H/d.
+        f = r.render(shadowed_box, camera=wall_camera(k, s, wall_centre - off_axis(k, 0.3 * H, 0.1 * H)), method=method, **opts)
+        d2 = 1.1 * H**2
+        np.testing.assert_allclose(centre(f), rho / math.pi * intensity * (H / math.sqrt(d2)) / d2, rtol=0.01, err_msg=f"wall {k}{s:+} mirror point")
+
+
+# ------------------------------------------------------------------------------------------
+# Several lights add up
+# ------------------------------------------------------------------------------------------
+
+
+def three_light_scene(tmp_path) -> tuple[vsgl.Scene, list]:
+    quads = [
+        square((0, 0, 0), (0, 1, 0), 2.0, name="floor"),
+        square((0, 1, -2), (0, 0, 1), 2.0, base_color=(0.3, 0.6, 0.9), name="back"),
+        square((-2, 1, 0), (1, 0, 0), 2.0, base_color=(0.9, 0.3, 0.3), name="left"),
+        square((0.3, 0.6, 0.2), (0, 1, 0), 0.3, name="table"),
+    ]
+    for q in quads:
+        q.pop("specular")  # glossy enough to exercise the specular terms too
+        q["roughness"] = 0.5
+    scene = vsgl.Scene.load(write_quads(tmp_path, quads, name="three.gltf"))
+    lights = [
+        vsgl.SpotLight(position=(0.5, 2.5, 0.5), direction=(-0.2, -1, -0.1), intensity=8.0, inner_cone_deg=35, outer_cone_deg=50),
+        vsgl.PointLight(position=(-1.0, 1.5, 1.0), intensity=3.0, color=(1, 0.8, 0.6)),
+        vsgl.DirectionalLight(direction=(0.5, -1, -0.7), intensity=2.0, color=(0.6, 0.8, 1)),
+    ]
+    return scene, lights
+
+
+def test_direct_light_of_three_light_types_adds_up(tmp_path, renderer):
+    scene, lights = three_light_scene(tmp_path)
+    cam = vsgl.Camera.look_at(eye=(1.5, 2.0, 3.0), target=(0, 0.5, 0), fov_y_deg=60)
+    scene.lights = lights
+    together = renderer.render(scene, camera=cam, method="direct").aov("direct").astype(np.float64)
+    parts = []
+    for light in lights:
+        scene.lights = [light]
+        parts.append(renderer.render(scene, camera=cam, method="direct").aov("direct").astype(np.float64))
+    assert all(p.max() > 0.05 * together.max() for p in parts), "every light must contribute"
+    # Same per-light terms, summed in another order: equal to float rounding.
+    np.testing.assert_allclose(together, sum(parts), rtol=1e-5, atol=1e-6 * together.max())
+
+
+def test_pathtrace_of_three_light_types_adds_up_within_its_error(tmp_path, renderer):
+    scene, lights = three_light_scene(tmp_path)
+    cam = vsgl.Camera.look_at(eye=(1.5, 2.0, 3.0), target=(0, 0.5, 0), fov_y_deg=60)
+    scene.lights = lights
+    opts = dict(method="pathtrace", spp=16)
+    f = renderer.render(scene, camera=cam, seed=1, **opts)
+    together, var = f.image.astype(np.float64), f.aov("stderr").astype(np.float64) ** 2
+    total = np.zeros_like(together)
+    for i, light in enumerate(lights):
+        scene.lights = [light]
+        g = renderer.render(scene, camera=cam, seed=10 + i, **opts)
+        total += g.image
+        var += g.aov("stderr").astype(np.float64) ** 2
+    lit = var > 0
+    assert lit.mean() > 0.5
+    # Independent estimates: the difference has variance Σσ². Over all pixels the mean
+    # difference is within 3σ of its own standard error, and per pixel at most 1% exceed 4σ.
+    diff = together - total
+    assert abs(diff[lit].mean()) < 3.0 * math.sqrt(var[lit].sum()) / lit.sum()
+    assert (np.abs(diff[lit]) > 4.0 * np.sqrt(var[lit])).mean() < 0.01
+
+
+# ------------------------------------------------------------------------------------------
+# NaN / Inf safety
+# ------------------------------------------------------------------------------------------
+
+
+def _assert_finite(frame: vsgl.Frame) -> None:
+    for name in frame.aovs:
+        assert np.isfinite(frame.aov(name)).all(), f"AOV {name} has NaN/Inf"
+
+
+@pytest.mark.parametrize("method", ["direct", "pathtrace"])
+def test_awkward_light_placements_are_finite(tmp_path, renderer, method):
+    opts = {"spp": 2} if method == "pathtrace" else {}
+    scene = vsgl.scenes.cornell_box()
+    cam = scene.cameras[0] if scene.cameras else None
+    # A point light inside the tall block (x ∈ [−0.65, −0.05], y ∈ [0, 1.2], z ∈ [−0.6, 0]).
+    scene.lights = [vsgl.PointLight(position=(-0.35, 0.6, -0.3), intensity=5.0)]
+    _assert_finite(renderer.render(scene, camera=cam, method=method, **opts))
+    # A point light exactly at the camera, and one on a wall (x = 1 is a wall of the box).
+    eye = (0.0, 1.0, 1.5)
+    at_eye = vsgl.Camera.look_at(eye=eye, target=(0, 1, 0), fov_y_deg=60)
+    for position in [eye, (1.0, 1.0, 0.0), (-1.0, 1.0, 0.0)]:
+        scene.lights = [vsgl.PointLight(position=position, intensity=5.0)]
+        _assert_finite(renderer.render(scene, camera=at_eye, method=method, **opts))
+    # A directional light parallel to the floor and the back wall, and one along a wall's normal.
+    for direction in [(1, 0, 0), (0, -1, 0), (0, 0, -1)]:
+        scene.lights = [vsgl.DirectionalLight(direction=direction, intensity=2.0)]
+        _assert_finite(renderer.render(scene, camera=at_eye, method=method, **opts))
+
+
+# ------------------------------------------------------------------------------------------
+# Virtual-light methods: spot lights only so far
+# ------------------------------------------------------------------------------------------
+
+
+@pytest.mark.parametrize("method", ["vpl", "vsgl", "vsgl2", "reference"])
+@pytest.mark.parametrize("light", [vsgl.PointLight(position=(0, 1, 0), intensity=1.0), vsgl.DirectionalLight(direction=(0, -1, 0), intensity=1.0)])
+def test_virtual_light_methods_refuse_other_light_types_by_name(renderer, method, light):
+    scene = vsgl.scenes.cornell_box()
+    scene.add_light(light)
+    kind = "point" if isinstance(light, vsgl.PointLight) else "directional"
+    with pytest.raises(vsgl.ArgumentError, match=rf"scene\.lights\[1\].*{kind} lights.*spot lights only"):
+        renderer.render(scene, method=method, rsm_size=32, **({"num_lights": 16} if "num_lights" in vsgl.method_options(method) else {}))

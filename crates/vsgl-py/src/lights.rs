@@ -9,7 +9,7 @@ use vsgl_core::scene::{DirectionalLight, Light, PointLight};
 /// A positive, finite f32 `intensity` in `unit`.
 fn intensity(x: f64, unit: &str) -> PyResult<f32> {
     let x = finite("intensity", x)?;
-    if !(x > 0.0) || x > f32::MAX as f64 {
+    if x <= 0.0 || x > f32::MAX as f64 {
         return Err(argument_error(format!("intensity: must be positive ({unit}), got {x}")));
     }
     Ok(x as f32)
@@ -73,7 +73,7 @@ impl PyDirectionalLight {
     #[pyo3(signature = (direction, intensity, color=vec![1.0, 1.0, 1.0]))]
     fn new(direction: Vec<f64>, intensity: f64, color: Vec<f64>) -> PyResult<Self> {
         let direction = vec3("direction", direction)?;
-        if !(direction.length() > 0.0) {
+        if direction.length() == 0.0 {
             return Err(argument_error("direction: must be a non-zero vector"));
         }
         let intensity = self::intensity(intensity, "lux")?;

@@ -32,8 +32,21 @@ pub struct LightRsm<'a> {
 /// reason in `ctx.skipped`) when the scene has no light, so there is no indirect light.
 pub fn for_each_light(ctx: &mut FrameContext<'_>, s: &RsmSettings, mut per_light: impl FnMut(&mut FrameContext<'_>, &LightRsm<'_>) -> Result<()>) -> Result<bool> {
     if ctx.lights.is_empty() {
-        ctx.skip("indirect", "the scene has no spot light");
+        ctx.skip("indirect", "the scene has no light");
         return Ok(false);
+    }
+    // Only spot lights have an RSM so far (issue 16): refuse the others by name before
+    // anything is recorded, rather than leaving their indirect light out of the image.
+    if let Some((index, light)) = ctx.scene.lights.iter().enumerate().find(|(_, l)| l.as_spot().is_none()) {
+        return Err(crate::error::Error::invalid(
+            format!("scene.lights[{index}]"),
+            format!(
+                "{} lights have no reflective shadow map yet, so the virtual-light methods (vpl, vsgl, \
+                 vsgl2, reference) take spot lights only; method=\"direct\" and method=\"pathtrace\" render \
+                 spot, point and directional lights",
+                light.kind()
+            ),
+        ));
     }
     let n = s.size;
     let rsm = Rsm::new(&mut ctx.rec, n, ctx.features.specular, s.sampling);
@@ -41,7 +54,7 @@ pub fn for_each_light(ctx: &mut FrameContext<'_>, s: &RsmSettings, mut per_light
     let (visibility, material, flux) = (ctx.passes.get::<VisibilityPass>()?, ctx.passes.get::<MaterialPass>()?, ctx.passes.get::<RsmFluxPass>()?);
     let lights = ctx.lights;
     for (index, raw) in lights.iter().enumerate() {
-        let Some(spot) = ctx.scene.lights[index].as_spot() else { continue };
+        let Some(spot) = ctx.scene.lights[index].as_spot() else { continue }; // others refused above
         let view = light_view_uniforms(spot, ctx.gpu_scene.anchor, ctx.extent, n, ctx.gpu_scene.texture_layer_size);
         let view_buf = ctx.rec.uniform("rsm_view_uniform_buffer", &view);
         let light = ctx.rec.storage_init("spot_light_storage_buffer", bytemuck::bytes_of(raw));
