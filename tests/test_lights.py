@@ -1,7 +1,8 @@
 """Point and directional lights (issue 16): the Python classes, the glTF loader, direct light
 against closed forms (KHR_lights_punctual units), point-light cube shadows on every face,
-additivity of several lights, NaN/Inf safety, and the clear refusal of the virtual-light
-methods, which take spot lights only so far."""
+additivity of several lights, NaN/Inf safety, point lights in the virtual-light methods (six
+cube-face RSMs: total power, agreement with the path tracer, budget split), and the clear
+refusal of directional lights there."""
 
 from __future__ import annotations
 
@@ -298,15 +299,98 @@ def test_awkward_light_placements_are_finite(tmp_path, renderer, method):
 
 
 # ------------------------------------------------------------------------------------------
-# Virtual-light methods: spot lights only so far
+# Point lights in the virtual-light methods: six cube-face RSMs
+# ------------------------------------------------------------------------------------------
+
+
+@pytest.mark.parametrize("rsm_size", [32, 64])
+def test_point_light_rsm_flux_adds_up_to_4pi_i_in_a_closed_box(tmp_path, renderer, rsm_size):
+    rho, intensity = 0.6, 5.0
+    scene = box_scene(tmp_path, occluders=False, rho=rho)
+    # Off-centre, so the faces see the walls at different distances and angles.
+    scene.lights = [vsgl.PointLight(position=(0.1, -0.2, 0.15), intensity=intensity)]
+    frame = renderer.render(scene, method="vpl", num_lights=16, rsm_size=rsm_size, capture_rsm=True)
+    flux = frame.rsm("flux_diffuse")
+    assert flux.shape == (6 * rsm_size, rsm_size, 3), "the six cube faces, stacked"
+    # Every direction meets a wall: the RSM texels' flux sums to the light's power 4π·I,
+    # times the walls' R_d.
+    np.testing.assert_allclose(flux.astype(np.float64).sum(axis=(0, 1)), rho * 4.0 * math.pi * intensity, rtol=0.005)
+
+
+def test_point_light_indirect_light_of_reference_agrees_with_the_path_tracer(tmp_path, make_renderer):
+    """In a closed convex box nothing occludes a bounce, so the every-texel `reference` (made
+    from the six face RSMs) and the path tracer (no RSM at all) estimate the same integral."""
+    scene = box_scene(tmp_path, occluders=False)
+    scene.lights = [vsgl.PointLight(position=(0.1, -0.2, 0.15), intensity=5.0)]
+    cam = vsgl.Camera.look_at(eye=(0.5, 0.5, 0.9), target=(-1, -0.5, -1), fov_y_deg=70)
+    r = make_renderer(32, 24)
+    ref = r.render(scene, camera=cam, method="reference", rsm_size=64).aov("indirect").astype(np.float64)
+    pt = r.render(scene, camera=cam, method="pathtrace", spp=64)
+    est, err = pt.aov("indirect").astype(np.float64), pt.aov("stderr").astype(np.float64)
+    # Mean over the image: the path tracer's own error of the mean is ~0.1%; the reference's
+    # discretisation (64² texels per face) is below 1%.
+    assert abs(ref.mean() / est.mean() - 1.0) < 0.01 + 3.0 * math.sqrt((err**2).sum()) / err.size / est.mean()
+    # Per wall region too: quarters of the image within 3%.
+    h, w = ref.shape[:2]
+    for ys in (slice(0, h // 2), slice(h // 2, h)):
+        for xs in (slice(0, w // 2), slice(w // 2, w)):
+            assert ref[ys, xs].mean() == pytest.approx(est[ys, xs].mean(), rel=0.03)
+
+
+def test_vpl_with_a_point_light_converges_to_the_reference(tmp_path, renderer):
+    scene = box_scene(tmp_path, occluders=False)
+    scene.lights = [vsgl.PointLight(position=(0.1, -0.2, 0.15), intensity=5.0)]
+    cam = vsgl.Camera.look_at(eye=(0.5, 0.5, 0.9), target=(-1, -0.5, -1), fov_y_deg=70)
+    ref = renderer.render(scene, camera=cam, method="reference", rsm_size=32).aov("indirect").astype(np.float64)
+    # Same RSM: VPLs importance-sampled from it are an unbiased estimate of the reference sum.
+    vpl = np.mean([renderer.render(scene, camera=cam, method="vpl", num_lights=1024, rsm_size=32, seed=s).aov("indirect") for s in range(4)], axis=0)
+    assert vpl.mean() == pytest.approx(ref.mean(), rel=0.01)
+
+
+@pytest.mark.parametrize("method", ["vpl", "vsgl"])
+@pytest.mark.parametrize("num_lights", [16, 64, 4])
+def test_virtual_light_budget_split_over_a_point_lights_faces_adds_up(tmp_path, renderer, method, num_lights):
+    scene = box_scene(tmp_path, occluders=False)
+    scene.lights = [
+        vsgl.SpotLight(position=(0, 0.9, 0), direction=(0, -1, 0), intensity=3.0),
+        vsgl.PointLight(position=(0.1, -0.2, 0.15), intensity=5.0),
+    ]
+    cam = vsgl.Camera.look_at(eye=(0.5, 0.5, 0.9), target=(-1, -0.5, -1), fov_y_deg=70)
+    frame = renderer.render(scene, camera=cam, method=method, num_lights=num_lights, rsm_size=32)
+    spot, point = frame.settings["virtual_lights_per_light"].split(";")
+    assert int(spot) == num_lights
+    faces = [int(x) for x in point.split("+")]
+    assert len(faces) == 6 and max(faces) - min(faces) <= 1
+    # The point light's num_lights are shared by its faces (each gets at least one).
+    assert sum(faces) == max(num_lights, 6)
+    _assert_finite(frame)
+    assert frame.aov("indirect").max() > 0
+
+
+@pytest.mark.parametrize("method,low", [("vsgl", 0.8), ("vsgl2", 0.55)])
+def test_vsgl_methods_light_a_box_from_a_point_light(tmp_path, make_renderer, method, low):
+    """A smoke check, not an accuracy test: VSGLs approximate, and in this box they come out
+    low against `reference` (measured: vsgl 0.87, vsgl2 0.69 — two VSGLs per cube face; for
+    an upward spot light of 89° at the same place 0.89 and 0.84). Missing cube faces are
+    caught by the flux and path-tracer tests above, not here."""
+    scene = box_scene(tmp_path, occluders=False)
+    cam = vsgl.Camera.look_at(eye=(0.5, 0.5, 0.9), target=(-1, -0.5, -1), fov_y_deg=70)
+    r = make_renderer(32, 24)
+    scene.lights = [vsgl.PointLight(position=(0.1, -0.2, 0.15), intensity=5.0)]
+    ref = r.render(scene, camera=cam, method="reference", rsm_size=64).aov("indirect").mean()
+    opts = dict(num_lights=1024, rsm_size=64) if method == "vsgl" else dict(rsm_size=64)
+    got = r.render(scene, camera=cam, method=method, **opts).aov("indirect").mean()
+    assert low * ref < got < 1.05 * ref
+
+
+# ------------------------------------------------------------------------------------------
+# Virtual-light methods: no directional lights yet
 # ------------------------------------------------------------------------------------------
 
 
 @pytest.mark.parametrize("method", ["vpl", "vsgl", "vsgl2", "reference"])
-@pytest.mark.parametrize("light", [vsgl.PointLight(position=(0, 1, 0), intensity=1.0), vsgl.DirectionalLight(direction=(0, -1, 0), intensity=1.0)])
-def test_virtual_light_methods_refuse_other_light_types_by_name(renderer, method, light):
+def test_virtual_light_methods_refuse_directional_lights_by_name(renderer, method):
     scene = vsgl.scenes.cornell_box()
-    scene.add_light(light)
-    kind = "point" if isinstance(light, vsgl.PointLight) else "directional"
-    with pytest.raises(vsgl.ArgumentError, match=rf"scene\.lights\[1\].*{kind} lights.*spot lights only"):
+    scene.add_light(vsgl.DirectionalLight(direction=(0, -1, 0), intensity=1.0))
+    with pytest.raises(vsgl.ArgumentError, match=r"scene\.lights\[1\].*directional lights.*spot and point lights only"):
         renderer.render(scene, method=method, rsm_size=32, **({"num_lights": 16} if "num_lights" in vsgl.method_options(method) else {}))

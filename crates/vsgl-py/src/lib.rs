@@ -497,7 +497,8 @@ impl PyFrame {
         let structured = flat.call_method1("view", (dtype,))?;
         structured.call_method1("reshape", (data.len() / VSGL_FLOATS,))
     }
-    /// One buffer of the first light's reflective shadow map, (N, N, C) float32, when the
+    /// One buffer of the first light's reflective shadow map, (N, N, C) float32 ((6N, N, C)
+    /// for a point light: its six cube faces +X, −X, +Y, −Y, +Z, −Z stacked), when the
     /// frame was rendered with `capture_rsm=True`: position (relative to the light), normal,
     /// roughness, flux_diffuse (Φ·R_d), flux_specular (Φ·R_s), weight (Φ·(R_d+R_s) summed).
     fn rsm<'py>(&self, py: Python<'py>, name: &str) -> PyResult<Bound<'py, PyAny>> {
@@ -508,7 +509,9 @@ impl PyFrame {
             let names: Vec<&str> = buffers.iter().map(|(k, _, _)| k.as_str()).collect();
             argument_error(format!("name: unknown RSM buffer {name:?}; available: {}", names.join(", ")))
         })?;
-        Ok(PyArray1::from_slice(py, data).reshape([*n as usize, *n as usize, c])?.into_any())
+        // n rows per RSM: a point light's six cube faces are stacked along the first axis.
+        let rows = data.len() / (*n as usize * c).max(1);
+        Ok(PyArray1::from_slice(py, data).reshape([rows, *n as usize, c])?.into_any())
     }
     #[getter]
     fn width(&self) -> u32 {

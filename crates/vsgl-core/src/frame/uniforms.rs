@@ -245,6 +245,41 @@ pub fn directional_light_raw(light: &DirectionalLight, centre: DVec3, extent: f6
     }
 }
 
+/// The views of a light's reflective shadow maps, one per RSM: a spot light's over its cone
+/// ([`light_view_uniforms`]), a point light's six cube faces ([`cube_face_view_uniforms`],
+/// in [`CUBE_FACES`] order). A directional light has none yet (an orthographic RSM needs an
+/// orthographic material pass): empty.
+pub fn rsm_views(light: &Light, anchor: DVec3, extent: f64, size: u32, texture_layer_size: u32) -> Vec<FrameUniforms> {
+    match light {
+        Light::Spot(spot) => vec![light_view_uniforms(spot, anchor, extent, size, texture_layer_size)],
+        Light::Point(point) => (0..6).map(|face| cube_face_view_uniforms(point, face, anchor, extent, size, texture_layer_size)).collect(),
+        Light::Directional(_) => Vec::new(),
+    }
+}
+
+/// Face `face` of a point light's RSM cube: a square 90° perspective image from the light
+/// (tan 45° = 1, so `rsm_flux`'s texel solid angle (2/N)²cos³θ needs no other factor and the
+/// six faces' texels tile the sphere: Σ Δω → 4π). Rasterises anchor-relative vertices like
+/// the shadow cube; positions it writes are relative to the light.
+pub fn cube_face_view_uniforms(light: &PointLight, face: usize, anchor: DVec3, extent: f64, size: u32, texture_layer_size: u32) -> FrameUniforms {
+    let (forward, up) = CUBE_FACES[face];
+    let right = forward.cross(up);
+    let v4 = |v: DVec3| [v.x as f32, v.y as f32, v.z as f32, 0.0];
+    FrameUniforms {
+        view_proj: cube_face_view_proj(light.position - anchor, face, extent).to_cols_array_2d(),
+        cam_right: v4(right),
+        cam_up: v4(up),
+        cam_forward: v4(forward),
+        view_origin: v4(light.position - anchor),
+        size: [size, size],
+        light_count: 1,
+        texture_layer_size,
+        scene_extent: extent as f32,
+        shadow_size: size as f32,
+        _pad: [0.0; 2],
+    }
+}
+
 /// The view of a spot light's reflective shadow map: a square perspective image over the outer
 /// cone (at most [`SHADOW_FOV_MAX`]), rays starting at the light. `anchor` is the scene
 /// upload's: the view rasterises anchor-relative vertices, and the positions it writes are
