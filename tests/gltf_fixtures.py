@@ -294,8 +294,9 @@ def write_hierarchy(dirpath) -> pathlib.Path:
 
 def write_spot_light_camera(dirpath) -> pathlib.Path:
     """A spot light at (0,5,0) pointing down (-y), intensity 450, cones 0.3/0.5, and a
-    perspective camera (yfov 0.8) at (0,1,10) looking down -z; plus a point light
-    (warning, skipped)."""
+    perspective camera (yfov 0.8) at (0,1,10) looking down -z; plus a point light of 10 cd at
+    the origin whose ``range`` 3 is ignored (warning), and a directional light of 2 lux on a
+    node at (1,2,3) rotated like the spot (light travelling along -y)."""
     s = math.sqrt(0.5)
     d = pathlib.Path(dirpath)
     path = _quad(d)
@@ -304,7 +305,8 @@ def write_spot_light_camera(dirpath) -> pathlib.Path:
     root["extensions"] = {"KHR_lights_punctual": {"lights": [
         {"type": "spot", "color": [1.0, 0.5, 0.0], "intensity": 450.0,
          "spot": {"innerConeAngle": 0.3, "outerConeAngle": 0.5}},
-        {"type": "point", "intensity": 10.0},
+        {"type": "point", "intensity": 10.0, "range": 3.0},
+        {"type": "directional", "intensity": 2.0, "color": [0.5, 1.0, 1.0]},
     ]}}
     root["cameras"] = [{"type": "perspective", "perspective": {"yfov": 0.8, "znear": 0.1}}]
     root["nodes"] += [
@@ -312,8 +314,10 @@ def write_spot_light_camera(dirpath) -> pathlib.Path:
          "extensions": {"KHR_lights_punctual": {"light": 0}}},
         {"name": "bulb", "extensions": {"KHR_lights_punctual": {"light": 1}}},
         {"name": "cam", "translation": [0.0, 1.0, 10.0], "camera": 0},
+        {"name": "sun", "translation": [1.0, 2.0, 3.0], "rotation": [-s, 0.0, 0.0, s],
+         "extensions": {"KHR_lights_punctual": {"light": 2}}},
     ]
-    root["scenes"] = [{"nodes": [0, 1, 2, 3]}]
+    root["scenes"] = [{"nodes": [0, 1, 2, 3, 4]}]
     return _write_json(path, root)
 
 

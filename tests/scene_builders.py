@@ -73,7 +73,8 @@ def write_quads(directory: pathlib.Path, quads: list[dict], *, name: str = "quad
 
     Each quad is a dict with ``corners`` (four (x, y, z) points in order around the quad; the
     normal is (c1 − c0) × (c3 − c0), normalized) and optional ``base_color``, ``metallic``,
-    ``roughness`` and ``name``.
+    ``roughness``, ``specular`` (a KHR_materials_specular ``specularFactor``; 0 makes a purely
+    Lambertian dielectric) and ``name``.
     """
     blob = b""
     views, accessors, meshes, materials, nodes = [], [], [], [], []
@@ -99,16 +100,20 @@ def write_quads(directory: pathlib.Path, quads: list[dict], *, name: str = "quad
             accessors.append(acc)
             blob += data
         meshes.append({"primitives": [{"attributes": {"POSITION": first, "NORMAL": first + 1}, "indices": first + 2, "material": i}]})
-        materials.append({
+        material = {
             "pbrMetallicRoughness": {
                 "baseColorFactor": [*q.get("base_color", (0.8, 0.8, 0.8)), 1.0],
                 "metallicFactor": q.get("metallic", 0.0),
                 "roughnessFactor": q.get("roughness", 1.0),
             }
-        })
+        }
+        if q.get("specular") is not None:
+            material["extensions"] = {"KHR_materials_specular": {"specularFactor": q["specular"]}}
+        materials.append(material)
         nodes.append({"name": q.get("name", f"quad{i}"), "mesh": i})
     doc = {
         "asset": {"version": "2.0"},
+        **({"extensionsUsed": ["KHR_materials_specular"]} if any(q.get("specular") is not None for q in quads) else {}),
         "scene": 0,
         "scenes": [{"nodes": list(range(len(nodes)))}],
         "nodes": nodes,

@@ -51,7 +51,8 @@ def test_textured_normal_mapped_file_renders_with_texture_variant(tmp_path, rend
 
 def test_spot_light_and_camera_from_file(tmp_path):
     scene = vsgl.Scene.load(fx.write_spot_light_camera(tmp_path))
-    assert len(scene.lights) == 1 and len(scene.cameras) == 1
+    assert len(scene.cameras) == 1
+    assert [type(light) for light in scene.lights] == [vsgl.SpotLight, vsgl.PointLight, vsgl.DirectionalLight]
 
 
 @pytest.mark.parametrize(

@@ -3,6 +3,7 @@
 // origin (the camera position), computed in f64 on the CPU; only the uploaded scene (vertex
 // buffers, BVH) is relative to the upload's anchor (the centre of the scene bounds), and
 // view_proj / view_origin take it from there.
+#include "common/constants.wgsl"
 
 struct FrameUniforms {
     view_proj: mat4x4f,
@@ -31,17 +32,95 @@ struct LightRaw {
     cos_outer: f32,
     color: vec3f,
     cos_inner: f32,
+    // Frame-relative shadow view-projection (spot, directional; a point light's cube faces are
+    // projected by point_shadow_projection).
     view_proj: mat4x4f,
-    // 2·tan(shadow half-angle)/shadow map size: the world size of a shadow texel is this times
-    // the distance to the light.
+    // Perspective maps (spot, point): 2·tan(shadow half-angle)/shadow map size, so the world
+    // size of a shadow texel is this times the distance to the light. Directional
+    // (orthographic) map: the world size of a texel itself.
     texel_tan: f32,
+    // First shadow array layer of the light (a point light has six: CUBE_FACE_* order).
     shadow_layer: u32,
-    // LIGHT_KIND_SPOT, …: the light's type (only spot lights are rendered so far).
+    // LIGHT_KIND_SPOT, LIGHT_KIND_POINT or LIGHT_KIND_DIRECTIONAL.
     kind: u32,
-    _pad: f32,
+    // Near plane of a point light's cube faces (0 for the other kinds).
+    shadow_near: f32,
 }
 
 const LIGHT_KIND_SPOT: u32 = 0u;
+const LIGHT_KIND_POINT: u32 = 1u;
+const LIGHT_KIND_DIRECTIONAL: u32 = 2u;
+
+// A point light's shadow cube faces, in layer order (+X, −X, +Y, −Y, +Z, −Z): the view's
+// forward axis and up vector, as frame/uniforms.rs::CUBE_FACES rasterises them.
+const CUBE_FACE_FORWARD = array<vec3f, 6>(vec3f(1.0, 0.0, 0.0), vec3f(-1.0, 0.0, 0.0), vec3f(0.0, 1.0, 0.0),
+                                          vec3f(0.0, -1.0, 0.0), vec3f(0.0, 0.0, 1.0), vec3f(0.0, 0.0, -1.0));
+const CUBE_FACE_UP = array<vec3f, 6>(vec3f(0.0, 1.0, 0.0), vec3f(0.0, 1.0, 0.0), vec3f(0.0, 0.0, 1.0),
+                                     vec3f(0.0, 0.0, 1.0), vec3f(0.0, 1.0, 0.0), vec3f(0.0, 1.0, 0.0));
+
+// The cube face that sees direction d from the light: the axis of d's largest component,
+// face 2k for +axis k, 2k + 1 for −axis k.
+fn cube_face(d: vec3f) -> u32 {
+    let a = abs(d);
+    if (a.x >= a.y && a.x >= a.z) {
+        return select(1u, 0u, d.x >= 0.0);
+    }
+    if (a.y >= a.z) {
+        return select(3u, 2u, d.y >= 0.0);
+    }
+    return select(5u, 4u, d.z >= 0.0);
+}
+
+// Normalised device coordinates of offset d from a point light on cube face `face`: what
+// DMat4::perspective_infinite_reverse_rh(90°, 1, near) · look_to_rh(light, forward, up) gives,
+// written out: x = s·d / w, y = u·d / w, z = near / w with w = forward·d (the depth along the
+// face axis), s = normalize(forward × up), u = s × forward.
+fn point_shadow_ndc(light: LightRaw, d: vec3f, face: u32) -> vec3f {
+    let f = CUBE_FACE_FORWARD[face];
+    let s = normalize(cross(f, CUBE_FACE_UP[face]));
+    let u = cross(s, f);
+    let w = max(dot(f, d), FLT_MIN);
+    return vec3f(dot(s, d), dot(u, d), light.shadow_near) / w;
+}
+
+// The light arriving at a point: the unit direction l towards the light, the irradiance e on
+// a surface facing it, and the distance to the light (0 for a directional light, which is at
+// infinity). e = 0 where the light does not reach (outside a spot cone, at the light itself).
+struct LightIncidence {
+    l: vec3f,
+    dist: f32,
+    e: vec3f,
+}
+
+// KHR_lights_punctual: spot and point intensities are in candela (W/sr per unit colour here),
+// so the irradiance facing the light is I·color·cone/d² (inverse-square law); a directional
+// light's intensity is an illuminance in lux: E·color, with no falloff, from −direction.
+fn light_incidence(light: LightRaw, p: vec3f) -> LightIncidence {
+    var out: LightIncidence;
+    if (light.kind == LIGHT_KIND_DIRECTIONAL) {
+        out.l = -light.direction;
+        out.dist = 0.0;
+        out.e = light.intensity * light.color;
+        return out;
+    }
+    let to_light = light.position - p;
+    let dist2 = dot(to_light, to_light);
+    if (dist2 <= FLT_MIN) {
+        // At the light itself: no direction, no light (not an infinite one).
+        out.l = vec3f(0.0, 0.0, 1.0);
+        out.dist = 0.0;
+        out.e = vec3f(0.0);
+        return out;
+    }
+    out.dist = sqrt(dist2);
+    out.l = to_light / out.dist;
+    var cone = 1.0;
+    if (light.kind == LIGHT_KIND_SPOT) {
+        cone = spot_cone_attenuation(light, out.l);
+    }
+    out.e = light.intensity * light.color * (cone / dist2);
+    return out;
+}
 
 struct VertexRaw {
     position: vec3f,

@@ -1,8 +1,9 @@
 // Path-traced one-bounce ground truth (compute). From each pixel's G-buffer point p, directions
 // are sampled by the BRDF, the bounce point x is found by ray tracing the BVH, and x's direct
-// light from every spot light (shadow ray) is reflected at x and then at p:
+// light from every light (shadow ray) is reflected at x and then at p:
 //   L_ind(p, v) = ∫ f_p(l, v) ⟨n_p, l⟩ L_o(x(l), −l) dl,
-//   L_o(x, ω) = Σ_lights f_x(l_x, ω) ⟨n_x, l_x⟩ I·color·cone(l_x) V(x, light) / d²,
+//   L_o(x, ω) = Σ_lights f_x(l_x, ω) ⟨n_x, l_x⟩ e(x) V(x, light), e = I·color·cone(l_x)/d²
+//   (spot; cone = 1 for a point light) or E·color (directional),
 // the quantity the VPL `reference` discretizes (common/vpl.wgsl), with exact visibility.
 //
 // Estimator (one-sample MIS over the two lobes [Veach 1997, §9.2.4], i.e. sampling the mixture):
@@ -104,38 +105,40 @@ fn ray_offset(p: vec3f) -> f32 {
     return RAY_OFFSET_RELATIVE * max(m, RAY_OFFSET_EXTENT_FRACTION * frame.scene_extent);
 }
 
-// Direct light reflected towards v at a surface point from every spot light, each visible
-// through a shadow ray: Σ f(l, v) ⟨n, l⟩ I·color·cone / d² (the direct pass's formula, with
-// a traced shadow ray in place of the shadow map).
-fn spot_lights_radiance(s: Surface, v: vec3f) -> vec3f {
+// Direct light reflected towards v at a surface point from every light, each visible through
+// a shadow ray: Σ f(l, v) ⟨n, l⟩ e, with e the light's irradiance facing it (light_incidence:
+// I·color·cone/d² for spot and point lights, E·color for a directional light) — the direct
+// pass's formula, with a traced shadow ray in place of the shadow map.
+fn lights_radiance(s: Surface, v: vec3f) -> vec3f {
     var radiance = vec3f(0.0);
     let origin = s.position + s.ng * ray_offset(s.position);
     for (var i = 0u; i < frame.light_count; i++) {
         let light = lights[i];
-        let to_light = light.position - s.position;
-        let dist2 = dot(to_light, to_light);
-        if (dist2 <= FLT_MIN) {
+        let inc = light_incidence(light, s.position);
+        if (all(inc.e <= vec3f(0.0))) {
             continue;
         }
-        let l = to_light * inverseSqrt(dist2);
+        let l = inc.l;
         let n_dot_l = dot(s.ns, l);
         if (n_dot_l <= 0.0 || dot(s.ng, l) <= 0.0) {
             continue;
         }
-        let cone = spot_cone_attenuation(light, l);
-        if (cone <= 0.0) {
-            continue;
+        var shadow: Ray;
+        if (light.kind == LIGHT_KIND_DIRECTIONAL) {
+            // The light is at infinity: the ray runs until it has left the scene (every scene
+            // point lies within one diagonal of every other).
+            shadow = Ray(to_scene(origin), l, RAY_T_MAX_EXTENTS * frame.scene_extent, s.triangle);
+        } else {
+            // From the offset origin, stopping short of the light by its own offset.
+            let seg = light.position - origin;
+            let seg_len = length(seg);
+            shadow = Ray(to_scene(origin), seg / max(seg_len, FLT_MIN), seg_len - ray_offset(light.position), s.triangle);
         }
-        // Shadow ray from the offset origin, stopping short of the light by its own offset.
-        let seg = light.position - origin;
-        let seg_len = length(seg);
-        let shadow = Ray(to_scene(origin), seg / max(seg_len, FLT_MIN), seg_len - ray_offset(light.position), s.triangle);
         if (bvh_any_hit(shadow)) {
             continue;
         }
-        let e = light.intensity * light.color * (cone / dist2);
         let brdf = s.rd * lambert_brdf_over_rd(s.ns, l) + s.rs * ggx_brdf_over_rs(s.ns, l, v, s.alpha);
-        radiance += brdf * e * n_dot_l;
+        radiance += brdf * inc.e * n_dot_l;
     }
     return min(radiance, vec3f(FLT_MAX));
 }
@@ -200,7 +203,7 @@ fn incoming_radiance(s: Surface, l: vec3f) -> vec3f {
     if (hit.triangle == BVH_NO_TRIANGLE) {
         return vec3f(0.0);
     }
-    return spot_lights_radiance(hit_surface(l, hit), -l);
+    return lights_radiance(hit_surface(l, hit), -l);
 }
 
 @compute @workgroup_size(WORKGROUP, WORKGROUP, 1)
@@ -298,7 +301,7 @@ fn direct(@builtin(global_invocation_id) gid: vec3u) {
     }
     let s = pixel_surface(gid.xy, index);
     let v = -s.position / max(length(s.position), FLT_MIN);
-    direct_out[index] = vec4f(spot_lights_radiance(s, v), 1.0);
+    direct_out[index] = vec4f(lights_radiance(s, v), 1.0);
 }
 
 // Standard error of the mean per channel: √(M2 / ((N − 1) N)). One sample carries no variance

@@ -4,7 +4,8 @@
 //   Φ_texel = I · color · cone(ω) · Δω,  Δω = t² (2/N)² cos³θ
 // where t = tan(half field of view), N the RSM side and θ the angle to the light axis: the solid
 // angle of a texel of a perspective image plane at unit distance (area t²(2/N)², foreshortened
-// by cosθ and at distance 1/cosθ).
+// by cosθ and at distance 1/cosθ). A point light has six such images (cube faces, t = 1,
+// cone = 1) whose texels together cover the sphere: Σ Δω = 4π, so the flux sums to 4π·I.
 #include "common/constants.wgsl"
 #include "common/frame.wgsl"
 #include "common/gbuffer.wgsl"
@@ -56,7 +57,12 @@ fn main(@builtin(global_invocation_id) gid: vec3u) {
     let texel = 2.0 / f32(n);
     let solid_angle = tan2 * texel * texel * cos_theta * cos_theta * cos_theta;
     let to_light = -ray * inv_len;
-    let flux = light.intensity * light.color * spot_cone_attenuation(light, to_light) * solid_angle;
+    // A point light's RSM is one of its six 90° cube faces (t = 1): no cone.
+    var cone = 1.0;
+    if (light.kind == LIGHT_KIND_SPOT) {
+        cone = spot_cone_attenuation(light, to_light);
+    }
+    let flux = light.intensity * light.color * cone * solid_angle;
     let base = rsm_base_color[index].rgb;
     let metallic = rsm_geo_normal[index].w;
     let fd = flux * gbuffer_diffuse_reflectance(base, metallic);

@@ -6,7 +6,7 @@ use std::time::Instant;
 use glam::{DVec3, Vec3};
 use serde_json::{json, Value};
 use vsgl_core::scene::gltf::{load, load_with, LoadOptions, DEFAULT_MAX_TEXTURE_BYTES};
-use vsgl_core::scene::{Scene, TextureUsage};
+use vsgl_core::scene::{Light, Scene, TextureUsage};
 use vsgl_core::Error;
 
 // ---------------------------------------------------------------------------------------------
@@ -516,8 +516,9 @@ fn spot_light_and_perspective_camera() {
             "extensions": {"KHR_lights_punctual": {"lights": [
                 {"type": "spot", "color": [1.0, 0.5, 0.0], "intensity": 450.0,
                  "spot": {"innerConeAngle": 0.3, "outerConeAngle": 0.5}},
-                {"type": "point", "intensity": 10.0},
-                {"type": "spot"}
+                {"type": "point", "intensity": 10.0, "range": 3.0},
+                {"type": "spot"},
+                {"type": "directional", "intensity": 2.5, "color": [0.5, 1.0, 1.0]}
             ]}},
             "cameras": [
                 {"type": "perspective", "perspective": {"yfov": 0.8, "znear": 0.1}},
@@ -532,9 +533,12 @@ fn spot_light_and_perspective_camera() {
                 {"name": "rig", "translation": [0.0, 0.0, 1.0], "children": [3, 4, 5]},
                 {"name": "cam", "translation": [0.0, 1.0, 9.0], "camera": 0},
                 {"name": "ortho", "camera": 1},
-                {"name": "default spot", "extensions": {"KHR_lights_punctual": {"light": 2}}}
+                {"name": "default spot", "extensions": {"KHR_lights_punctual": {"light": 2}}},
+                // Rotated −90° about x like the spot: light travels along world −y.
+                {"name": "sun", "translation": [7.0, 8.0, 9.0], "rotation": [-s, 0.0, 0.0, s],
+                 "extensions": {"KHR_lights_punctual": {"light": 3}}}
             ],
-            "scenes": [{"nodes": [0, 1, 2]}],
+            "scenes": [{"nodes": [0, 1, 2, 6]}],
         }),
     );
     let path = dir.join("l.gltf");
@@ -543,7 +547,7 @@ fn spot_light_and_perspective_camera() {
 
     assert_eq!(scene.stats().triangles, 0, "the mesh is on no node");
 
-    assert_eq!(scene.lights.len(), 2);
+    assert_eq!(scene.lights.len(), 4, "spot, point, default spot, directional");
     let l = *scene.lights[0].as_spot().expect("a spot light");
     assert!(dclose(l.position, DVec3::new(0.0, 5.0, 0.0)));
     assert!(
@@ -554,7 +558,23 @@ fn spot_light_and_perspective_camera() {
     assert_eq!(l.intensity, 450.0);
     assert_eq!(l.color, Vec3::new(1.0, 0.5, 0.0));
     assert_eq!((l.inner_cone, l.outer_cone), (0.3, 0.5));
-    let d = *scene.lights[1].as_spot().expect("a spot light");
+    // KHR_lights_punctual: a point light at its node's origin, intensity in candela.
+    match scene.lights[1] {
+        Light::Point(p) => {
+            assert!(dclose(p.position, DVec3::ZERO), "{p:?}");
+            assert_eq!((p.intensity, p.color), (10.0, Vec3::ONE));
+        }
+        other => panic!("lights[1] should be the point light, got {other:?}"),
+    }
+    // A directional light points along its node's −Z; its translation is irrelevant.
+    match scene.lights[3] {
+        Light::Directional(d) => {
+            assert!((d.direction - DVec3::new(0.0, -1.0, 0.0)).length() < 1e-6, "{d:?}");
+            assert_eq!((d.intensity, d.color), (2.5, Vec3::new(0.5, 1.0, 1.0)));
+        }
+        other => panic!("lights[3] should be the directional light, got {other:?}"),
+    }
+    let d = *scene.lights[2].as_spot().expect("a spot light");
     assert!(
         dclose(d.position, DVec3::new(0.0, 0.0, 1.0)),
         "under the rig node: {d:?}"
@@ -575,10 +595,11 @@ fn spot_light_and_perspective_camera() {
 
     let warned = |what: &str| scene.warnings.iter().any(|w| w.contains(what));
     assert!(
-        warned("nodes[1]") && warned("point light"),
+        warned("nodes[1]") && warned("lights[1].range = 3 is ignored"),
         "{:?}",
         scene.warnings
     );
+    assert!(!warned("spot lights only"), "every punctual light type loads: {:?}", scene.warnings);
     assert!(
         warned("nodes[4]") && warned("orthographic"),
         "{:?}",

@@ -2,6 +2,7 @@
 //! The Python package `vsgl` (python/vsgl) re-exports these as its public API.
 
 mod errors;
+mod lights;
 mod stability;
 
 use errors::{argument_error, to_py};
@@ -13,6 +14,7 @@ use pyo3::types::{PyBool, PyBytes, PyDict, PyFloat, PyInt, PyIterator, PyString,
 use std::sync::Arc;
 use vsgl_core::methods::{self, OptionValue};
 use vsgl_core::passes::vsgl_gen::{VSGL_FIELDS, VSGL_FLOATS};
+use lights::{light_to_py, AnyLight, PyDirectionalLight, PyPointLight};
 use vsgl_core::scene::{builtin, limits, Camera, Light, Scene, SpotLight};
 use vsgl_core::{image_io, Frame, RenderOptions, Renderer};
 
@@ -179,6 +181,11 @@ impl PyScene {
         d.set_item("materials", s.materials)?;
         d.set_item("textures", s.textures)?;
         d.set_item("lights", s.lights)?;
+        let by_type = PyDict::new(py);
+        for (kind, n) in lights::count_by_type(&self.inner.lights) {
+            by_type.set_item(kind, n)?;
+        }
+        d.set_item("lights_by_type", by_type)?;
         d.set_item("cameras", self.inner.cameras.len())?;
         let mut features = Vec::new();
         if s.has_textures { features.push("textures"); }
@@ -189,9 +196,9 @@ impl PyScene {
         d.set_item("features", features)?;
         Ok(d)
     }
-    /// Adds a spot light.
-    fn add_light(&mut self, light: PySpotLight) {
-        self.inner.add_light(light.inner);
+    /// Adds a light: a SpotLight, PointLight or DirectionalLight.
+    fn add_light(&mut self, light: AnyLight) {
+        self.inner.add_light(Light::from(light));
     }
     /// Sets the local transform of every node called `node_name` to `matrix` (4×4, row-major as
     /// NumPy prints it: p' = M @ p). Raises ValueError when no node has that name.
@@ -204,12 +211,12 @@ impl PyScene {
     }
     /// The lights; assign a list to replace them all.
     #[getter]
-    fn lights(&self) -> PyResult<Vec<PySpotLight>> {
-        self.inner.lights.iter().enumerate().map(|(i, l)| light_to_py(i, l)).collect()
+    fn lights(&self, py: Python<'_>) -> PyResult<Vec<Py<PyAny>>> {
+        self.inner.lights.iter().map(|l| light_to_py(py, l)).collect()
     }
     #[setter]
-    fn set_lights(&mut self, lights: Vec<PySpotLight>) {
-        self.inner.lights = lights.into_iter().map(|l| Light::Spot(l.inner)).collect();
+    fn set_lights(&mut self, lights: Vec<AnyLight>) {
+        self.inner.lights = lights.into_iter().map(Light::from).collect();
     }
     #[getter]
     fn cameras(&self) -> Vec<PyCamera> {
@@ -333,8 +340,8 @@ impl PyFrameSequence {
             match key.as_str() {
                 "camera" => st.camera = Some(value.extract::<PyCamera>().map_err(|_| argument_error(format!("frames[{index}][\"camera\"]: expected a vsgl.Camera")))?.inner),
                 "lights" => {
-                    let lights: Vec<PySpotLight> = value.extract().map_err(|_| argument_error(format!("frames[{index}][\"lights\"]: expected a list of lights")))?;
-                    st.scene.lights = lights.into_iter().map(|l| Light::Spot(l.inner)).collect();
+                    let lights: Vec<AnyLight> = value.extract().map_err(|_| argument_error(format!("frames[{index}][\"lights\"]: expected a list of lights")))?;
+                    st.scene.lights = lights.into_iter().map(Light::from).collect();
                 }
                 "transforms" => {
                     let d = value.cast::<PyDict>().map_err(|_| argument_error(format!("frames[{index}][\"transforms\"]: expected a dict of node name -> 4x4 matrix")))?;
@@ -502,7 +509,8 @@ impl PyFrame {
         let structured = flat.call_method1("view", (dtype,))?;
         structured.call_method1("reshape", (data.len() / VSGL_FLOATS,))
     }
-    /// One buffer of the first light's reflective shadow map, (N, N, C) float32, when the
+    /// One buffer of the first light's reflective shadow map, (N, N, C) float32 ((6N, N, C)
+    /// for a point light: its six cube faces +X, −X, +Y, −Y, +Z, −Z stacked), when the
     /// frame was rendered with `capture_rsm=True`: position (relative to the light), normal,
     /// roughness, flux_diffuse (Φ·R_d), flux_specular (Φ·R_s), weight (Φ·(R_d+R_s) summed).
     fn rsm<'py>(&self, py: Python<'py>, name: &str) -> PyResult<Bound<'py, PyAny>> {
@@ -513,7 +521,9 @@ impl PyFrame {
             let names: Vec<&str> = buffers.iter().map(|(k, _, _)| k.as_str()).collect();
             argument_error(format!("name: unknown RSM buffer {name:?}; available: {}", names.join(", ")))
         })?;
-        Ok(PyArray1::from_slice(py, data).reshape([*n as usize, *n as usize, c])?.into_any())
+        // n rows per RSM: a point light's six cube faces are stacked along the first axis.
+        let rows = data.len() / (*n as usize * c).max(1);
+        Ok(PyArray1::from_slice(py, data).reshape([rows, *n as usize, c])?.into_any())
     }
     #[getter]
     fn width(&self) -> u32 {
@@ -675,7 +685,8 @@ impl PyRenderer {
     ///   visibility, capture_rsm.
     /// - "reference": every texel of an rsm_size² RSM (default 1024²) as a VPL. shadow_size,
     ///   rsm_size, vpl_clamp, visibility, capture_rsm.
-    /// - "pathtrace": path-traced one-bounce ground truth with a stderr AOV. spp, seed.
+    /// - "pathtrace": path-traced one-bounce ground truth with a stderr AOV. spp, seed,
+    ///   time_budget_s (stop sampling after this many seconds; Ctrl-C stops any long render).
     ///
     /// `capture_rsm=True` keeps the first light's RSM for `Frame.rsm(name)`.
     #[pyo3(signature = (scene, camera=None, method="direct", *, plan="auto", aovs=None, **options))]
@@ -795,14 +806,6 @@ fn option_value(name: &str, value: &Bound<'_, PyAny>) -> PyResult<OptionValue> {
     }
 }
 
-/// A scene light as its Python class (only spot lights exist in Python so far).
-fn light_to_py(index: usize, light: &Light) -> PyResult<PySpotLight> {
-    match light {
-        Light::Spot(s) => Ok(PySpotLight { inner: *s }),
-        other => Err(argument_error(format!("scene.lights[{index}]: {} lights have no Python class in this build yet", other.kind()))),
-    }
-}
-
 /// The method names, in registry order (`vsgl.METHODS`).
 fn method_names<'py>(py: Python<'py>) -> PyResult<Bound<'py, PyTuple>> {
     PyTuple::new(py, methods::names())
@@ -882,6 +885,8 @@ fn _vsgl(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_class::<PyScene>()?;
     m.add_class::<PyCamera>()?;
     m.add_class::<PySpotLight>()?;
+    m.add_class::<PyPointLight>()?;
+    m.add_class::<PyDirectionalLight>()?;
     m.add_class::<PyFrame>()?;
     m.add_class::<PyFrameSequence>()?;
     m.add_function(wrap_pyfunction!(adapters, m)?)?;

@@ -1,8 +1,7 @@
 //! CPU twins of the per-frame GPU structs in `wgsl/common/frame.wgsl`: the frame uniforms and
 //! one `LightRaw` per light.
 
-use crate::error::{Error, Result};
-use crate::scene::{Camera, Light, SpotLight};
+use crate::scene::{Camera, DirectionalLight, Light, PointLight, SpotLight};
 use glam::{DMat4, DVec3, Mat4};
 
 #[repr(C)]
@@ -31,28 +30,111 @@ pub struct LightRaw {
     pub cos_outer: f32,
     pub color: [f32; 3],
     pub cos_inner: f32,
+    /// Frame-relative view-projection of the light's shadow map (spot, directional); unused
+    /// for a point light, whose six cube faces the direct pass projects itself.
     pub view_proj: [[f32; 4]; 4],
+    /// Perspective maps (spot, point): 2·tan(half field of view)/shadow size, so a shadow texel
+    /// is `texel_tan · distance` wide. Directional (orthographic) map: the texel's world width.
     pub texel_tan: f32,
+    /// First layer of the light's shadow map in the shadow array (a point light has six).
     pub shadow_layer: u32,
     /// [`LIGHT_KIND_SPOT`], … (`LIGHT_KIND_*` in frame.wgsl).
     pub kind: u32,
-    pub _pad: f32,
+    /// Near plane of the point light's cube faces (the direct pass's reverse-Z depth is
+    /// near / distance along the face axis); 0 for other kinds.
+    pub shadow_near: f32,
 }
 const _: () = assert!(std::mem::size_of::<LightRaw>() == 128);
 
-/// `LightRaw::kind` of a spot light (the only kind the passes render so far).
+/// `LightRaw::kind` of a spot light.
 pub const LIGHT_KIND_SPOT: u32 = 0;
+/// `LightRaw::kind` of a point light.
+pub const LIGHT_KIND_POINT: u32 = 1;
+/// `LightRaw::kind` of a directional light.
+pub const LIGHT_KIND_DIRECTIONAL: u32 = 2;
 
-/// The GPU twin of light `index` of a scene, or an error naming it when its type does not
-/// render yet.
-pub fn light_raw(light: &Light, index: usize, origin: DVec3, extent: f64, shadow_size: u32) -> Result<LightRaw> {
+/// Shadow map layers a light takes in the shadow array: a cube (six 90° faces) for a point
+/// light, one layer otherwise.
+pub fn shadow_layer_count(light: &Light) -> u32 {
     match light {
-        Light::Spot(spot) => Ok(spot_light_raw(spot, origin, extent, index as u32, shadow_size)),
-        other => Err(Error::invalid(
-            format!("scene.lights[{index}]"),
-            format!("{} lights do not render in this build yet (spot lights only)", other.kind()),
-        )),
+        Light::Point(_) => 6,
+        Light::Spot(_) | Light::Directional(_) => 1,
     }
+}
+
+/// The GPU twins of a scene's lights, with their shadow layers assigned in order (positions
+/// relative to `origin`, the frame origin; `anchor` is the scene bounds' centre).
+pub fn light_raws(lights: &[Light], origin: DVec3, anchor: DVec3, extent: f64, shadow_size: u32) -> Vec<LightRaw> {
+    let mut layer = 0;
+    lights
+        .iter()
+        .map(|light| {
+            let raw = match light {
+                Light::Spot(spot) => spot_light_raw(spot, origin, extent, layer, shadow_size),
+                Light::Point(point) => point_light_raw(point, origin, extent, layer, shadow_size),
+                Light::Directional(dir) => directional_light_raw(dir, anchor - origin, extent, layer, shadow_size),
+            };
+            layer += shadow_layer_count(light);
+            raw
+        })
+        .collect()
+}
+
+/// The view-projections that rasterise `light`'s shadow layers, of positions relative to
+/// `anchor` (the scene upload's): one for a spot or directional light, the six cube faces
+/// (in [`CUBE_FACES`] order) for a point light.
+pub fn shadow_view_projs(light: &Light, anchor: DVec3, extent: f64) -> Vec<Mat4> {
+    match light {
+        Light::Spot(spot) => vec![light_view_proj(spot, anchor, extent)],
+        Light::Point(point) => (0..6).map(|face| cube_face_view_proj(point.position - anchor, face, extent)).collect(),
+        // The anchor is the bounds' centre: relative to it, the centre is at zero.
+        Light::Directional(dir) => vec![directional_view_proj(dir, DVec3::ZERO, extent)],
+    }
+}
+
+/// A point light's shadow cube faces: (forward, up) of face `i`, the order the layers are
+/// rendered in and the direct pass's `CUBE_FACE_*` tables in wgsl/common/frame.wgsl list
+/// them (+X, −X, +Y, −Y, +Z, −Z; face 2k + 1 is the negative k axis).
+pub const CUBE_FACES: [(DVec3, DVec3); 6] = [
+    (DVec3::X, DVec3::Y),
+    (DVec3::NEG_X, DVec3::Y),
+    (DVec3::Y, DVec3::Z),
+    (DVec3::NEG_Y, DVec3::Z),
+    (DVec3::Z, DVec3::Y),
+    (DVec3::NEG_Z, DVec3::Y),
+];
+
+/// Face `face` of a point light's shadow cube at `pos` (relative to the positions it will
+/// project): a square 90° reverse-Z perspective, so the six faces tile the sphere of
+/// directions exactly.
+pub fn cube_face_view_proj(pos: DVec3, face: usize, extent: f64) -> Mat4 {
+    let (forward, up) = CUBE_FACES[face];
+    let view = DMat4::look_to_rh(pos, forward, up);
+    let proj = DMat4::perspective_infinite_reverse_rh(std::f64::consts::FRAC_PI_2, 1.0, extent * NEAR_PLANE_FRACTION);
+    (proj * view).as_mat4()
+}
+
+/// Margin of the directional light's orthographic box over the scene's bounding sphere, so
+/// geometry on the sphere is not clipped by rounding.
+const DIRECTIONAL_BOX_MARGIN: f64 = 1.01;
+
+/// Half-width of a directional light's orthographic shadow box: the radius of the sphere
+/// around the scene's bounds (half its diagonal), which holds the scene for every direction.
+fn directional_half_width(extent: f64) -> f64 {
+    0.5 * extent.max(f64::MIN_POSITIVE) * DIRECTIONAL_BOX_MARGIN
+}
+
+/// The directional light's orthographic shadow view, fitted to the scene bounds (documented
+/// in docs/rendering.md): a square box of half-width R (the bounding sphere's radius) around
+/// `centre` (the bounds' centre relative to the projected positions' origin), looking along
+/// the light from R before the centre to R past it; reverse-Z (depth 1 at the near end).
+pub fn directional_view_proj(light: &DirectionalLight, centre: DVec3, extent: f64) -> Mat4 {
+    let r = directional_half_width(extent);
+    let dir = light.direction.normalize();
+    let view = DMat4::look_to_rh(centre - dir * r, dir, orthogonal(dir));
+    // glam maps view depth `near` → 0 and `far` → 1; swapping them gives reverse-Z.
+    let proj = DMat4::orthographic_rh(-r, r, -r, r, 2.0 * r, 0.0);
+    (proj * view).as_mat4()
 }
 
 /// Widest shadow frustum: a perspective projection degenerates at 180°, so cones wider than
@@ -125,7 +207,76 @@ pub fn spot_light_raw(light: &SpotLight, origin: DVec3, extent: f64, layer: u32,
         texel_tan: (2.0 * (fov * 0.5).tan() / shadow_size as f64) as f32,
         shadow_layer: layer,
         kind: LIGHT_KIND_SPOT,
-        _pad: 0.0,
+        shadow_near: 0.0,
+    }
+}
+
+pub fn point_light_raw(light: &PointLight, origin: DVec3, extent: f64, layer: u32, shadow_size: u32) -> LightRaw {
+    LightRaw {
+        position: (light.position - origin).as_vec3().to_array(),
+        intensity: light.intensity,
+        direction: [0.0; 3],
+        cos_outer: -1.0,
+        color: light.color.to_array(),
+        cos_inner: -1.0,
+        view_proj: Mat4::IDENTITY.to_cols_array_2d(),
+        // tan(45°) = 1 for each 90° face.
+        texel_tan: (2.0 / shadow_size as f64) as f32,
+        shadow_layer: layer,
+        kind: LIGHT_KIND_POINT,
+        shadow_near: (extent * NEAR_PLANE_FRACTION) as f32,
+    }
+}
+
+/// `centre`: the scene bounds' centre relative to the frame origin.
+pub fn directional_light_raw(light: &DirectionalLight, centre: DVec3, extent: f64, layer: u32, shadow_size: u32) -> LightRaw {
+    LightRaw {
+        position: [0.0; 3],
+        intensity: light.intensity,
+        direction: light.direction.normalize().as_vec3().to_array(),
+        cos_outer: -1.0,
+        color: light.color.to_array(),
+        cos_inner: -1.0,
+        view_proj: directional_view_proj(light, centre, extent).to_cols_array_2d(),
+        texel_tan: (2.0 * directional_half_width(extent) / shadow_size as f64) as f32,
+        shadow_layer: layer,
+        kind: LIGHT_KIND_DIRECTIONAL,
+        shadow_near: 0.0,
+    }
+}
+
+/// The views of a light's reflective shadow maps, one per RSM: a spot light's over its cone
+/// ([`light_view_uniforms`]), a point light's six cube faces ([`cube_face_view_uniforms`],
+/// in [`CUBE_FACES`] order). A directional light has none yet (an orthographic RSM needs an
+/// orthographic material pass): empty.
+pub fn rsm_views(light: &Light, anchor: DVec3, extent: f64, size: u32, texture_layer_size: u32) -> Vec<FrameUniforms> {
+    match light {
+        Light::Spot(spot) => vec![light_view_uniforms(spot, anchor, extent, size, texture_layer_size)],
+        Light::Point(point) => (0..6).map(|face| cube_face_view_uniforms(point, face, anchor, extent, size, texture_layer_size)).collect(),
+        Light::Directional(_) => Vec::new(),
+    }
+}
+
+/// Face `face` of a point light's RSM cube: a square 90° perspective image from the light
+/// (tan 45° = 1, so `rsm_flux`'s texel solid angle (2/N)²cos³θ needs no other factor and the
+/// six faces' texels tile the sphere: Σ Δω → 4π). Rasterises anchor-relative vertices like
+/// the shadow cube; positions it writes are relative to the light.
+pub fn cube_face_view_uniforms(light: &PointLight, face: usize, anchor: DVec3, extent: f64, size: u32, texture_layer_size: u32) -> FrameUniforms {
+    let (forward, up) = CUBE_FACES[face];
+    let right = forward.cross(up);
+    let v4 = |v: DVec3| [v.x as f32, v.y as f32, v.z as f32, 0.0];
+    FrameUniforms {
+        view_proj: cube_face_view_proj(light.position - anchor, face, extent).to_cols_array_2d(),
+        cam_right: v4(right),
+        cam_up: v4(up),
+        cam_forward: v4(forward),
+        view_origin: v4(light.position - anchor),
+        size: [size, size],
+        light_count: 1,
+        texture_layer_size,
+        scene_extent: extent as f32,
+        shadow_size: size as f32,
+        _pad: [0.0; 2],
     }
 }
 

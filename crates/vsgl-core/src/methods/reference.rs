@@ -58,7 +58,7 @@ impl Method for Reference {
         let capacity = texels.min(1 << 20);
         let vpls = ctx.rec.storage("vpl_buffer", capacity * VPL_BYTES);
         let min_distance2 = (self.vpl_clamp as f64 * ctx.extent).powi(2) as f32;
-        let rsm = RsmSettings { size: n, sampling: false, capture: self.capture_rsm };
+        let rsm = RsmSettings { size: n, sampling: false, capture: self.capture_rsm, budget: 0 };
         let lit = for_each_light(ctx, &rsm, |ctx, light| {
             let (gpu, feat) = (ctx.gpu, ctx.features);
             let pixels = ctx.size.0 as u64 * ctx.size.1 as u64;

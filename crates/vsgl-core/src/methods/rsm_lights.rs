@@ -1,10 +1,12 @@
-//! What every virtual-light method shares: one reflective shadow map per light (the light's
-//! view through the visibility, material and flux passes), handed to the method light by
-//! light, and the first light's RSM read back when the frame asked for it (`capture_rsm`).
+//! What every virtual-light method shares: the reflective shadow maps of each light (the
+//! light's views through the visibility, material and flux passes: one for a spot light, six
+//! cube faces for a point light), handed to the method one RSM at a time with its share of the
+//! virtual-light budget, and the first light's RSM(s) read back when the frame asked for it
+//! (`capture_rsm`).
 
 use super::{CapturedRsm, FrameContext};
 use crate::error::Result;
-use crate::frame::uniforms::{light_view_uniforms, LightRaw};
+use crate::frame::uniforms::{rsm_views, LightRaw};
 use crate::frame::{Rsm, VisibilityTargets};
 use crate::passes::{material::MaterialPass, rsm_flux::RsmFluxPass, visibility::VisibilityPass};
 
@@ -16,12 +18,28 @@ pub struct RsmSettings {
     pub sampling: bool,
     /// Read the first light's RSM back into the frame.
     pub capture: bool,
+    /// Virtual lights per light source (`num_lights`; 0 for methods without a budget).
+    pub budget: u32,
+}
+
+/// Splits a light's virtual-light budget `n` over its `views` RSMs: equal shares (a point
+/// light's six cube faces receive equal power, 4π·I/6 each) that add up to `n`, the first
+/// `n mod views` getting one more. Every view gets at least one, so no face's light is left
+/// out (an unbiased estimate needs every RSM sampled): with n < views the light gets `views`.
+pub fn view_budgets(n: u32, views: u32) -> Vec<u32> {
+    let views = views.max(1);
+    (0..views).map(|v| (n / views + u32::from(v < n % views)).max(1)).collect()
 }
 
 /// One light's RSM as a method sees it.
 pub struct LightRsm<'a> {
     /// Index of the light in the scene (and in `ctx.lights`).
     pub index: usize,
+    /// Which of the light's RSMs this is (a point light's cube face, `CUBE_FACES` order; 0
+    /// for a spot light).
+    pub view: usize,
+    /// Virtual lights to make from this RSM ([`view_budgets`] of `RsmSettings::budget`).
+    pub budget: u32,
     pub raw: &'a LightRaw,
     /// A storage buffer holding this light alone (what the RSM passes bind).
     pub light: &'a wgpu::Buffer,
@@ -32,28 +50,59 @@ pub struct LightRsm<'a> {
 /// reason in `ctx.skipped`) when the scene has no light, so there is no indirect light.
 pub fn for_each_light(ctx: &mut FrameContext<'_>, s: &RsmSettings, mut per_light: impl FnMut(&mut FrameContext<'_>, &LightRsm<'_>) -> Result<()>) -> Result<bool> {
     if ctx.lights.is_empty() {
-        ctx.skip("indirect", "the scene has no spot light");
+        ctx.skip("indirect", "the scene has no light");
         return Ok(false);
+    }
+    // Directional lights have no RSM yet (issue 16): refuse them by name before anything is
+    // recorded, rather than leaving their indirect light out of the image.
+    let (anchor, extent, layer_size) = (ctx.gpu_scene.anchor, ctx.extent, ctx.gpu_scene.texture_layer_size);
+    let views: Vec<_> = ctx.scene.lights.iter().map(|l| rsm_views(l, anchor, extent, s.size, layer_size)).collect();
+    if let Some(index) = views.iter().position(|v| v.is_empty()) {
+        return Err(crate::error::Error::invalid(
+            format!("scene.lights[{index}]"),
+            format!(
+                "{} lights have no reflective shadow map yet, so the virtual-light methods (vpl, vsgl, \
+                 vsgl2, reference) take spot and point lights only; method=\"direct\" and \
+                 method=\"pathtrace\" render spot, point and directional lights",
+                ctx.scene.lights[index].kind()
+            ),
+        ));
+    }
+    if s.budget > 0 {
+        // What each light's RSMs got, e.g. "256" for a spot light, "43+43+43+43+42+42" for a
+        // point light (`frame.settings["virtual_lights_per_light"]`, lights separated by ";").
+        let rows: Vec<String> = views.iter().map(|v| view_budgets(s.budget, v.len() as u32).iter().map(u32::to_string).collect::<Vec<_>>().join("+")).collect();
+        ctx.settings.push(("virtual_lights_per_light".into(), rows.join(";")));
     }
     let n = s.size;
     let rsm = Rsm::new(&mut ctx.rec, n, ctx.features.specular, s.sampling);
     let rsm_visibility = VisibilityTargets::new(&mut ctx.rec, n, n);
     let (visibility, material, flux) = (ctx.passes.get::<VisibilityPass>()?, ctx.passes.get::<MaterialPass>()?, ctx.passes.get::<RsmFluxPass>()?);
     let lights = ctx.lights;
-    for (index, raw) in lights.iter().enumerate() {
-        let Some(spot) = ctx.scene.lights[index].as_spot() else { continue };
-        let view = light_view_uniforms(spot, ctx.gpu_scene.anchor, ctx.extent, n, ctx.gpu_scene.texture_layer_size);
-        let view_buf = ctx.rec.uniform("rsm_view_uniform_buffer", &view);
+    for ((index, raw), light_views) in lights.iter().enumerate().zip(&views) {
+        let budgets = view_budgets(s.budget, light_views.len() as u32);
         let light = ctx.rec.storage_init("spot_light_storage_buffer", bytemuck::bytes_of(raw));
-        let gs = ctx.gpu_scene;
-        visibility.record(&mut ctx.rec, "rsm_visibility", &view_buf, &gs.raster_vertices, gs.raster_vertex_count, &rsm_visibility);
-        material.record(&mut ctx.rec, "rsm_material", &view_buf, &rsm_visibility.ids, gs, ctx.features, &rsm.gbuffer, (n, n));
-        flux.record(&mut ctx.rec, &view_buf, light.as_entire_binding(), &rsm, ctx.features);
-        per_light(ctx, &LightRsm { index, raw, light: &light, rsm: &rsm })?;
-        if index == 0 && s.capture {
-            // Read back before the next light overwrites the shared RSM buffers.
-            ctx.submit_so_far();
-            ctx.captured_rsm = Some(read_rsm(ctx, &rsm)?);
+        for (view_index, (view, &budget)) in light_views.iter().zip(&budgets).enumerate() {
+            let view_buf = ctx.rec.uniform("rsm_view_uniform_buffer", view);
+            let gs = ctx.gpu_scene;
+            visibility.record(&mut ctx.rec, "rsm_visibility", &view_buf, &gs.raster_vertices, gs.raster_vertex_count, &rsm_visibility);
+            material.record(&mut ctx.rec, "rsm_material", &view_buf, &rsm_visibility.ids, gs, ctx.features, &rsm.gbuffer, (n, n));
+            flux.record(&mut ctx.rec, &view_buf, light.as_entire_binding(), &rsm, ctx.features);
+            per_light(ctx, &LightRsm { index, view: view_index, budget, raw, light: &light, rsm: &rsm })?;
+            if index == 0 && s.capture {
+                // Read back before the next view overwrites the shared RSM buffers; a point
+                // light's six faces are stacked (CUBE_FACES order) along the first axis.
+                ctx.submit_so_far();
+                let face = read_rsm(ctx, &rsm)?;
+                match &mut ctx.captured_rsm {
+                    Some((_, stacked)) if view_index > 0 => {
+                        for ((_, _, all), (_, _, more)) in stacked.iter_mut().zip(face.1) {
+                            all.extend(more);
+                        }
+                    }
+                    slot => *slot = Some(face),
+                }
+            }
         }
     }
     ctx.skip("vpl_shadow_maps", "visibility=\"none\": virtual lights are unshadowed");
@@ -89,4 +138,21 @@ pub fn check_rsm_size(gpu: &crate::gpu::Gpu, n: u32) -> Result<()> {
         return Err(crate::error::Error::invalid("rsm_size", format!("{n}² texels exceed this adapter's storage binding limit of {limit} bytes")));
     }
     Ok(())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::view_budgets;
+
+    #[test]
+    fn view_budgets_add_up_to_the_light_budget() {
+        for n in [6, 7, 16, 255, 256, 1 << 20] {
+            let b = view_budgets(n, 6);
+            assert_eq!(b.iter().sum::<u32>(), n, "n = {n}: {b:?}");
+            assert!(b.iter().max().unwrap() - b.iter().min().unwrap() <= 1, "equal shares: {b:?}");
+        }
+        assert_eq!(view_budgets(256, 1), vec![256], "a spot light keeps its whole budget");
+        // Fewer than one per face: every face still gets one (none of its light is dropped).
+        assert_eq!(view_budgets(4, 6), vec![1; 6]);
+    }
 }

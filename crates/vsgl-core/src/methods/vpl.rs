@@ -78,13 +78,15 @@ impl Method for Vpl {
         // Distances below the clamp count as the clamp (0: unbiased).
         let min_distance2 = (self.vpl_clamp as f64 * ctx.extent).powi(2) as f32;
         let shading_out = InterleavedShading::new(ctx, self.interleave, self.denoise);
-        let rsm = RsmSettings { size: self.rsm_size, sampling: true, capture: self.capture_rsm };
+        let rsm = RsmSettings { size: self.rsm_size, sampling: true, capture: self.capture_rsm, budget: self.num_lights };
         let lit = for_each_light(ctx, &rsm, |ctx, light| {
             let feat = ctx.features;
             pdf_mips.record(&mut ctx.rec, light.rsm);
-            sample.record_importance(&mut ctx.rec, light.light.as_entire_binding(), light.rsm, self.num_lights, self.sampling, self.seed, &vpls, feat);
+            // This RSM's share of num_lights (a point light splits it over its cube faces); the
+            // buffer holds num_lights, the largest share.
+            sample.record_importance(&mut ctx.rec, light.light.as_entire_binding(), light.rsm, light.budget, self.sampling, self.seed, &vpls, feat);
             let target = shading_out.target(ctx.indirect);
-            shading.record(&mut ctx.rec, ctx.frame_uniforms, &vpls, self.num_lights, self.interleave, min_distance2, ctx.gbuffer, target, feat, ctx.size);
+            shading.record(&mut ctx.rec, ctx.frame_uniforms, &vpls, light.budget, self.interleave, min_distance2, ctx.gbuffer, target, feat, ctx.size);
             Ok(())
         })?;
         if lit {

@@ -122,16 +122,17 @@ impl Method for Vsgl {
         let (gen, shading) = (passes.get::<VsglGenPass>()?, passes.get::<VsglShadingPass>()?);
         let shading_out = InterleavedShading::new(ctx, self.interleave, self.denoise);
         let mut chains: Option<MomentChains> = None;
-        let rsm = RsmSettings { size: self.rsm_size, sampling: true, capture: self.capture_rsm };
+        let rsm = RsmSettings { size: self.rsm_size, sampling: true, capture: self.capture_rsm, budget: self.num_lights };
         let lit = for_each_light(ctx, &rsm, |ctx, light| {
             let feat = ctx.features;
             let chains = chains.get_or_insert_with(|| MomentChains::new(&mut ctx.rec, self.rsm_size));
             pdf_mips.record(&mut ctx.rec, light.rsm);
             moments.record(&mut ctx.rec, light.rsm, chains, feat);
             moment_mips.record(&mut ctx.rec, self.rsm_size, chains);
-            let buf = ctx.rec.storage("vsgl_buffer", self.num_lights as u64 * VSGL_BYTES);
+            // This RSM's share of num_lights (a point light splits it over its cube faces).
+            let buf = ctx.rec.storage("vsgl_buffer", light.budget as u64 * VSGL_BYTES);
             let settings = GenSettings {
-                count: self.num_lights,
+                count: light.budget,
                 stratified: self.sampling == Sampling::Stratified,
                 seed: self.seed,
                 kernel: self.kernel,
@@ -141,8 +142,8 @@ impl Method for Vsgl {
             };
             gen.record(&mut ctx.rec, light.rsm, chains, &settings, &buf);
             let target = shading_out.target(ctx.indirect);
-            shading.record(&mut ctx.rec, ctx.frame_uniforms, &buf, self.num_lights, self.interleave, self.diffuse, ctx.gbuffer, target, feat, ctx.size);
-            if light.index == 0 {
+            shading.record(&mut ctx.rec, ctx.frame_uniforms, &buf, light.budget, self.interleave, self.diffuse, ctx.gbuffer, target, feat, ctx.size);
+            if light.index == 0 && light.view == 0 {
                 ctx.vsgls = Some(buf);
             }
             Ok(())

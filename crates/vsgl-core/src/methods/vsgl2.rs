@@ -64,13 +64,13 @@ impl Method for Vsgl2 {
     fn record(&self, ctx: &mut FrameContext<'_>) -> Result<()> {
         let (reduce, shading) = (ctx.passes.get::<Vsgl2Reduce>()?, ctx.passes.get::<VsglShadingPass>()?);
         let reduction = Vsgl2Reduce::resolve(ctx.gpu, self.reduction)?;
-        let rsm = RsmSettings { size: self.rsm_size, sampling: false, capture: self.capture_rsm };
+        let rsm = RsmSettings { size: self.rsm_size, sampling: false, capture: self.capture_rsm, budget: 0 };
         let lit = for_each_light(ctx, &rsm, |ctx, light| {
             let feat = ctx.features;
             let buf = ctx.rec.storage("vsgl2_buffer", VSGL2_COUNT as u64 * VSGL_BYTES);
             reduce.record(&mut ctx.rec, light.rsm, light.raw.position, &buf, feat, reduction)?;
             shading.record(&mut ctx.rec, ctx.frame_uniforms, &buf, VSGL2_COUNT, 1, self.diffuse, ctx.gbuffer, ctx.indirect, feat, ctx.size);
-            if light.index == 0 {
+            if light.index == 0 && light.view == 0 {
                 ctx.vsgls = Some(buf);
             }
             Ok(())

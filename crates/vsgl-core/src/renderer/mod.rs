@@ -11,7 +11,7 @@ pub use frame::Frame;
 pub use options::{RenderOptions, StopCheck, AOV_NAMES, ON_REQUEST_AOVS};
 
 use crate::error::{Error, Result};
-use crate::frame::uniforms::{frame_uniforms, light_raw, light_view_proj};
+use crate::frame::uniforms::{frame_uniforms, light_raws, shadow_layer_count, shadow_view_projs};
 use crate::frame::{GBuffer, IndirectTargets, VisibilityTargets};
 use crate::gpu::frame_log::{log_frame, FrameLog};
 use crate::gpu::{kept_staging_buffer, read_staging, FrameResources, Gpu, PassCache, PassTimer, Recorder};
@@ -264,7 +264,16 @@ impl Renderer {
         let (extent, anchor) = (gscene.extent, gscene.anchor);
         // Methods without shadow maps still fill the lights' shadow fields (with the default).
         let shadow_size = if info.takes("shadow_size") { job.options.u32("shadow_size")? } else { default_shadow_size() };
-        let lights = scene.lights.iter().enumerate().map(|(i, l)| light_raw(l, i, origin, extent, shadow_size)).collect::<Result<Vec<_>>>()?;
+        let lights = light_raws(&scene.lights, origin, anchor, extent, shadow_size);
+        // Shadow layers: one per spot or directional light, a cube of six per point light.
+        let shadow_layers: u32 = scene.lights.iter().map(shadow_layer_count).sum();
+        let max_layers = gpu.limits.max_texture_array_layers;
+        if shadow_layers > max_layers {
+            return Err(crate::error::Error::invalid(
+                format!("scene.lights[{}]", scene.lights.len() - 1),
+                format!("the lights need {shadow_layers} shadow map layers (6 per point light, 1 per spot or directional light); this adapter holds {max_layers}"),
+            ));
+        }
         let uniforms = frame_uniforms(camera, anchor, w, h, lights.len() as u32, gscene.texture_layer_size, extent, shadow_size);
 
         // What the renderer keeps from frame to frame: targets, buffers, the timer's queries.
@@ -283,17 +292,17 @@ impl Renderer {
         let shadow_mapped = info.direct_light == DirectLight::ShadowMapped;
         let shadow_needed = !lights.is_empty() && shadow_mapped;
         // Unneeded: the smallest placeholder layer, so the binding exists.
-        let shadow_tex = ShadowMapPass::target(&mut rec, if shadow_needed { shadow_size } else { 16 }, lights.len() as u32);
+        let shadow_tex = ShadowMapPass::target(&mut rec, if shadow_needed { shadow_size } else { 16 }, shadow_layers);
         let shadow_map = self.passes.get::<ShadowMapPass>()?;
         if shadow_needed {
             // The shadow maps rasterise anchor-relative vertices; the direct pass looks them
             // up with eye-relative positions through `LightRaw::view_proj`.
-            let vps: Vec<_> = scene.lights.iter().filter_map(|l| l.as_spot()).map(|s| light_view_proj(s, anchor, extent).to_cols_array_2d()).collect();
+            let vps: Vec<_> = scene.lights.iter().flat_map(|l| shadow_view_projs(l, anchor, extent)).map(|m| m.to_cols_array_2d()).collect();
             shadow_map.record(&mut rec, &shadow_tex, &vps, &gscene.raster_vertices, gscene.raster_vertex_count);
         } else {
             // Clear the one placeholder layer so the binding is defined.
             rec.untimed(|rec| shadow_map.record(rec, &shadow_tex, &[], &gscene.raster_vertices, 0));
-            let why = if lights.is_empty() { "the scene has no spot light".to_string() } else { format!("method={:?} traces shadow rays", info.name) };
+            let why = if lights.is_empty() { "the scene has no light".to_string() } else { format!("method={:?} traces shadow rays", info.name) };
             skipped.push(("shadow_map".into(), why));
         }
 

@@ -1,6 +1,7 @@
 //! Light sources: the three punctual types of glTF's KHR_lights_punctual as one enum, so every
 //! layer (scene, loader, GPU twins, methods, bindings) handles a light type in one `match`.
-//! Only spot lights render so far; a frame with another type says so (see `docs/architecture.md`).
+//! Spot, point and directional lights give direct light (`direct`, `pathtrace`); the virtual-light
+//! methods take spot and point lights so far and name a directional light they are given.
 
 use glam::{DVec3, Vec3};
 

@@ -1,0 +1,124 @@
+//! Point and directional lights as Python classes, and the conversions between Python light
+//! objects (any of the three classes) and the core `Light` enum. `SpotLight` stays in lib.rs.
+
+use crate::errors::{argument_error, to_py};
+use crate::{finite, vec3, PySpotLight};
+use pyo3::prelude::*;
+use vsgl_core::scene::{limits, DirectionalLight, Light, PointLight};
+
+/// A positive, finite f32 `intensity` in `unit`, at most `limits::MAX_INTENSITY`.
+fn intensity(x: f64, unit: &str) -> PyResult<f32> {
+    limits::intensity("intensity", unit, finite("intensity", x)?).map_err(to_py)
+}
+
+fn color(c: Vec<f64>) -> PyResult<glam::Vec3> {
+    let c = vec3("color", c)?;
+    if c.min_element() < 0.0 {
+        return Err(argument_error(format!("color: components must be >= 0, got {c:?}")));
+    }
+    Ok(c.as_vec3())
+}
+
+/// A point light (KHR_lights_punctual conventions): intensity in candela, equal in every
+/// direction, inverse-square falloff.
+#[pyclass(name = "PointLight", module = "vsgl", from_py_object)]
+#[derive(Clone)]
+pub struct PyPointLight {
+    pub inner: PointLight,
+}
+
+#[pymethods]
+impl PyPointLight {
+    #[new]
+    #[pyo3(signature = (position, intensity, color=vec![1.0, 1.0, 1.0]))]
+    fn new(position: Vec<f64>, intensity: f64, color: Vec<f64>) -> PyResult<Self> {
+        let position = limits::position("position", vec3("position", position)?).map_err(to_py)?;
+        let intensity = self::intensity(intensity, "candela")?;
+        let color = self::color(color)?;
+        Ok(Self { inner: PointLight { position, intensity, color } })
+    }
+    #[getter]
+    fn position(&self) -> (f64, f64, f64) {
+        self.inner.position.into()
+    }
+    #[getter]
+    fn intensity(&self) -> f32 {
+        self.inner.intensity
+    }
+    #[getter]
+    fn color(&self) -> (f32, f32, f32) {
+        self.inner.color.into()
+    }
+    fn __repr__(&self) -> String {
+        let l = &self.inner;
+        format!("PointLight(position={:?}, intensity={}, color={:?})", l.position.to_array(), l.intensity, l.color.to_array())
+    }
+}
+
+/// A directional light (KHR_lights_punctual conventions): illuminance in lux on a surface
+/// facing it, light travelling along `direction`, no falloff.
+#[pyclass(name = "DirectionalLight", module = "vsgl", from_py_object)]
+#[derive(Clone)]
+pub struct PyDirectionalLight {
+    pub inner: DirectionalLight,
+}
+
+#[pymethods]
+impl PyDirectionalLight {
+    #[new]
+    #[pyo3(signature = (direction, intensity, color=vec![1.0, 1.0, 1.0]))]
+    fn new(direction: Vec<f64>, intensity: f64, color: Vec<f64>) -> PyResult<Self> {
+        let direction = limits::unit_direction("direction", vec3("direction", direction)?).map_err(to_py)?;
+        let intensity = self::intensity(intensity, "lux")?;
+        let color = self::color(color)?;
+        Ok(Self { inner: DirectionalLight { direction, intensity, color } })
+    }
+    #[getter]
+    fn direction(&self) -> (f64, f64, f64) {
+        self.inner.direction.into()
+    }
+    #[getter]
+    fn intensity(&self) -> f32 {
+        self.inner.intensity
+    }
+    #[getter]
+    fn color(&self) -> (f32, f32, f32) {
+        self.inner.color.into()
+    }
+    fn __repr__(&self) -> String {
+        let l = &self.inner;
+        format!("DirectionalLight(direction={:?}, intensity={}, color={:?})", l.direction.to_array(), l.intensity, l.color.to_array())
+    }
+}
+
+/// Any Python light object.
+#[derive(FromPyObject)]
+pub(crate) enum AnyLight {
+    Spot(PySpotLight),
+    Point(PyPointLight),
+    Directional(PyDirectionalLight),
+}
+
+impl From<AnyLight> for Light {
+    fn from(l: AnyLight) -> Self {
+        match l {
+            AnyLight::Spot(s) => Light::Spot(s.inner),
+            AnyLight::Point(p) => Light::Point(p.inner),
+            AnyLight::Directional(d) => Light::Directional(d.inner),
+        }
+    }
+}
+
+/// A scene light as its Python class.
+pub(crate) fn light_to_py(py: Python<'_>, light: &Light) -> PyResult<Py<PyAny>> {
+    Ok(match light {
+        Light::Spot(s) => Py::new(py, PySpotLight { inner: *s })?.into_any(),
+        Light::Point(p) => Py::new(py, PyPointLight { inner: *p })?.into_any(),
+        Light::Directional(d) => Py::new(py, PyDirectionalLight { inner: *d })?.into_any(),
+    })
+}
+
+/// Counts of the scene's lights by glTF type name (`scene.stats["lights_by_type"]`).
+pub fn count_by_type(lights: &[Light]) -> Vec<(&'static str, usize)> {
+    ["spot", "point", "directional"].iter().map(|&k| (k, lights.iter().filter(|l| l.kind() == k).count())).collect()
+}

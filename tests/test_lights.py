@@ -1,0 +1,396 @@
+"""Point and directional lights (issue 16): the Python classes, the glTF loader, direct light
+against closed forms (KHR_lights_punctual units), point-light cube shadows on every face,
+additivity of several lights, NaN/Inf safety, point lights in the virtual-light methods (six
+cube-face RSMs: total power, agreement with the path tracer, budget split), and the clear
+refusal of directional lights there."""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+import pytest
+
+import vsgl
+import gltf_fixtures as fx
+from scene_builders import write_quad, write_quads
+
+SIZE = 33  # odd, so the centre pixel's ray is exactly the optical axis
+
+
+def centre(frame: vsgl.Frame, aov: str = "direct") -> np.ndarray:
+    return frame.aov(aov)[SIZE // 2, SIZE // 2]
+
+
+# ------------------------------------------------------------------------------------------
+# API and loader
+# ------------------------------------------------------------------------------------------
+
+
+def test_point_and_directional_light_classes():
+    p = vsgl.PointLight(position=(1, 2, 3), intensity=5.0, color=(1, 0.5, 0.25))
+    assert p.position == (1, 2, 3) and p.intensity == 5.0 and p.color == (1, 0.5, 0.25)
+    d = vsgl.DirectionalLight(direction=(0, -2, 0), intensity=3.0)
+    assert d.direction == (0, -1, 0), "the direction is normalised"
+    assert d.intensity == 3.0 and d.color == (1, 1, 1)
+    assert "PointLight(" in repr(p) and "DirectionalLight(" in repr(d)
+
+
+@pytest.mark.parametrize(
+    "make,name",
+    [
+        (lambda: vsgl.PointLight(position=(0, math.nan, 0), intensity=1.0), "position"),
+        (lambda: vsgl.PointLight(position=(0, 0), intensity=1.0), "position"),
+        (lambda: vsgl.PointLight(position=(0, 0, 0), intensity=0.0), "intensity"),
+        (lambda: vsgl.PointLight(position=(0, 0, 0), intensity=math.inf), "intensity"),
+        (lambda: vsgl.PointLight(position=(0, 0, 0), intensity=1.0, color=(1, -1, 1)), "color"),
+        (lambda: vsgl.DirectionalLight(direction=(0, 0, 0), intensity=1.0), "direction"),
+        (lambda: vsgl.DirectionalLight(direction=(0, math.inf, 0), intensity=1.0), "direction"),
+        (lambda: vsgl.DirectionalLight(direction=(0, -1, 0), intensity=-2.0), "intensity"),
+        (lambda: vsgl.DirectionalLight(direction=(0, -1, 0), intensity=1.0, color=(1, 1, math.nan)), "color"),
+    ],
+)
+def test_bad_light_arguments_raise_argument_error_naming_them(make, name):
+    with pytest.raises(vsgl.ArgumentError, match=f"^{name}:"):
+        make()
+
+
+def test_scene_takes_a_mix_of_light_types():
+    scene = vsgl.scenes.cornell_box()
+    spot = scene.lights[0]
+    scene.add_light(vsgl.PointLight(position=(0, 1, 0), intensity=2.0))
+    scene.add_light(vsgl.DirectionalLight(direction=(0, -1, 0), intensity=3.0))
+    assert [type(light) for light in scene.lights] == [vsgl.SpotLight, vsgl.PointLight, vsgl.DirectionalLight]
+    assert scene.stats["lights"] == 3
+    assert scene.stats["lights_by_type"] == {"spot": 1, "point": 1, "directional": 1}
+    scene.lights = [vsgl.DirectionalLight(direction=(1, -1, 0), intensity=1.0), spot]
+    assert [type(light) for light in scene.lights] == [vsgl.DirectionalLight, vsgl.SpotLight]
+    assert scene.stats["lights_by_type"] == {"spot": 1, "point": 0, "directional": 1}
+    with pytest.raises(TypeError):
+        scene.add_light("a lamp")
+
+
+def test_loader_reads_point_and_directional_lights_with_gltf_conventions(tmp_path):
+    scene = vsgl.Scene.load(fx.write_spot_light_camera(tmp_path))
+    spot, point, sun = scene.lights
+    assert isinstance(point, vsgl.PointLight) and point.position == (0, 0, 0) and point.intensity == 10.0
+    # KHR_lights_punctual: the light travels along its node's −Z (here rotated to −Y); the
+    # node's translation does not matter for a directional light.
+    assert isinstance(sun, vsgl.DirectionalLight)
+    np.testing.assert_allclose(sun.direction, (0, -1, 0), atol=1e-6)
+    assert sun.intensity == 2.0 and sun.color == (0.5, 1.0, 1.0)
+    assert any("range = 3 is ignored" in w for w in scene.warnings), scene.warnings
+
+
+# ------------------------------------------------------------------------------------------
+# Direct light against closed forms
+# ------------------------------------------------------------------------------------------
+
+
+@pytest.mark.parametrize("method", ["direct", "pathtrace"])
+@pytest.mark.parametrize("rho,intensity", [(0.8, 20.0), (0.3, 1e4)])
+def test_diffuse_plane_under_point_light_matches_closed_form(tmp_path, make_renderer, method, rho, intensity):
+    d = 2.0
+    # specularFactor 0: a purely Lambertian plane, so L = ρ/π · I/d² exactly (l = n).
+    scene = vsgl.Scene.load(write_quad(tmp_path, half_size=4.0, base_color=(rho, rho, rho), specular=0.0))
+    scene.add_light(vsgl.PointLight(position=(0, d, 0), intensity=intensity))
+    cam = vsgl.Camera.look_at(eye=(0, 1.5 * d, 0.5), target=(0, 0, 0), up=(0, 0, -1), fov_y_deg=30)
+    frame = make_renderer(SIZE, SIZE).render(scene, camera=cam, method=method, **({"spp": 1} if method == "pathtrace" else {}))
+    np.testing.assert_allclose(centre(frame), rho / math.pi * intensity / d**2, rtol=0.01)
+
+
+@pytest.mark.parametrize("method", ["direct", "pathtrace"])
+@pytest.mark.parametrize("theta_deg", [0.0, 60.0, 80.0])
+def test_diffuse_plane_under_directional_light_matches_closed_form(tmp_path, make_renderer, method, theta_deg):
+    rho, e = 0.7, 3.0
+    scene = vsgl.Scene.load(write_quad(tmp_path, half_size=4.0, base_color=(rho, rho, rho), specular=0.0))
+    t = math.radians(theta_deg)
+    scene.add_light(vsgl.DirectionalLight(direction=(math.sin(t), -math.cos(t), 0), intensity=e))
+    cam = vsgl.Camera.look_at(eye=(0, 3, 0), target=(0, 0, 0), up=(0, 0, -1), fov_y_deg=30)
+    frame = make_renderer(SIZE, SIZE).render(scene, camera=cam, method=method, **({"spp": 1} if method == "pathtrace" else {}))
+    # Lambert under an illuminance E at θ from the normal: L = ρ/π · E · cosθ, everywhere.
+    expected = rho / math.pi * e * math.cos(t)
+    np.testing.assert_allclose(centre(frame), expected, rtol=0.01)
+    # No falloff and no self-shadowing anywhere on the plane (the shadow map's slope bias).
+    np.testing.assert_allclose(frame.aov("direct"), expected, rtol=0.01)
+
+
+@pytest.mark.parametrize("method", ["direct", "pathtrace"])
+def test_occluder_under_directional_light_casts_its_shadow(tmp_path, make_renderer, method):
+    rho, e = 0.6, 2.0
+    t = math.radians(30.0)
+    quads = [square((0, 0, 0), (0, 1, 0), 3.0, base_color=(rho, rho, rho), name="floor"),
+             square((0, 1, 0), (0, 1, 0), 0.5, name="occluder")]
+    scene = vsgl.Scene.load(write_quads(tmp_path, quads, name="sun.gltf"))
+    scene.add_light(vsgl.DirectionalLight(direction=(math.sin(t), -math.cos(t), 0), intensity=e))
+    r = make_renderer(SIZE, SIZE)
+    opts = {"spp": 1} if method == "pathtrace" else {}
+    # The occluder's shadow is centred tan30° × its height downwind; seen past the occluder.
+    shadow = (math.tan(t), 0.0, 0.0)
+    f = r.render(scene, camera=vsgl.Camera.look_at(eye=(shadow[0] + 2.0, 2.5, 0), target=shadow, fov_y_deg=20), method=method, **opts)
+    lit = rho / math.pi * e * math.cos(t)
+    assert centre(f).max() < 0.01 * lit, f"{centre(f)} not shadowed"
+    f = r.render(scene, camera=vsgl.Camera.look_at(eye=(-1.5, 2.5, 2.0), target=(-1.5, 0, 0), fov_y_deg=20), method=method, **opts)
+    np.testing.assert_allclose(centre(f), lit, rtol=0.01)
+
+
+# ------------------------------------------------------------------------------------------
+# Point-light shadows: every cube face
+# ------------------------------------------------------------------------------------------
+
+H = 1.0  # half side of the box around the light
+AXES = [np.eye(3)[k] for k in range(3)]
+
+
+def square(c, n, half, **kw) -> dict:
+    """A square quad centred at c with unit normal n (corners ordered so that the quad's
+    normal is n) and half side `half`."""
+    n = np.asarray(n, float)
+    u = np.cross(n, AXES[1] if abs(n[1]) < 0.9 else AXES[0])
+    u /= np.linalg.norm(u)
+    v = np.cross(n, u)  # u × v = n
+    c = np.asarray(c, float)
+    corners = [c - half * u - half * v, c + half * u - half * v, c + half * u + half * v, c - half * u + half * v]
+    return {"corners": [tuple(p) for p in corners], "specular": 0.0, **kw}
+
+
+FACES = [(k, s) for k in range(3) for s in (1.0, -1.0)]
+
+
+def off_axis(k: int, b: float, c: float) -> np.ndarray:
+    """b along axis (k + 1) % 3 plus c along axis (k + 2) % 3."""
+    return b * AXES[(k + 1) % 3] + c * AXES[(k + 2) % 3]
+
+
+def box_scene(tmp_path, occluders: bool, rho: float = 0.6) -> vsgl.Scene:
+    """Six inward-facing walls of a cube of half side H around the origin; with `occluders`,
+    a small square (half side 0.05·H) halfway to each wall, off the axis by (0.15, 0.05)·H so
+    that its shadow (centred at (0.3, 0.1)·H on the wall, half side 0.1·H) is asymmetric: a
+    cube face looked up flipped or transposed puts it elsewhere."""
+    quads = [square(s * H * AXES[k], -s * AXES[k], H, base_color=(rho, rho, rho), name=f"wall{k}{s:+.0f}") for k, s in FACES]
+    if occluders:
+        quads += [square(s * 0.5 * H * AXES[k] + off_axis(k, 0.15 * H, 0.05 * H), -s * AXES[k], 0.05 * H, name=f"occluder{k}{s:+.0f}") for k, s in FACES]
+    name = "box_occluded.gltf" if occluders else "box.gltf"
+    return vsgl.Scene.load(write_quads(tmp_path, quads, name=name))
+
+
+def wall_camera(k: int, s: float, target: np.ndarray) -> vsgl.Camera:
+    """A camera inside the box looking at `target` on wall (k, s) obliquely, past the
+    occluders: from 0.2·H along the wall's axis and 0.7·H along both other axes."""
+    others = [j for j in range(3) if j != k]
+    eye = s * 0.2 * H * AXES[k] + 0.7 * H * (AXES[others[0]] + AXES[others[1]])
+    up = AXES[k] if k != 1 else AXES[2]
+    return vsgl.Camera.look_at(eye=tuple(eye), target=tuple(target), up=tuple(up), fov_y_deg=20)
+
+
+@pytest.mark.parametrize("method", ["direct", "pathtrace"])
+def test_point_light_in_a_closed_box_lights_six_walls_and_occluders_shadow_each_face(tmp_path, make_renderer, method):
+    rho, intensity = 0.6, 5.0
+    r = make_renderer(SIZE, SIZE)
+    light = vsgl.PointLight(position=(0, 0, 0), intensity=intensity)
+    open_box, shadowed_box = box_scene(tmp_path, occluders=False, rho=rho), box_scene(tmp_path, occluders=True, rho=rho)
+    for scene in (open_box, shadowed_box):
+        scene.lights = [light]
+    opts = {"spp": 1} if method == "pathtrace" else {}
+    lit = rho / math.pi * intensity / H**2
+    for k, s in FACES:
+        wall_centre = s * H * AXES[k]
+        # Without occluders each wall's centre gets ρ/π·I/H² (normal incidence at distance H).
+        f = r.render(open_box, camera=wall_camera(k, s, wall_centre), method=method, **opts)
+        np.testing.assert_allclose(centre(f), lit, rtol=0.01, err_msg=f"wall {k}{s:+}")
+        # The occluder darkens the centre of its shadow...
+        f = r.render(shadowed_box, camera=wall_camera(k, s, wall_centre + off_axis(k, 0.3 * H, 0.1 * H)), method=method, **opts)
+        assert centre(f).max() < 0.01 * lit, f"wall {k}{s:+}: {centre(f)} not shadowed"
+        # ... and not the mirror point through the wall's centre, lit by ρ/π·I·cosθ/d² with
+        # d² = (1 + 0.3² + 0.1²)·H², cosθ = H/d.
+        f = r.render(shadowed_box, camera=wall_camera(k, s, wall_centre - off_axis(k, 0.3 * H, 0.1 * H)), method=method, **opts)
+        d2 = 1.1 * H**2
+        np.testing.assert_allclose(centre(f), rho / math.pi * intensity * (H / math.sqrt(d2)) / d2, rtol=0.01, err_msg=f"wall {k}{s:+} mirror point")
+
+
+# ------------------------------------------------------------------------------------------
+# Several lights add up
+# ------------------------------------------------------------------------------------------
+
+
+def three_light_scene(tmp_path) -> tuple[vsgl.Scene, list]:
+    quads = [
+        square((0, 0, 0), (0, 1, 0), 2.0, name="floor"),
+        square((0, 1, -2), (0, 0, 1), 2.0, base_color=(0.3, 0.6, 0.9), name="back"),
+        square((-2, 1, 0), (1, 0, 0), 2.0, base_color=(0.9, 0.3, 0.3), name="left"),
+        square((0.3, 0.6, 0.2), (0, 1, 0), 0.3, name="table"),
+    ]
+    for q in quads:
+        q.pop("specular")  # glossy enough to exercise the specular terms too
+        q["roughness"] = 0.5
+    scene = vsgl.Scene.load(write_quads(tmp_path, quads, name="three.gltf"))
+    lights = [
+        vsgl.SpotLight(position=(0.5, 2.5, 0.5), direction=(-0.2, -1, -0.1), intensity=8.0, inner_cone_deg=35, outer_cone_deg=50),
+        vsgl.PointLight(position=(-1.0, 1.5, 1.0), intensity=3.0, color=(1, 0.8, 0.6)),
+        vsgl.DirectionalLight(direction=(0.5, -1, -0.7), intensity=2.0, color=(0.6, 0.8, 1)),
+    ]
+    return scene, lights
+
+
+def test_direct_light_of_three_light_types_adds_up(tmp_path, renderer):
+    scene, lights = three_light_scene(tmp_path)
+    cam = vsgl.Camera.look_at(eye=(1.5, 2.0, 3.0), target=(0, 0.5, 0), fov_y_deg=60)
+    scene.lights = lights
+    together = renderer.render(scene, camera=cam, method="direct").aov("direct").astype(np.float64)
+    parts = []
+    for light in lights:
+        scene.lights = [light]
+        parts.append(renderer.render(scene, camera=cam, method="direct").aov("direct").astype(np.float64))
+    assert all(p.max() > 0.05 * together.max() for p in parts), "every light must contribute"
+    # Same per-light terms, summed in another order: equal to float rounding.
+    np.testing.assert_allclose(together, sum(parts), rtol=1e-5, atol=1e-6 * together.max())
+
+
+def test_pathtrace_of_three_light_types_adds_up_within_its_error(tmp_path, renderer):
+    scene, lights = three_light_scene(tmp_path)
+    cam = vsgl.Camera.look_at(eye=(1.5, 2.0, 3.0), target=(0, 0.5, 0), fov_y_deg=60)
+    scene.lights = lights
+    opts = dict(method="pathtrace", spp=16)
+    f = renderer.render(scene, camera=cam, seed=1, **opts)
+    together, var = f.image.astype(np.float64), f.aov("stderr").astype(np.float64) ** 2
+    total = np.zeros_like(together)
+    for i, light in enumerate(lights):
+        scene.lights = [light]
+        g = renderer.render(scene, camera=cam, seed=10 + i, **opts)
+        total += g.image
+        var += g.aov("stderr").astype(np.float64) ** 2
+    lit = var > 0
+    assert lit.mean() > 0.5
+    # Independent estimates: the difference has variance Σσ². Over all pixels the mean
+    # difference is within 3σ of its own standard error, and per pixel at most 1% exceed 4σ.
+    diff = together - total
+    assert abs(diff[lit].mean()) < 3.0 * math.sqrt(var[lit].sum()) / lit.sum()
+    assert (np.abs(diff[lit]) > 4.0 * np.sqrt(var[lit])).mean() < 0.01
+
+
+# ------------------------------------------------------------------------------------------
+# NaN / Inf safety
+# ------------------------------------------------------------------------------------------
+
+
+def _assert_finite(frame: vsgl.Frame) -> None:
+    for name in frame.aovs:
+        assert np.isfinite(frame.aov(name)).all(), f"AOV {name} has NaN/Inf"
+
+
+@pytest.mark.parametrize("method", ["direct", "pathtrace"])
+def test_awkward_light_placements_are_finite(tmp_path, renderer, method):
+    opts = {"spp": 2} if method == "pathtrace" else {}
+    scene = vsgl.scenes.cornell_box()
+    cam = scene.cameras[0] if scene.cameras else None
+    # A point light inside the tall block (x ∈ [−0.65, −0.05], y ∈ [0, 1.2], z ∈ [−0.6, 0]).
+    scene.lights = [vsgl.PointLight(position=(-0.35, 0.6, -0.3), intensity=5.0)]
+    _assert_finite(renderer.render(scene, camera=cam, method=method, **opts))
+    # A point light exactly at the camera, and one on a wall (x = 1 is a wall of the box).
+    eye = (0.0, 1.0, 1.5)
+    at_eye = vsgl.Camera.look_at(eye=eye, target=(0, 1, 0), fov_y_deg=60)
+    for position in [eye, (1.0, 1.0, 0.0), (-1.0, 1.0, 0.0)]:
+        scene.lights = [vsgl.PointLight(position=position, intensity=5.0)]
+        _assert_finite(renderer.render(scene, camera=at_eye, method=method, **opts))
+    # A directional light parallel to the floor and the back wall, and one along a wall's normal.
+    for direction in [(1, 0, 0), (0, -1, 0), (0, 0, -1)]:
+        scene.lights = [vsgl.DirectionalLight(direction=direction, intensity=2.0)]
+        _assert_finite(renderer.render(scene, camera=at_eye, method=method, **opts))
+
+
+# ------------------------------------------------------------------------------------------
+# Point lights in the virtual-light methods: six cube-face RSMs
+# ------------------------------------------------------------------------------------------
+
+
+@pytest.mark.parametrize("rsm_size", [32, 64])
+def test_point_light_rsm_flux_adds_up_to_4pi_i_in_a_closed_box(tmp_path, renderer, rsm_size):
+    rho, intensity = 0.6, 5.0
+    scene = box_scene(tmp_path, occluders=False, rho=rho)
+    # Off-centre, so the faces see the walls at different distances and angles.
+    scene.lights = [vsgl.PointLight(position=(0.1, -0.2, 0.15), intensity=intensity)]
+    frame = renderer.render(scene, method="vpl", num_lights=16, rsm_size=rsm_size, capture_rsm=True)
+    flux = frame.rsm("flux_diffuse")
+    assert flux.shape == (6 * rsm_size, rsm_size, 3), "the six cube faces, stacked"
+    # Every direction meets a wall: the RSM texels' flux sums to the light's power 4π·I,
+    # times the walls' R_d.
+    np.testing.assert_allclose(flux.astype(np.float64).sum(axis=(0, 1)), rho * 4.0 * math.pi * intensity, rtol=0.005)
+
+
+def test_point_light_indirect_light_of_reference_agrees_with_the_path_tracer(tmp_path, make_renderer):
+    """In a closed convex box nothing occludes a bounce, so the every-texel `reference` (made
+    from the six face RSMs) and the path tracer (no RSM at all) estimate the same integral."""
+    scene = box_scene(tmp_path, occluders=False)
+    scene.lights = [vsgl.PointLight(position=(0.1, -0.2, 0.15), intensity=5.0)]
+    cam = vsgl.Camera.look_at(eye=(0.5, 0.5, 0.9), target=(-1, -0.5, -1), fov_y_deg=70)
+    r = make_renderer(32, 24)
+    ref = r.render(scene, camera=cam, method="reference", rsm_size=64).aov("indirect").astype(np.float64)
+    pt = r.render(scene, camera=cam, method="pathtrace", spp=64)
+    est, err = pt.aov("indirect").astype(np.float64), pt.aov("stderr").astype(np.float64)
+    # Mean over the image: the path tracer's own error of the mean is ~0.1%; the reference's
+    # discretisation (64² texels per face) is below 1%.
+    assert abs(ref.mean() / est.mean() - 1.0) < 0.01 + 3.0 * math.sqrt((err**2).sum()) / err.size / est.mean()
+    # Per wall region too: quarters of the image within 3%.
+    h, w = ref.shape[:2]
+    for ys in (slice(0, h // 2), slice(h // 2, h)):
+        for xs in (slice(0, w // 2), slice(w // 2, w)):
+            assert ref[ys, xs].mean() == pytest.approx(est[ys, xs].mean(), rel=0.03)
+
+
+def test_vpl_with_a_point_light_converges_to_the_reference(tmp_path, renderer):
+    scene = box_scene(tmp_path, occluders=False)
+    scene.lights = [vsgl.PointLight(position=(0.1, -0.2, 0.15), intensity=5.0)]
+    cam = vsgl.Camera.look_at(eye=(0.5, 0.5, 0.9), target=(-1, -0.5, -1), fov_y_deg=70)
+    ref = renderer.render(scene, camera=cam, method="reference", rsm_size=32).aov("indirect").astype(np.float64)
+    # Same RSM: VPLs importance-sampled from it are an unbiased estimate of the reference sum.
+    vpl = np.mean([renderer.render(scene, camera=cam, method="vpl", num_lights=1024, rsm_size=32, seed=s).aov("indirect") for s in range(4)], axis=0)
+    assert vpl.mean() == pytest.approx(ref.mean(), rel=0.01)
+
+
+@pytest.mark.parametrize("method", ["vpl", "vsgl"])
+@pytest.mark.parametrize("num_lights", [16, 64, 4])
+def test_virtual_light_budget_split_over_a_point_lights_faces_adds_up(tmp_path, renderer, method, num_lights):
+    scene = box_scene(tmp_path, occluders=False)
+    scene.lights = [
+        vsgl.SpotLight(position=(0, 0.9, 0), direction=(0, -1, 0), intensity=3.0),
+        vsgl.PointLight(position=(0.1, -0.2, 0.15), intensity=5.0),
+    ]
+    cam = vsgl.Camera.look_at(eye=(0.5, 0.5, 0.9), target=(-1, -0.5, -1), fov_y_deg=70)
+    frame = renderer.render(scene, camera=cam, method=method, num_lights=num_lights, rsm_size=32)
+    spot, point = frame.settings["virtual_lights_per_light"].split(";")
+    assert int(spot) == num_lights
+    faces = [int(x) for x in point.split("+")]
+    assert len(faces) == 6 and max(faces) - min(faces) <= 1
+    # The point light's num_lights are shared by its faces (each gets at least one).
+    assert sum(faces) == max(num_lights, 6)
+    _assert_finite(frame)
+    assert frame.aov("indirect").max() > 0
+
+
+@pytest.mark.parametrize("method,low", [("vsgl", 0.8), ("vsgl2", 0.55)])
+def test_vsgl_methods_light_a_box_from_a_point_light(tmp_path, make_renderer, method, low):
+    """A smoke check, not an accuracy test: VSGLs approximate, and in this box they come out
+    low against `reference` (measured: vsgl 0.87, vsgl2 0.69 — two VSGLs per cube face; for
+    an upward spot light of 89° at the same place 0.89 and 0.84). Missing cube faces are
+    caught by the flux and path-tracer tests above, not here."""
+    scene = box_scene(tmp_path, occluders=False)
+    cam = vsgl.Camera.look_at(eye=(0.5, 0.5, 0.9), target=(-1, -0.5, -1), fov_y_deg=70)
+    r = make_renderer(32, 24)
+    scene.lights = [vsgl.PointLight(position=(0.1, -0.2, 0.15), intensity=5.0)]
+    ref = r.render(scene, camera=cam, method="reference", rsm_size=64).aov("indirect").mean()
+    opts = dict(num_lights=1024, rsm_size=64) if method == "vsgl" else dict(rsm_size=64)
+    got = r.render(scene, camera=cam, method=method, **opts).aov("indirect").mean()
+    assert low * ref < got < 1.05 * ref
+
+
+# ------------------------------------------------------------------------------------------
+# Virtual-light methods: no directional lights yet
+# ------------------------------------------------------------------------------------------
+
+
+@pytest.mark.parametrize("method", ["vpl", "vsgl", "vsgl2", "reference"])
+def test_virtual_light_methods_refuse_directional_lights_by_name(renderer, method):
+    scene = vsgl.scenes.cornell_box()
+    scene.add_light(vsgl.DirectionalLight(direction=(0, -1, 0), intensity=1.0))
+    with pytest.raises(vsgl.ArgumentError, match=r"scene\.lights\[1\].*directional lights.*spot and point lights only"):
+        renderer.render(scene, method=method, rsm_size=32, **({"num_lights": 16} if "num_lights" in vsgl.method_options(method) else {}))
