@@ -152,7 +152,10 @@ impl PyCamera {
 /// A scene: meshes, materials, textures, nodes, spot lights and cameras.
 #[pyclass(name = "Scene", module = "vsgl")]
 struct PyScene {
-    inner: Scene,
+    /// Shared with the renders in flight: a render takes a snapshot (this Arc) and lets go of
+    /// the Python object, so another thread may edit the scene meanwhile; an edit then copies
+    /// the scene (`Arc::make_mut`) and the render finishes with the state it started from.
+    inner: Arc<Scene>,
 }
 
 #[pymethods]
@@ -169,7 +172,7 @@ impl PyScene {
             options.max_texture_bytes = positive_bytes("max_texture_bytes", v)?;
         }
         let scene = py.detach(|| vsgl_core::scene::gltf::load_with(&path, &options)).map_err(to_py)?;
-        Ok(Self { inner: scene })
+        Ok(Self { inner: Arc::new(scene) })
     }
     /// Triangle, mesh, material, texture and light counts and the features the scene uses.
     #[getter]
@@ -198,12 +201,12 @@ impl PyScene {
     }
     /// Adds a light: a SpotLight, PointLight or DirectionalLight.
     fn add_light(&mut self, light: AnyLight) {
-        self.inner.add_light(Light::from(light));
+        Arc::make_mut(&mut self.inner).add_light(Light::from(light));
     }
     /// Sets the local transform of every node called `node_name` to `matrix` (4×4, row-major as
     /// NumPy prints it: p' = M @ p). Raises ValueError when no node has that name.
     fn set_transform(&mut self, node_name: &str, matrix: Vec<Vec<f64>>) -> PyResult<()> {
-        set_node_transform(&mut self.inner, node_name, matrix, "matrix", "node_name")
+        set_node_transform(Arc::make_mut(&mut self.inner), node_name, matrix, "matrix", "node_name")
     }
     #[getter]
     fn node_names(&self) -> Vec<String> {
@@ -216,7 +219,7 @@ impl PyScene {
     }
     #[setter]
     fn set_lights(&mut self, lights: Vec<AnyLight>) {
-        self.inner.lights = lights.into_iter().map(Light::from).collect();
+        Arc::make_mut(&mut self.inner).lights = lights.into_iter().map(Light::from).collect();
     }
     #[getter]
     fn cameras(&self) -> Vec<PyCamera> {
@@ -701,7 +704,11 @@ impl PyRenderer {
         options: Option<&Bound<'_, PyDict>>,
     ) -> PyResult<PyFrame> {
         let opts = render_options(method, plan, aovs, options)?;
-        let s: &Scene = &scene.inner;
+        // A snapshot: the Python object is released before the GPU work, so other threads may
+        // edit the scene while this frame renders the state it started with.
+        let snapshot: Arc<Scene> = scene.inner.clone();
+        drop(scene);
+        let s: &Scene = &snapshot;
         let cam = camera.map(|c| c.inner);
         let r = &self.inner;
         let (opts, interrupt) = interruptible(opts);
@@ -730,7 +737,7 @@ impl PyRenderer {
         let opts = render_options(method, plan, aovs, options)?;
         opts.resolve().map_err(to_py)?;
         let frames = frames.try_iter().map_err(|_| argument_error("frames: expected an iterable of dicts"))?;
-        let state = SequenceState { scene: scene.inner.clone(), camera: camera.map(|c| c.inner), index: 0, in_flight: None, deferred: None };
+        let state = SequenceState { scene: (*scene.inner).clone(), camera: camera.map(|c| c.inner), index: 0, in_flight: None, deferred: None };
         Ok(PyFrameSequence { renderer: self.inner.clone(), frames: frames.unbind(), opts, state: std::sync::Mutex::new(state) })
     }
     fn __repr__(&self) -> String {
@@ -861,7 +868,7 @@ fn builtin_scene_names() -> Vec<&'static str> {
 #[pyfunction]
 fn builtin_scene(name: &str) -> PyResult<PyScene> {
     builtin::by_name(name)
-        .map(|s| PyScene { inner: s })
+        .map(|s| PyScene { inner: Arc::new(s) })
         .ok_or_else(|| argument_error(format!("name: unknown built-in scene {name:?}; valid: {}", builtin::NAMES.join(", "))))
 }
 
