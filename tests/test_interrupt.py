@@ -51,3 +51,25 @@ def test_a_time_budget_ends_the_sampling_with_what_was_taken(tiny):
     assert tiny.render(scene, method="pathtrace", spp=8, aovs=["image"]).settings["spp_done"] == "8"
     with pytest.raises(vsgl.ArgumentError, match="time_budget_s"):
         tiny.render(scene, method="pathtrace", time_budget_s=-1.0)
+
+
+def test_progress_is_reported_between_batches_and_can_stop_the_render(tiny):
+    scene = vsgl.scenes.cornell_box()
+    calls = []
+    f = tiny.render(scene, method="pathtrace", spp=4096, aovs=["image"], progress=lambda d, t, u: calls.append((d, t, u)))
+    assert calls, "no progress reported"
+    assert all(t == 4096 and u == "spp" for _, t, u in calls)
+    done = [d for d, _, _ in calls]
+    assert done == sorted(done) and 0 < done[0] and done[-1] < 4096
+    assert f.settings["spp_done"] == "4096"
+
+    class Enough(Exception):
+        pass
+
+    def stop(done, total, unit):
+        raise Enough(f"{done}/{total}")
+
+    with pytest.raises(Enough):
+        tiny.render(scene, method="pathtrace", spp=4096, aovs=["image"], progress=stop)
+    with pytest.raises(vsgl.ArgumentError, match="progress: expected a callable"):
+        tiny.render(scene, method="pathtrace", progress=3)

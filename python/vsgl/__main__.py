@@ -33,7 +33,10 @@ def _render(args: argparse.Namespace) -> int:
                  kernel=args.kernel, interleave=args.interleave, spp=args.spp)
     takes = vsgl.method_options(args.method)
     options = {k: v for k, v in flags.items() if k in takes and v is not None}
-    frame = renderer.render(scene, method=args.method, plan=args.plan, **options)
+    progress = _progress_line(args.method)
+    frame = renderer.render(scene, method=args.method, plan=args.plan, progress=progress, **options)
+    if progress is not None and progress.shown:  # type: ignore[attr-defined]
+        print(file=sys.stderr)
     t2 = time.perf_counter()
     frame.save(args.output, exposure=args.exposure)
     image = frame.image
@@ -100,6 +103,20 @@ def _methods(args: argparse.Namespace) -> int:
     for name in vsgl.METHODS:
         print(vsgl.describe_method(name))
     return 0
+
+
+def _progress_line(method: str):
+    """A `progress` callback that keeps one line on stderr up to date for long renders (shown
+    only on a terminal, so logs and pipes stay clean); Ctrl-C stops the render between batches."""
+    if not sys.stderr.isatty():
+        return None
+
+    def show(done: int, total: int, unit: str) -> None:
+        show.shown = True  # type: ignore[attr-defined]
+        print(f"\r{method}: {done}/{total} {unit} ({100.0 * done / max(total, 1):.0f}%), Ctrl-C stops", end="", file=sys.stderr, flush=True)
+
+    show.shown = False  # type: ignore[attr-defined]
+    return show
 
 
 def main(argv: list[str] | None = None) -> int:

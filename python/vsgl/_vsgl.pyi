@@ -1,7 +1,7 @@
 """Type stubs of the native extension (checked against the built module by mypy.stubtest)."""
 
 import os
-from typing import Any, Iterable, Literal, Sequence
+from typing import Any, Callable, Iterable, Literal, Sequence
 
 import numpy as np
 import numpy.typing as npt
@@ -188,6 +188,7 @@ class Renderer:
         *,
         plan: Literal["auto", "full"] = "auto",
         aovs: Sequence[str] | None = None,
+        progress: Callable[[int, int, str], object] | None = None,
         **options: int | float | bool | str | None,
     ) -> Frame: ...
     def render_sequence(

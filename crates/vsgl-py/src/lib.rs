@@ -360,7 +360,7 @@ impl PyFrameSequence {
         }
         let (r, scene, cam, opts) = (&self.renderer, &st.scene, st.camera, &self.opts);
         // The submission reads nothing of the scene afterwards: the next item may edit it.
-        let (opts, interrupt) = interruptible(opts.clone());
+        let (opts, interrupt) = interruptible(opts.clone(), None);
         let submitted = py.detach(|| r.submit(scene, cam.as_ref(), &opts)).map_err(|e| interrupt.raise(e))?;
         Ok(Some(submitted))
     }
@@ -692,7 +692,12 @@ impl PyRenderer {
     ///   time_budget_s (stop sampling after this many seconds; Ctrl-C stops any long render).
     ///
     /// `capture_rsm=True` keeps the first light's RSM for `Frame.rsm(name)`.
-    #[pyo3(signature = (scene, camera=None, method="direct", *, plan="auto", aovs=None, **options))]
+    ///
+    /// `progress`: called between the GPU batches of long renders (`pathtrace`, `reference`)
+    /// as `progress(done, total, unit)`, e.g. `(1024, 4096, "spp")`; an exception it raises
+    /// stops the render. Ctrl-C stops a long render there too (`KeyboardInterrupt`).
+    #[pyo3(signature = (scene, camera=None, method="direct", *, plan="auto", aovs=None, progress=None, **options))]
+    #[allow(clippy::too_many_arguments)]
     fn render(
         &self,
         py: Python<'_>,
@@ -701,8 +706,14 @@ impl PyRenderer {
         method: &str,
         plan: &str,
         aovs: Option<Vec<String>>,
+        progress: Option<Py<PyAny>>,
         options: Option<&Bound<'_, PyDict>>,
     ) -> PyResult<PyFrame> {
+        if let Some(f) = &progress {
+            if !f.bind(py).is_callable() {
+                return Err(argument_error("progress: expected a callable (done, total, unit) or None"));
+            }
+        }
         let opts = render_options(method, plan, aovs, options)?;
         // A snapshot: the Python object is released before the GPU work, so other threads may
         // edit the scene while this frame renders the state it started with.
@@ -711,7 +722,7 @@ impl PyRenderer {
         let s: &Scene = &snapshot;
         let cam = camera.map(|c| c.inner);
         let r = &self.inner;
-        let (opts, interrupt) = interruptible(opts);
+        let (opts, interrupt) = interruptible(opts, progress);
         let frame = py.detach(|| r.render(s, cam.as_ref(), &opts)).map_err(|e| interrupt.raise(e))?;
         PyFrame::new(py, frame)
     }
@@ -761,12 +772,20 @@ impl Interrupt {
 
 /// `opts` with a stop check that runs Python's signal handlers between the GPU batches of a
 /// long render (the GIL is taken only for that), so Ctrl-C stops a `pathtrace` or `reference`
-/// render within a batch and the renderer stays usable.
-fn interruptible(mut opts: RenderOptions) -> (RenderOptions, Interrupt) {
+/// render within a batch and the renderer stays usable; `progress`, if given, is called there
+/// with (done, total, unit), and an exception it raises stops the render too.
+fn interruptible(mut opts: RenderOptions, progress: Option<Py<PyAny>>) -> (RenderOptions, Interrupt) {
     let interrupt = Interrupt::default();
     let slot = interrupt.clone();
-    opts.stop = Some(vsgl_core::renderer::StopCheck(Arc::new(move || {
-        Python::attach(|py| py.check_signals()).map_err(|e| {
+    opts.stop = Some(vsgl_core::renderer::StopCheck(Arc::new(move |p: vsgl_core::renderer::Progress| {
+        Python::attach(|py| {
+            py.check_signals()?;
+            if let Some(f) = &progress {
+                f.call1(py, (p.done, p.total, p.unit))?;
+            }
+            Ok::<(), PyErr>(())
+        })
+        .map_err(|e| {
             let message = e.to_string();
             *slot.0.lock().unwrap_or_else(|p| p.into_inner()) = Some(e);
             vsgl_core::Error::Interrupted(message)

@@ -74,7 +74,7 @@ impl Method for Reference {
                     ctx.submit_so_far();
                     gpu.wait("reference batch")?;
                     if let Some(stop) = ctx.stop {
-                        stop.check()?;
+                        stop.check(crate::renderer::Progress { done: first, total: texels, unit: "texels" })?;
                     }
                 }
             }

@@ -220,7 +220,7 @@ impl PathTracePass {
                 // Between batches: the caller may stop the render (Ctrl-C), and a time budget
                 // ends the sampling with the samples taken so far (a valid, noisier estimate).
                 if let Some(stop) = input.stop {
-                    stop.check()?;
+                    stop.check(crate::renderer::Progress { done: done as u64, total: spp as u64, unit: "spp" })?;
                 }
                 if input.time_budget_s.is_some_and(|b| started.elapsed().as_secs_f64() >= b) {
                     break;

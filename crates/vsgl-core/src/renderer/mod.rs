@@ -8,7 +8,7 @@ mod options;
 mod readback;
 
 pub use frame::Frame;
-pub use options::{RenderOptions, StopCheck, AOV_NAMES, ON_REQUEST_AOVS};
+pub use options::{Progress, RenderOptions, StopCheck, AOV_NAMES, ON_REQUEST_AOVS};
 
 use crate::error::{Error, Result};
 use crate::frame::uniforms::{frame_uniforms, light_raws, shadow_layer_count, shadow_view_projs};

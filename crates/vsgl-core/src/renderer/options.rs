@@ -30,14 +30,22 @@ pub struct RenderOptions {
     pub stop: Option<StopCheck>,
 }
 
-/// A check that a long render makes between GPU batches; `Err` stops it (e.g.
-/// [`Error::Interrupted`] when the user pressed Ctrl-C).
+/// A check that a long render makes between GPU batches, told how far it is; `Err` stops it
+/// (e.g. [`Error::Interrupted`] when the user pressed Ctrl-C).
 #[derive(Clone)]
-pub struct StopCheck(pub std::sync::Arc<dyn Fn() -> Result<()> + Send + Sync>);
+pub struct StopCheck(pub std::sync::Arc<dyn Fn(Progress) -> Result<()> + Send + Sync>);
+
+/// How far a long render is: `done` of `total` units of `unit` (e.g. "spp", "texels").
+#[derive(Clone, Copy, Debug)]
+pub struct Progress {
+    pub done: u64,
+    pub total: u64,
+    pub unit: &'static str,
+}
 
 impl StopCheck {
-    pub fn check(&self) -> Result<()> {
-        (self.0)()
+    pub fn check(&self, progress: Progress) -> Result<()> {
+        (self.0)(progress)
     }
 }
 
