@@ -6,7 +6,6 @@ render shows the edits."""
 from __future__ import annotations
 
 import threading
-import time
 
 import numpy as np
 
@@ -16,32 +15,38 @@ import vsgl
 def test_edits_during_a_render_apply_and_the_render_sees_its_starting_state():
     r = vsgl.Renderer(16, 16)
     scene = vsgl.scenes.cornell_box()
-    kw = dict(method="pathtrace", spp=2048, seed=3, aovs=["image"])
+    kw = dict(method="pathtrace", spp=4096, seed=3, aovs=["image"])
     before = r.render(scene, **kw).image.copy()
+
+    # The render's progress callback (between its GPU batches) says it is in flight and waits
+    # until the edits are done, so the edits happen during the render on any machine.
+    in_flight, edited = threading.Event(), threading.Event()
+
+    def progress(done, total, unit):
+        in_flight.set()
+        edited.wait(30)
 
     out: dict = {}
 
     def render():
         try:
-            out["frame"] = r.render(scene, **kw)
+            out["frame"] = r.render(scene, progress=progress, **kw)
         except BaseException as e:  # noqa: BLE001 - reported below
             out["error"] = e
 
     t = threading.Thread(target=render)
     t.start()
-    time.sleep(0.2)
-    assert t.is_alive(), "the render finished before the edits: make it longer"
-    edits = 0
+    assert in_flight.wait(30), "the render reported no progress"
     extra = vsgl.PointLight(position=(0.3, 1.5, 0.2), intensity=2.0)
-    while t.is_alive() and edits < 200:
+    for _ in range(50):
         scene.add_light(extra)
         scene.lights = scene.lights[:1]
-        edits += 1
     scene.add_light(extra)
+    assert t.is_alive()
+    edited.set()
     t.join()
     assert "error" not in out, out.get("error")
-    assert edits > 0
     np.testing.assert_array_equal(out["frame"].image, before)
     assert len(scene.lights) == 2
-    after = r.render(scene, **kw).image
-    assert after.sum() > before.sum(), "the added light does not show in the next render"
+    after = r.render(scene, **{**kw, "spp": 64}).image
+    assert after.sum() > r.render(vsgl.scenes.cornell_box(), **{**kw, "spp": 64}).image.sum(), "the added light does not show in the next render"
