@@ -21,7 +21,10 @@ struct FrameUniforms {
     // never a fixed length in world units (DESIGN.md, Numerics).
     scene_extent: f32,
     shadow_size: f32,
-    _pad0: f32,
+    // 1: orthographic view (a directional light's RSM): rays start on the image plane at
+    // view_origin + view_ray_origin(…) and all run along cam_forward; cam_right and cam_up are
+    // the plane's half-widths. 0: perspective, every ray starts at view_origin.
+    orthographic: u32,
     _pad1: f32,
 }
 
@@ -145,10 +148,28 @@ struct MaterialRaw {
     _pad1: i32,
 }
 
-// The unit camera ray through pixel centre `pixel` (+0.5 offsets included by the caller).
+fn view_ndc(frame: FrameUniforms, pixel: vec2f) -> vec2f {
+    return vec2f(2.0 * pixel.x / f32(frame.size.x) - 1.0, 1.0 - 2.0 * pixel.y / f32(frame.size.y));
+}
+
+// The unit camera ray through pixel centre `pixel` (+0.5 offsets included by the caller):
+// through the image plane for a perspective view, cam_forward for an orthographic one.
 fn camera_ray(frame: FrameUniforms, pixel: vec2f) -> vec3f {
-    let ndc = vec2f(2.0 * pixel.x / f32(frame.size.x) - 1.0, 1.0 - 2.0 * pixel.y / f32(frame.size.y));
+    if (frame.orthographic != 0u) {
+        return frame.cam_forward.xyz;
+    }
+    let ndc = view_ndc(frame, pixel);
     return normalize(frame.cam_forward.xyz + ndc.x * frame.cam_right.xyz + ndc.y * frame.cam_up.xyz);
+}
+
+// Where the ray through `pixel` starts, relative to view_origin: 0 for a perspective view (the
+// eye, the light), the point of the image plane for an orthographic one.
+fn view_ray_origin(frame: FrameUniforms, pixel: vec2f) -> vec3f {
+    if (frame.orthographic == 0u) {
+        return vec3f(0.0);
+    }
+    let ndc = view_ndc(frame, pixel);
+    return ndc.x * frame.cam_right.xyz + ndc.y * frame.cam_up.xyz;
 }
 
 // glTF KHR_lights_punctual smooth cone attenuation: a quadratic ramp in cos θ between the

@@ -40,6 +40,8 @@ struct ReduceParams {
     // Light position relative to the frame origin: the moments are relative to the light.
     light_offset: vec3f,
     _pad1: f32,
+    // (direction, 1) for a directional light, 0 otherwise (rsm_lobe_means).
+    light_dir: vec4f,
 }
 
 struct Moments2 {
@@ -100,7 +102,7 @@ fn texel_moments(xy: vec2u) -> Moments2 {
         return moments_zero();
     }
     let y = rsm_position[i].xyz;
-    let lobes = rsm_lobe_means(y, rsm_normal[i].xyz, rsm_normal[i].w);
+    let lobes = rsm_lobe_means(y, rsm_normal[i].xyz, rsm_normal[i].w, params.light_dir);
     let mean_d = lobes.diffuse;
     let mean_s = lobes.specular;
     let y2 = dot(y, y);

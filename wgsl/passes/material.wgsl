@@ -1,6 +1,7 @@
 // Material pass: turns the visibility buffer (triangle ids) into the G-buffer in compute. It
 // serves the camera and, with a light's view, the reflective shadow map (positions are then
-// relative to the light).
+// relative to the light, or for a directional light's orthographic view to its image plane's
+// centre).
 // Barycentrics come from intersecting the pixel's camera ray with the visible triangle
 // (Möller & Trumbore 1997), which is exact and perspective-correct; texture LOD comes from the
 // ray differentials of the neighbouring pixels (Igehy 1999), computed the same way.
@@ -81,7 +82,11 @@ fn main(@builtin(global_invocation_id) gid: vec3u) {
     b.position -= frame.view_origin.xyz;
     c.position -= frame.view_origin.xyz;
     let d = camera_ray(frame, vec2f(pixel) + 0.5);
-    let hit = ray_triangle(d, a.position, b.position, c.position);
+    // An orthographic view's ray starts on the image plane: intersect with the triangle moved
+    // by −origin (ray_triangle's ray starts at 0); the barycentrics then interpolate a, b, c,
+    // so positions stay relative to view_origin.
+    let o = view_ray_origin(frame, vec2f(pixel) + 0.5);
+    let hit = ray_triangle(d, a.position - o, b.position - o, c.position - o);
     // The raster says the pixel centre is inside; rounding may put it a hair outside.
     var w = clamp(hit.b, vec2f(0.0), vec2f(1.0));
     if (w.x + w.y > 1.0) {
@@ -107,8 +112,12 @@ fn main(@builtin(global_invocation_id) gid: vec3u) {
     if (HAS_TEXTURES) {
         uv = interpolate2(a.uv, b.uv, c.uv, w);
         // Ray differentials: UV of the neighbouring pixels' rays on the same triangle plane.
-        let hx = ray_triangle(camera_ray(frame, vec2f(pixel) + vec2f(1.5, 0.5)), a.position, b.position, c.position);
-        let hy = ray_triangle(camera_ray(frame, vec2f(pixel) + vec2f(0.5, 1.5)), a.position, b.position, c.position);
+        let px = vec2f(pixel) + vec2f(1.5, 0.5);
+        let py = vec2f(pixel) + vec2f(0.5, 1.5);
+        let ox = view_ray_origin(frame, px);
+        let oy = view_ray_origin(frame, py);
+        let hx = ray_triangle(camera_ray(frame, px), a.position - ox, b.position - ox, c.position - ox);
+        let hy = ray_triangle(camera_ray(frame, py), a.position - oy, b.position - oy, c.position - oy);
         let duv_dx = interpolate2(a.uv, b.uv, c.uv, hx.b) - uv;
         let duv_dy = interpolate2(a.uv, b.uv, c.uv, hy.b) - uv;
         let footprint = max(length(duv_dx), length(duv_dy)) * f32(frame.texture_layer_size);

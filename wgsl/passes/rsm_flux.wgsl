@@ -6,6 +6,13 @@
 // angle of a texel of a perspective image plane at unit distance (area t²(2/N)², foreshortened
 // by cosθ and at distance 1/cosθ). A point light has six such images (cube faces, t = 1,
 // cone = 1) whose texels together cover the sphere: Σ Δω = 4π, so the flux sums to 4π·I.
+// A directional light (illuminance E in lux) has one orthographic RSM whose rays are parallel
+// to the light: a texel is a patch of area ΔA = (2R/N)² of the plane perpendicular to the light
+// (R the half-width of the image plane), through which the flux
+//   Φ_texel = E · color · ΔA
+// reaches the receiver (the perpendicular cross-section, not the receiver's foreshortened area:
+// no cos θ_receiver term, as no 1/cos appears in the perspective case either). The RSM covers the
+// scene's bounding sphere, so the flux sums to E·(cross-section of the lit geometry).
 #include "common/constants.wgsl"
 #include "common/frame.wgsl"
 #include "common/gbuffer.wgsl"
@@ -29,6 +36,26 @@ const WORKGROUP: u32 = 8u;
 // Level 0 of the sampling-weight pyramid.
 @group(1) @binding(6) var<storage, read_write> pdf_level0: array<f32>;
 
+// Φ_texel of a perspective RSM (spot light, point light cube face): see the top.
+fn perspective_texel_flux(xy: vec2u, n: u32) -> vec3f {
+    // The texel's ray, unnormalised: forward + ndc.x·right·t + ndc.y·up·t; cosθ = 1/‖ray‖.
+    let pixel = vec2f(xy) + 0.5;
+    let ndc = vec2f(2.0 * pixel.x / f32(n) - 1.0, 1.0 - 2.0 * pixel.y / f32(n));
+    let ray = view.cam_forward.xyz + ndc.x * view.cam_right.xyz + ndc.y * view.cam_up.xyz;
+    let inv_len = inverseSqrt(dot(ray, ray));
+    let cos_theta = dot(ray, view.cam_forward.xyz) * inv_len;
+    let tan2 = dot(view.cam_up.xyz, view.cam_up.xyz);
+    let texel = 2.0 / f32(n);
+    let solid_angle = tan2 * texel * texel * cos_theta * cos_theta * cos_theta;
+    let to_light = -ray * inv_len;
+    // A point light's RSM is one of its six 90° cube faces (t = 1): no cone.
+    var cone = 1.0;
+    if (light.kind == LIGHT_KIND_SPOT) {
+        cone = spot_cone_attenuation(light, to_light);
+    }
+    return light.intensity * light.color * cone * solid_angle;
+}
+
 @compute @workgroup_size(WORKGROUP, WORKGROUP, 1)
 fn main(@builtin(global_invocation_id) gid: vec3u) {
     let n = view.size.x;
@@ -47,22 +74,15 @@ fn main(@builtin(global_invocation_id) gid: vec3u) {
         }
         return;
     }
-    // The texel's ray, unnormalised: forward + ndc.x·right·t + ndc.y·up·t; cosθ = 1/‖ray‖.
-    let pixel = vec2f(gid.xy) + 0.5;
-    let ndc = vec2f(2.0 * pixel.x / f32(n) - 1.0, 1.0 - 2.0 * pixel.y / f32(n));
-    let ray = view.cam_forward.xyz + ndc.x * view.cam_right.xyz + ndc.y * view.cam_up.xyz;
-    let inv_len = inverseSqrt(dot(ray, ray));
-    let cos_theta = dot(ray, view.cam_forward.xyz) * inv_len;
-    let tan2 = dot(view.cam_up.xyz, view.cam_up.xyz);
-    let texel = 2.0 / f32(n);
-    let solid_angle = tan2 * texel * texel * cos_theta * cos_theta * cos_theta;
-    let to_light = -ray * inv_len;
-    // A point light's RSM is one of its six 90° cube faces (t = 1): no cone.
-    var cone = 1.0;
-    if (light.kind == LIGHT_KIND_SPOT) {
-        cone = spot_cone_attenuation(light, to_light);
+    var flux: vec3f;
+    if (view.orthographic != 0u) {
+        // cam_right, cam_up: the image plane's half-widths R; the texel is (2R/N)² of it.
+        let texel = 2.0 / f32(n);
+        let area = length(view.cam_right.xyz) * length(view.cam_up.xyz) * texel * texel;
+        flux = light.intensity * light.color * area;
+    } else {
+        flux = perspective_texel_flux(gid.xy, n);
     }
-    let flux = light.intensity * light.color * cone * solid_angle;
     let base = rsm_base_color[index].rgb;
     let metallic = rsm_geo_normal[index].w;
     let fd = flux * gbuffer_diffuse_reflectance(base, metallic);

@@ -42,6 +42,8 @@ fn write_vpl(out_index: u32, texel: u32, scale: f32) {
     let pos = rsm_position[texel].xyz;
     let n = rsm_normal[texel];
     var v: Vpl;
+    // RSM positions are relative to the RSM's view origin, which `light.position` holds relative
+    // to the frame origin (for a directional light: its image plane's centre, rsm_lights.rs).
     v.position = pos + light.position;
     v.roughness = n.w;
     v.normal = n.xyz;
@@ -50,8 +52,14 @@ fn write_vpl(out_index: u32, texel: u32, scale: f32) {
     if (HAS_SPECULAR) {
         v.flux_specular = rsm_flux_specular[texel].rgb * scale;
     }
+    // Towards the light: from the texel to the light's position for a spot or point light; a
+    // directional light's RSM positions are relative to its image plane, and every texel is
+    // lit from −direction.
     let len = length(pos);
     v.to_light = select(vec3f(0.0, 1.0, 0.0), -pos / len, len > 0.0);
+    if (light.kind == LIGHT_KIND_DIRECTIONAL) {
+        v.to_light = -light.direction;
+    }
     vpls[out_index] = v;
 }
 

@@ -21,6 +21,8 @@ struct MomentParams {
     chain_len: u32,
     _pad0: u32,
     _pad1: u32,
+    // (direction, 1) for a directional light, 0 otherwise (rsm_lobe_means).
+    light_dir: vec4f,
 }
 
 const WORKGROUP: u32 = 8u;
@@ -55,7 +57,7 @@ fn main(@builtin(global_invocation_id) gid: vec3u) {
         return;
     }
     let y = rsm_position[i].xyz;
-    let lobes = rsm_lobe_means(y, rsm_normal[i].xyz, rsm_normal[i].w);
+    let lobes = rsm_lobe_means(y, rsm_normal[i].xyz, rsm_normal[i].w, params.light_dir);
     let mean_d = lobes.diffuse;
     let mean_s = lobes.specular;
     moments[i] = vec4f(fd.rgb, w);

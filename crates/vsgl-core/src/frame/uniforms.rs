@@ -17,7 +17,11 @@ pub struct FrameUniforms {
     pub texture_layer_size: u32,
     pub scene_extent: f32,
     pub shadow_size: f32,
-    pub _pad: [f32; 2],
+    /// 1 for an orthographic view (a directional light's RSM): rays start on the image plane
+    /// at view_origin + ndc.x·cam_right + ndc.y·cam_up and all run along cam_forward (whose
+    /// cam_right / cam_up are then the plane's half-widths); 0 for a perspective view.
+    pub orthographic: u32,
+    pub _pad: f32,
 }
 const _: () = assert!(std::mem::size_of::<FrameUniforms>() == 160);
 
@@ -45,6 +49,21 @@ pub struct LightRaw {
     pub shadow_near: f32,
 }
 const _: () = assert!(std::mem::size_of::<LightRaw>() == 128);
+
+impl LightRaw {
+    /// What the RSM passes that infer the light's incoming direction at a texel need
+    /// (`rsm_lobe_means` in wgsl/common/rsm_lobes.wgsl): (direction, 1) for a directional
+    /// light, lit from −direction everywhere; 0 for a spot or point light, whose direction is
+    /// the texel's offset from the light.
+    pub fn rsm_light_dir(&self) -> [f32; 4] {
+        if self.kind == LIGHT_KIND_DIRECTIONAL {
+            let d = self.direction;
+            [d[0], d[1], d[2], 1.0]
+        } else {
+            [0.0; 4]
+        }
+    }
+}
 
 /// `LightRaw::kind` of a spot light.
 pub const LIGHT_KIND_SPOT: u32 = 0;
@@ -174,7 +193,8 @@ pub fn frame_uniforms(cam: &Camera, anchor: DVec3, width: u32, height: u32, ligh
         texture_layer_size: layer,
         scene_extent: extent as f32,
         shadow_size: shadow_size as f32,
-        _pad: [0.0; 2],
+        orthographic: 0,
+        _pad: 0.0,
     }
 }
 
@@ -247,13 +267,49 @@ pub fn directional_light_raw(light: &DirectionalLight, centre: DVec3, extent: f6
 
 /// The views of a light's reflective shadow maps, one per RSM: a spot light's over its cone
 /// ([`light_view_uniforms`]), a point light's six cube faces ([`cube_face_view_uniforms`],
-/// in [`CUBE_FACES`] order). A directional light has none yet (an orthographic RSM needs an
-/// orthographic material pass): empty.
+/// in [`CUBE_FACES`] order), a directional light's orthographic view of the scene's bounding
+/// sphere ([`directional_view_uniforms`]).
 pub fn rsm_views(light: &Light, anchor: DVec3, extent: f64, size: u32, texture_layer_size: u32) -> Vec<FrameUniforms> {
     match light {
         Light::Spot(spot) => vec![light_view_uniforms(spot, anchor, extent, size, texture_layer_size)],
         Light::Point(point) => (0..6).map(|face| cube_face_view_uniforms(point, face, anchor, extent, size, texture_layer_size)).collect(),
-        Light::Directional(_) => Vec::new(),
+        Light::Directional(dir) => vec![directional_view_uniforms(dir, extent, size, texture_layer_size)],
+    }
+}
+
+/// Where the rays of a directional light's RSM start, relative to the scene bounds' centre:
+/// the centre of the near face of its orthographic box ([`directional_view_proj`]), R before
+/// the centre along the light. The RSM's positions are relative to it.
+pub fn directional_rsm_origin(light: &DirectionalLight, extent: f64) -> DVec3 {
+    -light.direction.normalize() * directional_half_width(extent)
+}
+
+/// The view of a directional light's reflective shadow map: the same orthographic box as its
+/// shadow map ([`directional_view_proj`]: a square of half-width R, the radius of the scene's
+/// bounding sphere, seen along the light), rays parallel to the light starting on the box's
+/// near face ([`directional_rsm_origin`]). Vertices are relative to the upload anchor, the
+/// bounds' centre. A texel covers (2R/N)² of the plane perpendicular to the light.
+pub fn directional_view_uniforms(light: &DirectionalLight, extent: f64, size: u32, texture_layer_size: u32) -> FrameUniforms {
+    let r = directional_half_width(extent);
+    let dir = light.direction.normalize();
+    // The basis look_to_rh(eye, dir, up) uses: right = dir × up, up' = right × dir.
+    let up = orthogonal(dir);
+    let right = dir.cross(up).normalize();
+    let up = right.cross(dir);
+    let v4 = |v: DVec3| [v.x as f32, v.y as f32, v.z as f32, 0.0];
+    FrameUniforms {
+        view_proj: directional_view_proj(light, DVec3::ZERO, extent).to_cols_array_2d(),
+        cam_right: v4(right * r),
+        cam_up: v4(up * r),
+        cam_forward: v4(dir),
+        view_origin: v4(directional_rsm_origin(light, extent)),
+        size: [size, size],
+        light_count: 1,
+        texture_layer_size,
+        scene_extent: extent as f32,
+        shadow_size: size as f32,
+        orthographic: 1,
+        _pad: 0.0,
     }
 }
 
@@ -276,7 +332,8 @@ pub fn cube_face_view_uniforms(light: &PointLight, face: usize, anchor: DVec3, e
         texture_layer_size,
         scene_extent: extent as f32,
         shadow_size: size as f32,
-        _pad: [0.0; 2],
+        orthographic: 0,
+        _pad: 0.0,
     }
 }
 
@@ -302,6 +359,7 @@ pub fn light_view_uniforms(light: &SpotLight, anchor: DVec3, extent: f64, size: 
         texture_layer_size,
         scene_extent: extent as f32,
         shadow_size: size as f32,
-        _pad: [0.0; 2],
+        orthographic: 0,
+        _pad: 0.0,
     }
 }

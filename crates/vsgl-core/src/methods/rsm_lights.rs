@@ -1,12 +1,13 @@
 //! What every virtual-light method shares: the reflective shadow maps of each light (the
 //! light's views through the visibility, material and flux passes: one for a spot light, six
-//! cube faces for a point light), handed to the method one RSM at a time with its share of the
+//! cube faces for a point light, one orthographic view for a directional light), handed to the method one RSM at a time with its share of the
 //! virtual-light budget, and the first light's RSM(s) read back when the frame asked for it
 //! (`capture_rsm`).
 
 use super::{CapturedRsm, FrameContext};
 use crate::error::Result;
-use crate::frame::uniforms::{rsm_views, LightRaw};
+use crate::frame::uniforms::{directional_rsm_origin, rsm_views, LightRaw};
+use crate::scene::Light;
 use crate::frame::{Rsm, VisibilityTargets};
 use crate::passes::{material::MaterialPass, rsm_flux::RsmFluxPass, visibility::VisibilityPass};
 
@@ -40,6 +41,9 @@ pub struct LightRsm<'a> {
     pub view: usize,
     /// Virtual lights to make from this RSM ([`view_budgets`] of `RsmSettings::budget`).
     pub budget: u32,
+    /// The light as the RSM passes see it: `position` is the origin its RSM positions are
+    /// relative to, relative to the frame origin (the light itself for a spot or point light;
+    /// for a directional light, the centre of its RSM's image plane, [`directional_rsm_origin`]).
     pub raw: &'a LightRaw,
     /// A storage buffer holding this light alone (what the RSM passes bind).
     pub light: &'a wgpu::Buffer,
@@ -53,21 +57,8 @@ pub fn for_each_light(ctx: &mut FrameContext<'_>, s: &RsmSettings, mut per_light
         ctx.skip("indirect", "the scene has no light");
         return Ok(false);
     }
-    // Directional lights have no RSM yet (issue 16): refuse them by name before anything is
-    // recorded, rather than leaving their indirect light out of the image.
     let (anchor, extent, layer_size) = (ctx.gpu_scene.anchor, ctx.extent, ctx.gpu_scene.texture_layer_size);
     let views: Vec<_> = ctx.scene.lights.iter().map(|l| rsm_views(l, anchor, extent, s.size, layer_size)).collect();
-    if let Some(index) = views.iter().position(|v| v.is_empty()) {
-        return Err(crate::error::Error::invalid(
-            format!("scene.lights[{index}]"),
-            format!(
-                "{} lights have no reflective shadow map yet, so the virtual-light methods (vpl, vsgl, \
-                 vsgl2, reference) take spot and point lights only; method=\"direct\" and \
-                 method=\"pathtrace\" render spot, point and directional lights",
-                ctx.scene.lights[index].kind()
-            ),
-        ));
-    }
     if s.budget > 0 {
         // What each light's RSMs got, e.g. "256" for a spot light, "43+43+43+43+42+42" for a
         // point light (`frame.settings["virtual_lights_per_light"]`, lights separated by ";").
@@ -81,7 +72,16 @@ pub fn for_each_light(ctx: &mut FrameContext<'_>, s: &RsmSettings, mut per_light
     let lights = ctx.lights;
     for ((index, raw), light_views) in lights.iter().enumerate().zip(&views) {
         let budgets = view_budgets(s.budget, light_views.len() as u32);
-        let light = ctx.rec.storage_init("spot_light_storage_buffer", bytemuck::bytes_of(raw));
+        // A directional light's RSM positions are relative to its image plane's centre (its
+        // view_origin, anchor-relative): that point, relative to the frame origin (computed in
+        // f64), takes the place of the light's position, so VPL and VSGL positions come out
+        // relative to the eye like a spot light's (`pos + light.position`, `light_offset`).
+        let mut raw = *raw;
+        if let Light::Directional(dir) = &ctx.scene.lights[index] {
+            raw.position = (anchor + directional_rsm_origin(dir, extent) - ctx.origin).as_vec3().to_array();
+        }
+        let raw = &raw;
+        let light = ctx.rec.storage_init("light_rsm_storage_buffer", bytemuck::bytes_of(raw));
         for (view_index, (view, &budget)) in light_views.iter().zip(&budgets).enumerate() {
             let view_buf = ctx.rec.uniform("rsm_view_uniform_buffer", view);
             let gs = ctx.gpu_scene;

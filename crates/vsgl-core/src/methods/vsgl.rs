@@ -127,7 +127,7 @@ impl Method for Vsgl {
             let feat = ctx.features;
             let chains = chains.get_or_insert_with(|| MomentChains::new(&mut ctx.rec, self.rsm_size));
             pdf_mips.record(&mut ctx.rec, light.rsm);
-            moments.record(&mut ctx.rec, light.rsm, chains, feat);
+            moments.record(&mut ctx.rec, light.rsm, chains, light.raw.rsm_light_dir(), feat);
             moment_mips.record(&mut ctx.rec, self.rsm_size, chains);
             // This RSM's share of num_lights (a point light splits it over its cube faces).
             let buf = ctx.rec.storage("vsgl_buffer", light.budget as u64 * VSGL_BYTES);

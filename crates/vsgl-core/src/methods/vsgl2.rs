@@ -68,7 +68,7 @@ impl Method for Vsgl2 {
         let lit = for_each_light(ctx, &rsm, |ctx, light| {
             let feat = ctx.features;
             let buf = ctx.rec.storage("vsgl2_buffer", VSGL2_COUNT as u64 * VSGL_BYTES);
-            reduce.record(&mut ctx.rec, light.rsm, light.raw.position, &buf, feat, reduction)?;
+            reduce.record(&mut ctx.rec, light.rsm, light.raw.position, light.raw.rsm_light_dir(), &buf, feat, reduction)?;
             shading.record(&mut ctx.rec, ctx.frame_uniforms, &buf, VSGL2_COUNT, 1, self.diffuse, ctx.gbuffer, ctx.indirect, feat, ctx.size);
             if light.index == 0 && light.view == 0 {
                 ctx.vsgls = Some(buf);

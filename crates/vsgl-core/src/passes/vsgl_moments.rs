@@ -15,6 +15,8 @@ struct MomentParamsRaw {
     rsm_size: u32,
     chain_len: u32,
     _pad: [u32; 2],
+    /// [`LightRaw::rsm_light_dir`](crate::frame::uniforms::LightRaw::rsm_light_dir).
+    light_dir: [f32; 4],
 }
 
 pub struct VsglMomentsPass {
@@ -26,10 +28,11 @@ impl VsglMomentsPass {
         Ok(Self { pipelines: PipelineVariants::new(gpu, "passes/vsgl_moments.wgsl", "main")? })
     }
 
-    pub fn record(&self, rec: &mut Recorder<'_>, rsm: &Rsm, chains: &MomentChains, features: ShaderFeatures) {
+    /// `light_dir`: [`LightRaw::rsm_light_dir`](crate::frame::uniforms::LightRaw::rsm_light_dir) of the RSM's light.
+    pub fn record(&self, rec: &mut Recorder<'_>, rsm: &Rsm, chains: &MomentChains, light_dir: [f32; 4], features: ShaderFeatures) {
         let gpu = rec.gpu;
         let pipeline = self.pipelines.get(gpu, &features.specular_flags());
-        let uniform = rec.uniform("vsgl_moments_params_uniform_buffer", &MomentParamsRaw { rsm_size: rsm.size, chain_len: chains.chain_len, _pad: [0; 2] });
+        let uniform = rec.uniform("vsgl_moments_params_uniform_buffer", &MomentParamsRaw { rsm_size: rsm.size, chain_len: chains.chain_len, _pad: [0; 2], light_dir });
         rec.compute(
             "vsgl_moments",
             &pipeline,

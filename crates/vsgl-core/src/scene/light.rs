@@ -1,7 +1,7 @@
 //! Light sources: the three punctual types of glTF's KHR_lights_punctual as one enum, so every
 //! layer (scene, loader, GPU twins, methods, bindings) handles a light type in one `match`.
-//! Spot, point and directional lights give direct light (`direct`, `pathtrace`); the virtual-light
-//! methods take spot and point lights so far and name a directional light they are given.
+//! Spot, point and directional lights give direct light (`direct`, `pathtrace`) and one-bounce
+//! light through their reflective shadow maps (`vpl`, `vsgl`, `vsgl2`, `reference`).
 
 use glam::{DVec3, Vec3};
 
