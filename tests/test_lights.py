@@ -501,3 +501,19 @@ def test_vsgl_glossy_lobes_of_a_directional_light_face_the_light(tmp_path, make_
     ref = r.render(scene, camera=cam, method="reference", rsm_size=64).aov("indirect").mean()
     got = r.render(scene, camera=cam, method="vsgl", num_lights=1024, rsm_size=64).aov("indirect").mean()
     assert 0.91 * ref < got < 1.05 * ref
+
+
+def test_the_shared_lights_spot_scene_renders_all_three_spots(shared_scenes, renderer):
+    # Issue 16's acceptance: LightsSpot (three coloured spots) renders all three: the frame is
+    # the sum of the three one-light frames, each of which lights something.
+    path = str(shared_scenes / "LightsSpot" / "LightsSpot.gltf")
+    scene = vsgl.Scene.load(path)
+    assert scene.stats["lights_by_type"] == {"spot": 3, "point": 0, "directional": 0}
+    full = renderer.render(scene, method="direct", aovs=["image"]).image
+    parts = []
+    for light in scene.lights:
+        one = vsgl.Scene.load(path)
+        one.lights = [light]
+        parts.append(renderer.render(one, method="direct", aovs=["image"]).image)
+    assert all(p.max() > 0 for p in parts), "a spot lights nothing"
+    np.testing.assert_allclose(sum(parts), full, rtol=1e-6, atol=1e-7 * float(full.max()))
