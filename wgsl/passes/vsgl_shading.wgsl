@@ -16,6 +16,7 @@
 #include "common/gbuffer.wgsl"
 #include "common/plan.wgsl"
 #include "common/interleave.wgsl"
+#include "common/receiver.wgsl"
 
 struct ShadeParams {
     // This dispatch shades VSGLs first … first + count − 1 (first is a multiple of k²).
@@ -59,27 +60,14 @@ fn main(@builtin(workgroup_id) wg: vec3u, @builtin(local_invocation_id) lid: vec
     let ip = interleaved_pixel(wg, lid, frame.size, k, WORKGROUP);
     let inside = ip.pixel.x < frame.size.x && ip.pixel.y < frame.size.y;
     let index = ip.pixel.y * frame.size.x + ip.pixel.x;
-    var p = vec3f(0.0);
-    var n = vec3f(0.0, 0.0, 1.0);
-    var v = vec3f(0.0, 0.0, 1.0);
-    var alpha = 1.0;
-    var rd = vec3f(0.0);
-    var rs = vec3f(0.0);
-    var has_surface = false;
-    if (inside) {
-        let pos = gbuf_position[index];
-        if (pos.w != GBUFFER_BACKGROUND) {
-            has_surface = true;
-            p = pos.xyz;
-            n = gbuf_normal[index].xyz;
-            alpha = ggx_alpha_from_roughness(gbuf_normal[index].w);
-            let metallic = gbuf_geo_normal[index].w;
-            let base = gbuf_base_color[index].rgb;
-            rd = gbuffer_diffuse_reflectance(base, metallic);
-            rs = gbuffer_specular_reflectance(base, metallic, gbuf_base_color[index].w);
-            v = -p / max(length(p), FLT_MIN);
-        }
-    }
+    let rcv = load_receiver(index, inside);
+    let p = rcv.p;
+    let n = rcv.n;
+    let v = rcv.v;
+    let rd = rcv.rd;
+    let rs = rcv.rs;
+    let alpha = rcv.alpha;
+    let has_surface = rcv.has_surface;
     // The class's VSGLs are params.first + class_index + m·k², m = 0 … class_count − 1.
     let class_first = params.first + ip.class_index;
     let class_count = class_light_count(ip.class_index, params.count, k);
