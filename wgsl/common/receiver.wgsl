@@ -1,7 +1,7 @@
-// The receiving surface a shading pass evaluates at one pixel, from the camera G-buffer (the
-// including shader declares the bindings gbuf_position, gbuf_normal, gbuf_geo_normal and
-// gbuf_base_color). Pixels outside the image or without a surface get has_surface = false and
-// harmless values, so every thread of a workgroup can still take part in its barriers.
+// The receiving surface a shading pass evaluates at one pixel, from its camera G-buffer texels
+// (the including pass reads them from its own bindings). Pixels outside the image or without a
+// surface get has_surface = false and harmless values, so every thread of a workgroup can
+// still take part in its barriers.
 #include "common/constants.wgsl"
 #include "common/gbuffer.wgsl"
 #include "common/ggx.wgsl"
@@ -18,23 +18,25 @@ struct Receiver {
     has_surface: bool,
 }
 
-fn load_receiver(index: u32, inside: bool) -> Receiver {
-    var r = Receiver(vec3f(0.0), vec3f(0.0, 0.0, 1.0), vec3f(0.0, 0.0, 1.0), vec3f(0.0), vec3f(0.0), 1.0, false);
-    if (!inside) {
-        return r;
-    }
-    let pos = gbuf_position[index];
-    if (pos.w == GBUFFER_BACKGROUND) {
+// No surface (outside the image).
+fn no_receiver() -> Receiver {
+    return Receiver(vec3f(0.0), vec3f(0.0, 0.0, 1.0), vec3f(0.0, 0.0, 1.0), vec3f(0.0), vec3f(0.0), 1.0, false);
+}
+
+// The receiver of one pixel's G-buffer texels (gbuf_position, gbuf_normal, gbuf_geo_normal,
+// gbuf_base_color at the pixel).
+fn receiver_from_gbuffer(position: vec4f, normal: vec4f, geo_normal: vec4f, base_color: vec4f) -> Receiver {
+    var r = no_receiver();
+    if (position.w == GBUFFER_BACKGROUND) {
         return r;
     }
     r.has_surface = true;
-    r.p = pos.xyz;
-    r.n = gbuf_normal[index].xyz;
-    r.alpha = ggx_alpha_from_roughness(gbuf_normal[index].w);
-    let metallic = gbuf_geo_normal[index].w;
-    let base = gbuf_base_color[index].rgb;
-    r.rd = gbuffer_diffuse_reflectance(base, metallic);
-    r.rs = gbuffer_specular_reflectance(base, metallic, gbuf_base_color[index].w);
+    r.p = position.xyz;
+    r.n = normal.xyz;
+    r.alpha = ggx_alpha_from_roughness(normal.w);
+    let metallic = geo_normal.w;
+    r.rd = gbuffer_diffuse_reflectance(base_color.rgb, metallic);
+    r.rs = gbuffer_specular_reflectance(base_color.rgb, metallic, base_color.w);
     r.v = -r.p / max(length(r.p), FLT_MIN);
     return r;
 }

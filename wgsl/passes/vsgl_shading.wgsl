@@ -60,7 +60,10 @@ fn main(@builtin(workgroup_id) wg: vec3u, @builtin(local_invocation_id) lid: vec
     let ip = interleaved_pixel(wg, lid, frame.size, k, WORKGROUP);
     let inside = ip.pixel.x < frame.size.x && ip.pixel.y < frame.size.y;
     let index = ip.pixel.y * frame.size.x + ip.pixel.x;
-    let rcv = load_receiver(index, inside);
+    var rcv = no_receiver();
+    if (inside) {
+        rcv = receiver_from_gbuffer(gbuf_position[index], gbuf_normal[index], gbuf_geo_normal[index], gbuf_base_color[index]);
+    }
     let p = rcv.p;
     let n = rcv.n;
     let v = rcv.v;
