@@ -101,3 +101,15 @@ def test_a_steady_sequence_allocates_nothing_after_its_ring_is_made(renderer):
     for f in frames[1:]:
         np.testing.assert_array_equal(f.image, frames[0].image)
         np.testing.assert_array_equal(f.aov("ldr"), frames[0].aov("ldr"))
+
+
+def test_an_abandoned_sequence_leaves_no_frame_counted_in_flight(renderer):
+    # Leaving a sequence with frame 1 already submitted (a `break` in a for loop) drops it
+    # unread; the next lone render must still report 1 frame in flight, not 2.
+    seq = renderer.render_sequence(vsgl.scenes.cornell_box(), [{}] * 3, aovs=["image"])
+    assert next(seq).settings["frames_in_flight"] == "2"
+    del seq
+    import gc
+
+    gc.collect()
+    assert renderer.render(vsgl.scenes.cornell_box(), aovs=["image"]).settings["frames_in_flight"] == "1"

@@ -52,12 +52,17 @@ const LIT: u32 = MAX_ENTRIES + 1u;
 var<workgroup> group_covered: atomic<u32>;
 var<workgroup> group_lit: atomic<u32>;
 
-fn indirect_sum(i: u32) -> vec3f {
+// The specular target, or zero where it is a placeholder (no specular materials).
+fn specular_or_zero(i: u32) -> vec3f {
     var s = vec3f(0.0);
     if ((params.flags & 2u) != 0u) {
         s = indirect_specular[i].rgb;
     }
-    return indirect_diffuse[i].rgb + s;
+    return s;
+}
+
+fn indirect_sum(i: u32) -> vec3f {
+    return indirect_diffuse[i].rgb + specular_or_zero(i);
 }
 
 fn image(i: u32) -> vec3f {
@@ -96,7 +101,9 @@ fn count_nonfinite(e: u32, v: vec3f) {
     }
 }
 
-fn put3(base: u32, i: u32, v: vec3f) {
+// Writes entry e's three words of pixel i and counts their non-finite values.
+fn put3(e: u32, base: u32, i: u32, v: vec3f) {
+    count_nonfinite(e, v);
     packed[base + 3u * i] = bitcast<u32>(v.x);
     packed[base + 3u * i + 1u] = bitcast<u32>(v.y);
     packed[base + 3u * i + 2u] = bitcast<u32>(v.z);
@@ -122,40 +129,34 @@ fn main(@builtin(global_invocation_id) id: vec3u, @builtin(local_invocation_inde
 }
 
 fn pack_pixel(i: u32) {
+    // Read once: every AOV below that needs the image (image, ldr, the lit count) shares it.
+    let img = image(i);
     if (gbuf_position[i].w != GBUFFER_BACKGROUND) {
         atomicAdd(&group_covered, 1u);
     }
-    if (any(image(i) != vec3f(0.0))) {
+    if (any(img != vec3f(0.0))) {
         atomicAdd(&group_lit, 1u);
     }
     for (var e = 0u; e < min(params.count, MAX_ENTRIES); e++) {
         let kind = params.entries[e].x;
         let base = params.entries[e].y;
         switch kind {
-            case AOV_IMAGE: { put3(base, i, image(i)); count_nonfinite(e, image(i)); }
-            case AOV_INDIRECT: { put3(base, i, indirect_sum(i)); count_nonfinite(e, indirect_sum(i)); }
-            case AOV_INDIRECT_DIFFUSE: { put3(base, i, indirect_diffuse[i].rgb); count_nonfinite(e, indirect_diffuse[i].rgb); }
-            case AOV_INDIRECT_SPECULAR: {
-                var s = vec3f(0.0);
-                if ((params.flags & 2u) != 0u) {
-                    s = indirect_specular[i].rgb;
-                }
-                put3(base, i, s);
-                count_nonfinite(e, s);
-            }
-            case AOV_DIRECT: { put3(base, i, direct[i].rgb); count_nonfinite(e, direct[i].rgb); }
-            case AOV_ALBEDO: { put3(base, i, gbuf_base_color[i].rgb); count_nonfinite(e, gbuf_base_color[i].rgb); }
-            case AOV_NORMAL: { put3(base, i, gbuf_normal[i].xyz); count_nonfinite(e, gbuf_normal[i].xyz); }
+            case AOV_IMAGE: { put3(e, base, i, img); }
+            case AOV_INDIRECT: { put3(e, base, i, indirect_sum(i)); }
+            case AOV_INDIRECT_DIFFUSE: { put3(e, base, i, indirect_diffuse[i].rgb); }
+            case AOV_INDIRECT_SPECULAR: { put3(e, base, i, specular_or_zero(i)); }
+            case AOV_DIRECT: { put3(e, base, i, direct[i].rgb); }
+            case AOV_ALBEDO: { put3(e, base, i, gbuf_base_color[i].rgb); }
+            case AOV_NORMAL: { put3(e, base, i, gbuf_normal[i].xyz); }
             case AOV_DEPTH: {
                 // View depth; 0 where no surface was hit (never Inf).
                 let w = gbuf_position[i].w;
                 packed[base + i] = bitcast<u32>(select(0.0, w, w > 0.0));
             }
-            case AOV_STDERR: { put3(base, i, stderr_in[i].rgb); count_nonfinite(e, stderr_in[i].rgb); }
+            case AOV_STDERR: { put3(e, base, i, stderr_in[i].rgb); }
             case AOV_LDR: {
-                let c = image(i);
-                count_nonfinite(e, c);
-                packed[base + i] = ldr_channel(c.x) | (ldr_channel(c.y) << 8u) | (ldr_channel(c.z) << 16u) | (255u << 24u);
+                count_nonfinite(e, img);
+                packed[base + i] = ldr_channel(img.x) | (ldr_channel(img.y) << 8u) | (ldr_channel(img.z) << 16u) | (255u << 24u);
             }
             default: {}
         }

@@ -22,6 +22,7 @@ use crate::scene::{Camera, Scene};
 use crate::upload::GpuScene;
 use crate::passes::aov_pack::{AovPackPass, PackSources};
 use readback::{record_aovs, PendingAovs};
+use std::sync::atomic::{AtomicUsize, Ordering};
 use std::sync::{Arc, Mutex};
 use std::time::Instant;
 
@@ -43,8 +44,8 @@ pub struct Renderer {
     /// has been read, so a frame in flight never shares its staging buffers or queries with
     /// the next one (a ring of two in `render_sequence`).
     readback_slots: Mutex<Vec<ReadbackSlot>>,
-    /// Frames submitted and not yet finished (`frame.settings["frames_in_flight"]`).
-    in_flight: std::sync::atomic::AtomicUsize,
+    /// Frames submitted and neither finished nor dropped (`frame.settings["frames_in_flight"]`).
+    in_flight: Arc<AtomicUsize>,
 }
 
 /// What a renderer keeps between frames besides passes, readback slots and the scene upload.
@@ -87,6 +88,24 @@ pub struct SubmittedFrame {
     /// Bytes of the first light's VSGLs in the slot's VSGL staging buffer.
     vsgl_bytes: Option<u64>,
     started: Instant,
+    in_flight: InFlight,
+}
+
+/// Counts a frame as in flight from its submission until it is read back or dropped unread (a
+/// sequence abandoned with a frame submitted ahead must not leave the count raised).
+struct InFlight(Arc<AtomicUsize>);
+
+impl InFlight {
+    fn new(count: &Arc<AtomicUsize>) -> Self {
+        count.fetch_add(1, Ordering::SeqCst);
+        Self(count.clone())
+    }
+}
+
+impl Drop for InFlight {
+    fn drop(&mut self) {
+        self.0.fetch_sub(1, Ordering::SeqCst);
+    }
 }
 
 /// What [`GpuScene::upload`] reads: the scene instance and its geometry version (positions
@@ -146,8 +165,8 @@ impl Renderer {
         let (recorded, log) = log_frame(|| self.gpu.scoped("render", || self.render_inner(&job, &mut slot)));
         match recorded {
             Ok(Recorded { frame, features, submission, aovs, vsgl_bytes }) => {
-                self.in_flight.fetch_add(1, std::sync::atomic::Ordering::SeqCst);
-                Ok(SubmittedFrame { frame, features, log, slot, submission, aovs, vsgl_bytes, started })
+                let in_flight = InFlight::new(&self.in_flight);
+                Ok(SubmittedFrame { frame, features, log, slot, submission, aovs, vsgl_bytes, started, in_flight })
             }
             Err(e) => {
                 self.give_back(slot);
@@ -158,10 +177,11 @@ impl Renderer {
 
     /// Waits for a submitted frame (and for nothing submitted after it) and reads it back.
     pub fn finish(&self, submitted: SubmittedFrame) -> Result<Frame> {
-        let SubmittedFrame { frame, features, log, slot, submission, aovs, vsgl_bytes, started } = submitted;
+        let SubmittedFrame { frame, features, log, slot, submission, aovs, vsgl_bytes, started, in_flight } = submitted;
         // This frame and those submitted after it that are still unread: 2 when the next frame
         // of a sequence was already on the GPU while this one was read back.
-        let in_flight = self.in_flight.fetch_sub(1, std::sync::atomic::Ordering::SeqCst);
+        let frames_in_flight = in_flight.0.load(Ordering::SeqCst);
+        drop(in_flight);
         let gpu = &*self.gpu;
         let read_start = Instant::now();
         let read = gpu.scoped("readback", || {
@@ -204,7 +224,7 @@ impl Renderer {
         settings.push(("allocated_bytes".into(), log.allocations.iter().map(|(_, b)| b).sum::<u64>().to_string()));
         // Bind groups made now (0 when every pass bound what an earlier frame bound).
         settings.push(("bind_groups_created".into(), log.bind_groups_created.to_string()));
-        settings.push(("frames_in_flight".into(), in_flight.to_string()));
+        settings.push(("frames_in_flight".into(), frames_in_flight.to_string()));
         settings.push(("readback_ms".into(), format!("{readback_ms:.3}")));
         Ok(Frame {
             aovs: aovs.float,
