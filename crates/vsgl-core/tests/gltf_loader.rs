@@ -1,5 +1,8 @@
 //! Integration tests of the glTF loader: fixtures are generated into a temp dir per test.
 
+mod common;
+
+use common::{base64, glb, tmpdir};
 use std::path::{Path, PathBuf};
 use std::time::Instant;
 
@@ -14,12 +17,6 @@ use vsgl_core::Error;
 // ---------------------------------------------------------------------------------------------
 
 /// A fresh, empty directory unique to this process and test.
-fn tmpdir(test: &str) -> PathBuf {
-    let dir = std::env::temp_dir().join(format!("vsgl-gltf-{}-{test}", std::process::id()));
-    let _ = std::fs::remove_dir_all(&dir);
-    std::fs::create_dir_all(&dir).unwrap();
-    dir
-}
 
 /// Accumulates one binary buffer plus its bufferViews and accessors.
 #[derive(Default)]
@@ -129,44 +126,10 @@ fn quad_with_node(dir: &Path, node: Value) -> PathBuf {
     path
 }
 
-fn base64(data: &[u8]) -> String {
-    const A: &[u8; 64] = b"ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
-    let mut out = String::new();
-    for c in data.chunks(3) {
-        let b = [c[0], *c.get(1).unwrap_or(&0), *c.get(2).unwrap_or(&0)];
-        let n = (u32::from(b[0]) << 16) | (u32::from(b[1]) << 8) | u32::from(b[2]);
-        for k in 0..4 {
-            if k <= c.len() {
-                out.push(A[(n >> (18 - 6 * k) & 63) as usize] as char);
-            } else {
-                out.push('=');
-            }
-        }
-    }
-    out
-}
 
-fn glb(json: &Value, bin: &[u8]) -> Vec<u8> {
-    let mut j = serde_json::to_vec(json).unwrap();
-    while !j.len().is_multiple_of(4) {
-        j.push(b' ');
-    }
-    let mut b = bin.to_vec();
-    while !b.len().is_multiple_of(4) {
-        b.push(0);
-    }
-    let total = 12 + 8 + j.len() + 8 + b.len();
-    let mut out = Vec::new();
-    out.extend_from_slice(b"glTF");
-    out.extend_from_slice(&2u32.to_le_bytes());
-    out.extend_from_slice(&(total as u32).to_le_bytes());
-    out.extend_from_slice(&(j.len() as u32).to_le_bytes());
-    out.extend_from_slice(b"JSON");
-    out.extend_from_slice(&j);
-    out.extend_from_slice(&(b.len() as u32).to_le_bytes());
-    out.extend_from_slice(b"BIN\0");
-    out.extend_from_slice(&b);
-    out
+
+fn glb_value(json: &Value, bin: &[u8]) -> Vec<u8> {
+    glb(&serde_json::to_vec(json).unwrap(), bin)
 }
 
 fn write_png(path: &Path, w: u32, h: u32, rgba: [u8; 4]) {
@@ -222,7 +185,7 @@ fn world_points(scene: &Scene, node: usize) -> Vec<DVec3> {
 
 #[test]
 fn external_bin_quad_with_generated_normals_and_transform() {
-    let dir = tmpdir("external_bin");
+    let dir = tmpdir("gltf", "external_bin");
     let mut bin = Bin::default();
     let pos = bin.floats(&QUAD_POS, "VEC3", 3);
     let idx = bin.indices(&QUAD_IDX);
@@ -272,7 +235,7 @@ fn external_bin_quad_with_generated_normals_and_transform() {
 
 #[test]
 fn clockwise_winding_flips_generated_normals() {
-    let dir = tmpdir("clockwise");
+    let dir = tmpdir("gltf", "clockwise");
     let mut bin = Bin::default();
     let pos = bin.floats(&QUAD_POS, "VEC3", 3);
     let idx = bin.indices(&[0, 2, 1, 0, 3, 2]);
@@ -295,7 +258,7 @@ fn clockwise_winding_flips_generated_normals() {
 
 #[test]
 fn glb_with_bin_chunk() {
-    let dir = tmpdir("glb");
+    let dir = tmpdir("gltf", "glb");
     let mut bin = Bin::default();
     let pos = bin.floats(&QUAD_POS, "VEC3", 3);
     let idx = bin.indices(&QUAD_IDX);
@@ -310,7 +273,7 @@ fn glb_with_bin_chunk() {
         }),
     );
     let path = dir.join("quad.glb");
-    std::fs::write(&path, glb(&r, &bin.data)).unwrap();
+    std::fs::write(&path, glb_value(&r, &bin.data)).unwrap();
     let scene = load(&path).unwrap();
     assert_eq!(scene.stats().triangles, 2);
     let pts = world_points(&scene, 0);
@@ -319,7 +282,7 @@ fn glb_with_bin_chunk() {
 
 #[test]
 fn data_uri_buffer() {
-    let dir = tmpdir("data_uri");
+    let dir = tmpdir("gltf", "data_uri");
     let mut bin = Bin::default();
     let pos = bin.floats(&QUAD_POS, "VEC3", 3);
     let r = root(
@@ -391,7 +354,7 @@ fn textured_scene(dir: &Path, with_uvs: bool) -> PathBuf {
 
 #[test]
 fn textured_normal_mapped_material_generates_tangents() {
-    let dir = tmpdir("textured");
+    let dir = tmpdir("gltf", "textured");
     let path = textured_scene(&dir, true);
     let scene = load(&path).unwrap();
     assert!(scene.warnings.is_empty(), "{:?}", scene.warnings);
@@ -443,7 +406,7 @@ fn textured_normal_mapped_material_generates_tangents() {
 
 #[test]
 fn normal_map_without_uvs_is_dropped_with_a_warning() {
-    let dir = tmpdir("no_uvs");
+    let dir = tmpdir("gltf", "no_uvs");
     let path = textured_scene(&dir, false);
     let scene = load(&path).unwrap();
     let prim = &scene.meshes[0].primitives[0];
@@ -461,7 +424,7 @@ fn normal_map_without_uvs_is_dropped_with_a_warning() {
 
 #[test]
 fn node_hierarchy_composes_parent_transforms() {
-    let dir = tmpdir("hierarchy");
+    let dir = tmpdir("gltf", "hierarchy");
     let mut bin = Bin::default();
     let pos = bin.floats(&QUAD_POS, "VEC3", 3);
     let idx = bin.indices(&QUAD_IDX);
@@ -502,7 +465,7 @@ fn node_hierarchy_composes_parent_transforms() {
 
 #[test]
 fn spot_light_and_perspective_camera() {
-    let dir = tmpdir("light_camera");
+    let dir = tmpdir("gltf", "light_camera");
     let s = std::f32::consts::FRAC_1_SQRT_2;
     let mut bin = Bin::default();
     let pos = bin.floats(&QUAD_POS, "VEC3", 3);
@@ -609,7 +572,7 @@ fn spot_light_and_perspective_camera() {
 
 #[test]
 fn triangle_strip_is_triangulated() {
-    let dir = tmpdir("strip");
+    let dir = tmpdir("gltf", "strip");
     let mut bin = Bin::default();
     // Strip order 0,1,3,2 over the quad corners.
     let pos = bin.floats(&QUAD_POS, "VEC3", 3);
@@ -639,7 +602,7 @@ fn triangle_strip_is_triangulated() {
 
 #[test]
 fn truncated_buffer_is_refused() {
-    let dir = tmpdir("truncated");
+    let dir = tmpdir("gltf", "truncated");
     let path = quad_with_node(&dir, json!({}));
     let data = std::fs::read(dir.join("quad.bin")).unwrap();
     std::fs::write(dir.join("quad.bin"), &data[..data.len() - 5]).unwrap();
@@ -648,7 +611,7 @@ fn truncated_buffer_is_refused() {
 
 #[test]
 fn accessor_out_of_view_bounds_is_refused() {
-    let dir = tmpdir("accessor_oob");
+    let dir = tmpdir("gltf", "accessor_oob");
     let path = quad_with_node(&dir, json!({}));
     let mut r: Value = serde_json::from_slice(&std::fs::read(&path).unwrap()).unwrap();
     r["accessors"][0]["count"] = json!(5); // the view holds 4 VEC3
@@ -669,7 +632,7 @@ fn accessor_out_of_view_bounds_is_refused() {
 
 #[test]
 fn index_out_of_range_is_refused() {
-    let dir = tmpdir("index_oob");
+    let dir = tmpdir("gltf", "index_oob");
     let mut bin = Bin::default();
     let pos = bin.floats(&QUAD_POS, "VEC3", 3);
     let idx = bin.indices(&[0, 1, 2, 0, 2, 7]);
@@ -700,7 +663,7 @@ fn quad_with_buffer_uri(dir: &Path, uri: &str) -> PathBuf {
 
 #[test]
 fn parent_directory_uri_is_refused() {
-    let dir = tmpdir("dotdot");
+    let dir = tmpdir("gltf", "dotdot");
     let scene_dir = dir.join("scene");
     std::fs::create_dir_all(&scene_dir).unwrap();
     let path = quad_with_buffer_uri(&scene_dir, "../outside.bin");
@@ -722,7 +685,7 @@ fn parent_directory_uri_is_refused() {
 #[cfg(unix)]
 #[test]
 fn symlink_out_of_the_folder_is_refused() {
-    let dir = tmpdir("symlink");
+    let dir = tmpdir("gltf", "symlink");
     let scene_dir = dir.join("scene");
     std::fs::create_dir_all(&scene_dir).unwrap();
     let path = quad_with_buffer_uri(&scene_dir, "link.bin");
@@ -733,7 +696,7 @@ fn symlink_out_of_the_folder_is_refused() {
 
 #[test]
 fn absolute_uri_is_refused() {
-    let dir = tmpdir("absolute");
+    let dir = tmpdir("gltf", "absolute");
     let path = quad_with_buffer_uri(&dir, "/etc/passwd");
     expect_scene_error(&path, &["buffers[0].uri", "absolute"]);
     let path = quad_with_buffer_uri(&dir, "%2Fetc%2Fpasswd");
@@ -744,7 +707,7 @@ fn absolute_uri_is_refused() {
 
 #[test]
 fn http_uri_is_refused() {
-    let dir = tmpdir("http");
+    let dir = tmpdir("gltf", "http");
     let path = quad_with_buffer_uri(&dir, "http://example.com/quad.bin");
     expect_scene_error(&path, &["buffers[0].uri", "http:", "not allowed"]);
     let path = quad_with_buffer_uri(&dir, "HTTPS://example.com/quad.bin");
@@ -753,7 +716,7 @@ fn http_uri_is_refused() {
 
 #[test]
 fn missing_texture_image_is_refused() {
-    let dir = tmpdir("missing_texture");
+    let dir = tmpdir("gltf", "missing_texture");
     let path = textured_scene(&dir, true);
     std::fs::remove_file(dir.join("mr.png")).unwrap();
     expect_scene_error(&path, &["images[1]", "mr.png"]);
@@ -761,7 +724,7 @@ fn missing_texture_image_is_refused() {
 
 #[test]
 fn oversized_image_is_refused_before_decoding() {
-    let dir = tmpdir("big_image");
+    let dir = tmpdir("gltf", "big_image");
     let path = textured_scene(&dir, true);
     // 16385 × 1 pixels: tiny on disk, one pixel over the side limit.
     image::GrayImage::new(16385, 1)
@@ -775,7 +738,7 @@ fn oversized_image_is_refused_before_decoding() {
 
 #[test]
 fn texture_budget_is_checked_from_the_header_and_counts_every_texture() {
-    let dir = tmpdir("texture_budget");
+    let dir = tmpdir("gltf", "texture_budget");
     let path = textured_scene(&dir, true);
     // mr.png as a 64×64 grey PNG: 16 KiB as RGBA8 plus 4 KiB of grey decoder output. The base
     // colour (4×2 RGBA8, 32 bytes) is decoded before it; the 2×2 normal map (16 bytes) after.
@@ -798,7 +761,7 @@ fn texture_budget_is_checked_from_the_header_and_counts_every_texture() {
 
 #[test]
 fn points_primitive_is_skipped_with_a_warning() {
-    let dir = tmpdir("points");
+    let dir = tmpdir("gltf", "points");
     let path = quad_with_node(&dir, json!({}));
     let mut r: Value = serde_json::from_slice(&std::fs::read(&path).unwrap()).unwrap();
     r["meshes"][0]["primitives"][0]["mode"] = json!(0);
@@ -820,7 +783,7 @@ fn points_primitive_is_skipped_with_a_warning() {
 
 #[test]
 fn invalid_json_is_refused() {
-    let dir = tmpdir("invalid_json");
+    let dir = tmpdir("gltf", "invalid_json");
     let path = dir.join("bad.gltf");
     std::fs::write(&path, b"{\"asset\": {\"version\": \"2.0\"}, \"nodes\": [").unwrap();
     expect_scene_error(&path, &["JSON"]);
@@ -837,7 +800,7 @@ fn invalid_json_is_refused() {
 
 #[test]
 fn node_cycle_is_refused() {
-    let dir = tmpdir("cycle");
+    let dir = tmpdir("gltf", "cycle");
     let path = quad_with_node(&dir, json!({}));
     let mut r: Value = serde_json::from_slice(&std::fs::read(&path).unwrap()).unwrap();
     r["nodes"] = json!([{"children": [1]}, {"children": [2]}, {"children": [1], "mesh": 0}]);
@@ -858,7 +821,7 @@ fn node_cycle_is_refused() {
 
 #[test]
 fn huge_byte_length_fails_fast() {
-    let dir = tmpdir("huge");
+    let dir = tmpdir("gltf", "huge");
     let path = quad_with_node(&dir, json!({}));
     let mut r: Value = serde_json::from_slice(&std::fs::read(&path).unwrap()).unwrap();
     r["buffers"][0]["byteLength"] = json!(1_000_000_000_000_000u64);
@@ -878,7 +841,7 @@ fn huge_byte_length_fails_fast() {
 
 #[test]
 fn non_finite_positions_are_refused() {
-    let dir = tmpdir("nan");
+    let dir = tmpdir("gltf", "nan");
     let mut bin = Bin::default();
     let mut p = QUAD_POS;
     p[4] = f32::NAN;
@@ -900,7 +863,7 @@ fn non_finite_positions_are_refused() {
 
 #[test]
 fn malformed_glb_containers_are_refused() {
-    let dir = tmpdir("bad_glb");
+    let dir = tmpdir("gltf", "bad_glb");
     let path = dir.join("x.glb");
     let mut bin = Bin::default();
     let pos = bin.floats(&QUAD_POS, "VEC3", 3);
@@ -909,7 +872,7 @@ fn malformed_glb_containers_are_refused() {
         json!({"byteLength": bin.data.len()}),
         json!({"meshes": [{"primitives": [{"attributes": {"POSITION": pos}}]}], "nodes": [{"mesh": 0}]}),
     );
-    let good = glb(&r, &bin.data);
+    let good = glb_value(&r, &bin.data);
     // Truncated file: the header's length no longer fits.
     std::fs::write(&path, &good[..good.len() - 8]).unwrap();
     expect_scene_error(&path, &["GLB header"]);
@@ -921,7 +884,7 @@ fn malformed_glb_containers_are_refused() {
     // byteLength larger than the BIN chunk.
     let mut r2 = r.clone();
     r2["buffers"][0]["byteLength"] = json!(4096);
-    std::fs::write(&path, glb(&r2, &bin.data)).unwrap();
+    std::fs::write(&path, glb_value(&r2, &bin.data)).unwrap();
     expect_scene_error(&path, &["buffers[0]", "BIN chunk"]);
     // Tiny header lengths must not underflow.
     std::fs::write(&path, b"glTF\x02\0\0\0\x04\0\0\0").unwrap();
@@ -935,7 +898,7 @@ fn malformed_glb_containers_are_refused() {
 
 #[test]
 fn dangling_indices_are_refused() {
-    let dir = tmpdir("dangling");
+    let dir = tmpdir("gltf", "dangling");
     let path = quad_with_node(&dir, json!({}));
     let orig: Value = serde_json::from_slice(&std::fs::read(&path).unwrap()).unwrap();
     let cases: &[(&str, Value, &str)] = &[
@@ -983,7 +946,7 @@ fn set_pointer(r: &mut Value, ptr: &str, value: Value) {
 
 #[test]
 fn sparse_accessor_substitutes_values() {
-    let dir = tmpdir("sparse");
+    let dir = tmpdir("gltf", "sparse");
     let mut bin = Bin::default();
     let idx = bin.indices(&QUAD_IDX);
     // Sparse POSITION without a bufferView: zeros, then vertices 1..3 substituted.
@@ -1035,7 +998,7 @@ fn xorshift(state: &mut u64) -> u64 {
 
 #[test]
 fn mutated_files_never_panic() {
-    let dir = tmpdir("mutations");
+    let dir = tmpdir("gltf", "mutations");
     // A textured GLB-free scene (JSON text) and a GLB, both valid before mutation.
     let gltf_path = textured_scene(&dir, true);
     let gltf_bytes = std::fs::read(&gltf_path).unwrap();
@@ -1052,7 +1015,7 @@ fn mutated_files_never_panic() {
             "cameras": [{"type": "perspective", "perspective": {"yfov": 0.8, "znear": 0.1}}],
         }),
     );
-    let glb_bytes = glb(&r, &bin.data);
+    let glb_bytes = glb_value(&r, &bin.data);
     let glb_path = dir.join("m.glb");
     let mut state = 0x9E37_79B9_7F4A_7C15u64;
     let mut outcomes = [0usize; 2];
@@ -1094,7 +1057,7 @@ fn python_fixtures_match_the_loader() {
         env!("CARGO_MANIFEST_DIR"),
         "/../../tests/gltf_fixtures.py"
     ));
-    let dir = tmpdir("python_fixtures");
+    let dir = tmpdir("gltf", "python_fixtures");
     let status = std::process::Command::new("python3")
         .arg(script)
         .arg("--write")

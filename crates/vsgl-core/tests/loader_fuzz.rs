@@ -15,6 +15,9 @@
 //! corrupt a `.bin` only flip, overwrite or truncate bytes.
 
 use std::panic::{catch_unwind, AssertUnwindSafe};
+mod common;
+
+use common::{base64, glb, tmpdir};
 use std::path::{Path, PathBuf};
 use std::sync::mpsc;
 use std::time::{Duration, Instant};
@@ -72,12 +75,6 @@ struct Seed {
     bins: Vec<PathBuf>,
 }
 
-fn tmpdir(what: &str) -> PathBuf {
-    let dir = std::env::temp_dir().join(format!("vsgl-fuzz-{}-{what}", std::process::id()));
-    let _ = std::fs::remove_dir_all(&dir);
-    std::fs::create_dir_all(&dir).unwrap();
-    dir
-}
 
 fn copy_folder(from: &Path, to: &Path) {
     std::fs::create_dir_all(to).unwrap();
@@ -132,21 +129,6 @@ fn png(w: u32, h: u32) -> Vec<u8> {
     out.into_inner()
 }
 
-fn base64(data: &[u8]) -> String {
-    const A: &[u8; 64] = b"ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
-    let mut s = String::new();
-    for c in data.chunks(3) {
-        let n = (u32::from(c[0]) << 16) | (u32::from(*c.get(1).unwrap_or(&0)) << 8) | u32::from(*c.get(2).unwrap_or(&0));
-        for k in 0..4 {
-            if k <= c.len() {
-                s.push(A[(n >> (18 - 6 * k) & 63) as usize] as char);
-            } else {
-                s.push('=');
-            }
-        }
-    }
-    s
-}
 
 /// Binary data of a textured quad (positions, normals, UVs, u16 indices) and its JSON parts.
 fn quad_binary(image: Option<&[u8]>) -> (Vec<u8>, Value, Value) {
@@ -222,28 +204,6 @@ fn synthetic_seeds(work: &Path) -> Vec<Seed> {
     seeds
 }
 
-fn glb(json: &[u8], bin: &[u8]) -> Vec<u8> {
-    let mut j = json.to_vec();
-    while j.len() % 4 != 0 {
-        j.push(b' ');
-    }
-    let mut b = bin.to_vec();
-    while b.len() % 4 != 0 {
-        b.push(0);
-    }
-    let total = 12 + 8 + j.len() + 8 + b.len();
-    let mut out = Vec::with_capacity(total);
-    out.extend_from_slice(b"glTF");
-    out.extend_from_slice(&2u32.to_le_bytes());
-    out.extend_from_slice(&(total as u32).to_le_bytes());
-    out.extend_from_slice(&(j.len() as u32).to_le_bytes());
-    out.extend_from_slice(b"JSON");
-    out.extend_from_slice(&j);
-    out.extend_from_slice(&(b.len() as u32).to_le_bytes());
-    out.extend_from_slice(b"BIN\0");
-    out.extend_from_slice(&b);
-    out
-}
 
 /// The JSON text of a file (the whole `.gltf`, or a GLB's first chunk when it is readable)
 /// and a function putting edited JSON back with consistent GLB lengths.
@@ -500,7 +460,7 @@ fn load_bounded(path: &Path) -> Option<(Outcome, Duration)> {
 
 #[test]
 fn mutated_scenes_load_or_fail_cleanly_in_bounded_time() {
-    let work = tmpdir("loader");
+    let work = tmpdir("fuzz", "loader");
     let mut seeds = shared_scene_seeds(&work);
     seeds.extend(synthetic_seeds(&work));
     let start = Instant::now();
