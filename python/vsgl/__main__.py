@@ -62,7 +62,11 @@ def _render(args: argparse.Namespace) -> int:
     print(f"image     mean radiance {float(image.mean()):.6g}, max {float(image.max()):.6g}, finite: {finite}")
     if args.method in ("vpl", "vsgl", "vsgl2") and not args.no_error:
         t3 = time.perf_counter()
-        ref = renderer.render(scene, method="reference", rsm_size=args.reference_rsm, shadow_size=args.shadow_size)
+        # The reference can take a minute on a CPU adapter: show how far it is (on a terminal).
+        ref_progress = _progress_line("reference (for the error; --no-error skips it)")
+        ref = renderer.render(scene, method="reference", rsm_size=args.reference_rsm, shadow_size=args.shadow_size, progress=ref_progress)
+        if ref_progress is not None and ref_progress.shown:  # type: ignore[attr-defined]
+            print(file=sys.stderr)
         t4 = time.perf_counter()
         for aov in ("indirect", "image"):
             a, b = frame.aov(aov).astype(np.float64), ref.aov(aov).astype(np.float64)
