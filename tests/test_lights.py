@@ -347,24 +347,69 @@ def test_vpl_with_a_point_light_converges_to_the_reference(tmp_path, renderer):
     assert vpl.mean() == pytest.approx(ref.mean(), rel=0.01)
 
 
+def _face_powers(frame: vsgl.Frame, views: int) -> np.ndarray:
+    """The power each captured RSM view reflects: the sum of its texels' sampling weights
+    (views stacked along the first axis)."""
+    weight = np.asarray(frame.rsm("weight"), np.float64)
+    return weight.reshape(views, -1).sum(axis=1)
+
+
 @pytest.mark.parametrize("method", ["vpl", "vsgl"])
-@pytest.mark.parametrize("num_lights", [16, 64, 4])
-def test_virtual_light_budget_split_over_a_point_lights_faces_adds_up(tmp_path, renderer, method, num_lights):
+@pytest.mark.parametrize("num_lights", [600, 64, 7])
+def test_virtual_light_budget_is_split_over_lights_and_faces_by_rsm_power(tmp_path, renderer, method, num_lights):
+    """num_lights is the frame's total: every RSM (the spot's, the point light's six faces)
+    gets 1 + its power's share of the rest, the shares adding up to num_lights."""
     scene = box_scene(tmp_path, occluders=False)
-    scene.lights = [
-        vsgl.SpotLight(position=(0, 0.9, 0), direction=(0, -1, 0), intensity=3.0),
-        vsgl.PointLight(position=(0.1, -0.2, 0.15), intensity=5.0),
-    ]
+    spot = vsgl.SpotLight(position=(0, 0.9, 0), direction=(0, -1, 0), intensity=3.0)
+    # Off centre, so the faces' powers differ (the near walls reflect more).
+    point = vsgl.PointLight(position=(0.5, -0.6, 0.15), intensity=5.0)
     cam = vsgl.Camera.look_at(eye=(0.5, 0.5, 0.9), target=(-1, -0.5, -1), fov_y_deg=70)
-    frame = renderer.render(scene, camera=cam, method=method, num_lights=num_lights, rsm_size=32)
-    spot, point = frame.settings["virtual_lights_per_light"].split(";")
-    assert int(spot) == num_lights
-    faces = [int(x) for x in point.split("+")]
-    assert len(faces) == 6 and max(faces) - min(faces) <= 1
-    # The point light's num_lights are shared by its faces (each gets at least one).
-    assert sum(faces) == max(num_lights, 6)
+    opts = dict(method=method, num_lights=num_lights, rsm_size=32, capture_rsm=True)
+    scene.lights = [point, spot]
+    frame = renderer.render(scene, camera=cam, **opts)
+    faces, spot_share = frame.settings["virtual_lights_per_light"].split(";")
+    shares = [int(x) for x in faces.split("+")] + [int(spot_share)]
+    powers = list(_face_powers(frame, 6))
     _assert_finite(frame)
     assert frame.aov("indirect").max() > 0
+    scene.lights = [spot, point]
+    swapped = renderer.render(scene, camera=cam, **opts)
+    powers.append(_face_powers(swapped, 1)[0])
+    spot_first, rest = swapped.settings["virtual_lights_per_light"].split(";")
+    assert [int(spot_first)] + [int(x) for x in rest.split("+")] == shares[-1:] + shares[:-1], "the split depends on the lights' order"
+    assert len(shares) == 7 and sum(shares) == num_lights
+    powers = np.array(powers)
+    assert np.all(powers > 0) and powers.max() > 1.5 * powers.min(), f"test scene should have unequal face powers: {powers}"
+    expected = 1 + (num_lights - 7) * powers / powers.sum()
+    assert np.all(np.abs(np.array(shares) - expected) < 1), f"shares {shares} not ~ 1 + power share {expected.round(2)}"
+
+
+@pytest.mark.parametrize("method", ["vpl", "vsgl"])
+def test_cube_faces_that_see_nothing_are_left_out_and_lose_no_light(tmp_path, renderer, method):
+    """A point light 1 m above a 1 m floor with a low wall: all the geometry lies in the cone
+    |y| > |x|, |z| below the light, so only the −y face's RSM reflects light. The other five
+    get no virtual lights and no pass; the image still agrees with `reference`, which renders
+    every face."""
+    floor = dict(corners=[(-0.5, 0.0, -0.5), (-0.5, 0.0, 0.5), (0.5, 0.0, 0.5), (0.5, 0.0, -0.5)], base_color=(0.7, 0.7, 0.7), specular=0.0)
+    wall = dict(corners=[(0.3, 0.0, -0.3), (0.3, 0.0, 0.3), (0.3, 0.35, 0.3), (0.3, 0.35, -0.3)], base_color=(0.5, 0.6, 0.7), specular=0.0)
+    scene = vsgl.Scene.load(write_quads(tmp_path, [floor, wall], name="floor_wall.gltf"))
+    scene.lights = [vsgl.PointLight(position=(0.0, 1.0, 0.0), intensity=4.0)]
+    cam = vsgl.Camera.look_at(eye=(-1.2, 0.8, 1.0), target=(0.0, 0.1, 0.0), fov_y_deg=50)  # sees the wall's lit side
+    n = 256
+    frame = renderer.render(scene, camera=cam, method=method, num_lights=n, rsm_size=32, seed=0)
+    assert frame.settings["virtual_lights_per_light"] == f"0+0+0+{n}+0+0"
+    left_out = [what for what in frame.skipped if what.startswith("virtual lights of light 0 view")]
+    assert sorted(left_out) == [f"virtual lights of light 0 view {v}" for v in (0, 1, 2, 4, 5)]
+    _assert_finite(frame)
+    assert frame.aov("indirect").mean() > 0
+    if method == "vpl":
+        # Importance-sampled from the same RSMs, so unbiased: the mean over seeds agrees with
+        # the every-texel sum over all six faces (per-seed spread 0.3% at 1024: 4 seeds, 0.16%).
+        ref = renderer.render(scene, camera=cam, method="reference", rsm_size=32).aov("indirect").astype(np.float64)
+        got = np.mean([renderer.render(scene, camera=cam, method="vpl", num_lights=1024, rsm_size=32, seed=s).aov("indirect") for s in range(4)], axis=0)
+        assert got.mean() == pytest.approx(ref.mean(), rel=0.01)
+    # (VSGLs sit ~35% under the reference here, with a spot light in the point light's place
+    # too: their kernels blur the floor–wall contact; that bias is issue 18's, not the split's.)
 
 
 @pytest.mark.parametrize("method,low", [("vsgl", 0.8), ("vsgl2", 0.55)])

@@ -90,10 +90,11 @@ impl<'a> Recorder<'a> {
         gpu.device.create_command_encoder(&wgpu::CommandEncoderDescriptor { label: Some("frame_encoder") })
     }
 
-    /// Submits what is recorded so far and continues in a fresh encoder.
-    pub fn submit_so_far(&mut self) {
+    /// Submits what is recorded so far and continues in a fresh encoder; returns the
+    /// submission, for a readback in the middle of a frame to wait on.
+    pub fn submit_so_far(&mut self) -> wgpu::SubmissionIndex {
         let done = std::mem::replace(&mut self.enc, Self::encoder(self.gpu));
-        self.gpu.queue.submit([done.finish()]);
+        self.gpu.queue.submit([done.finish()])
     }
 
     /// Records `f`'s passes inside a debug group called `label` (what GPU debuggers show).

@@ -177,7 +177,8 @@ pub struct FrameContext<'a> {
     pub indirect: &'a IndirectTargets,
     /// (pass or part, reason) for what the method leaves out.
     pub skipped: Vec<(String, String)>,
-    /// The first light's VSGLs (`Frame.vsgls`).
+    /// The VSGLs of the first RSM that has any (`Frame.vsgls`: the first light's, or its first
+    /// cube face's that reflects light).
     pub vsgls: Option<wgpu::Buffer>,
     pub captured_rsm: Option<CapturedRsm>,
     /// Per-pixel standard error (`stderr` AOV).
@@ -186,13 +187,16 @@ pub struct FrameContext<'a> {
     pub settings: Vec<(String, String)>,
     /// Asked between the GPU batches of long renders; an error stops the render.
     pub stop: Option<&'a crate::renderer::StopCheck>,
+    /// Kept from frame to frame (in the frame's readback slot) for the RSM powers that split
+    /// the virtual-light budget over several lights or cube faces (`rsm_lights`).
+    pub power_staging: &'a mut Option<wgpu::Buffer>,
 }
 
 impl FrameContext<'_> {
     /// Submits what is recorded so far (long work is split so no submission trips a watchdog,
     /// and readbacks in the middle of a frame need it) and continues in a fresh encoder.
-    pub fn submit_so_far(&mut self) {
-        self.rec.submit_so_far();
+    pub fn submit_so_far(&mut self) -> wgpu::SubmissionIndex {
+        self.rec.submit_so_far()
     }
 
     pub fn skip(&mut self, what: &str, why: impl Into<String>) {

@@ -229,7 +229,7 @@ pub mod common {
     }
 
     pub const SHADOW_SIZE: OptionSpec = int("shadow_size", 16, 8192, 1024, "side of each light's shadow map in texels");
-    pub const NUM_LIGHTS: OptionSpec = int("num_lights", 1, 1 << 20, 256, "virtual lights per light source");
+    pub const NUM_LIGHTS: OptionSpec = int("num_lights", 1, 1 << 20, 256, "virtual lights in all: one light's whole budget, or with several lights or a point light's cube faces, split by the power each reflects");
     /// The RSM side of the methods that build mip pyramids over it (a power of two).
     pub const RSM_SIZE: OptionSpec = OptionSpec {
         name: "rsm_size",

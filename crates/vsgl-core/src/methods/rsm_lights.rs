@@ -9,7 +9,9 @@ use crate::error::Result;
 use crate::frame::uniforms::{directional_rsm_origin, rsm_views, LightRaw};
 use crate::scene::Light;
 use crate::frame::{Rsm, VisibilityTargets};
-use crate::passes::{material::MaterialPass, rsm_flux::RsmFluxPass, visibility::VisibilityPass};
+use crate::gpu::{kept_staging_buffer, read_staging};
+use std::sync::Arc;
+use crate::passes::{material::MaterialPass, pdf_mips::PdfMipsPass, rsm_flux::RsmFluxPass, visibility::VisibilityPass};
 
 /// How the RSMs of a frame are made.
 pub struct RsmSettings {
@@ -23,13 +25,47 @@ pub struct RsmSettings {
     pub budget: u32,
 }
 
-/// Splits a light's virtual-light budget `n` over its `views` RSMs: equal shares (a point
-/// light's six cube faces receive equal power, 4π·I/6 each) that add up to `n`, the first
-/// `n mod views` getting one more. Every view gets at least one, so no face's light is left
-/// out (an unbiased estimate needs every RSM sampled): with n < views the light gets `views`.
-pub fn view_budgets(n: u32, views: u32) -> Vec<u32> {
-    let views = views.max(1);
-    (0..views).map(|v| (n / views + u32::from(v < n % views)).max(1)).collect()
+/// Splits the virtual-light budget `n` over a frame's RSMs (every light's views: one for a
+/// spot or directional light, six cube faces for a point light) in proportion to the power each
+/// reflects, `powers` (the sum of its texels' sampling weights, Φ·(R_d + R_s) over rgb).
+///
+/// - A view that reflects nothing (power 0: it sees no geometry, or only black or unlit
+///   geometry) gets no virtual lights and is left out: it contributes nothing to any estimate.
+/// - Every view that reflects something gets at least one, so no reflected light is dropped
+///   (each RSM's estimate is unbiased only if it is sampled); the other `n − lit` are shared
+///   in proportion to power by largest remainder (Hamilton), so the shares add up to exactly
+///   `n` whenever `n ≥ lit`. With fewer than `lit` the frame uses `lit` virtual lights.
+/// - Powers that are not finite (which `NumericsError` reports later) or all zero fall back to
+///   equal shares over the views, so the split never hides or makes a problem.
+///
+/// Any split keeps VPLs unbiased (each view's VPLs carry that view's power over its count);
+/// proportional shares give each view the same power per virtual light, which is what
+/// minimises the variance of a sum of independent per-view estimates for a fixed total.
+pub fn power_budgets(n: u32, powers: &[f64]) -> Vec<u32> {
+    let views = powers.len();
+    if views == 0 {
+        return Vec::new();
+    }
+    let usable = powers.iter().all(|p| p.is_finite() && *p >= 0.0) && powers.iter().any(|p| *p > 0.0);
+    let powers: Vec<f64> = if usable { powers.to_vec() } else { vec![1.0; views] };
+    let lit = powers.iter().filter(|p| **p > 0.0).count() as u32;
+    let rest = n.saturating_sub(lit) as f64;
+    let total: f64 = powers.iter().sum();
+    let quotas: Vec<f64> = powers.iter().map(|p| rest * p / total).collect();
+    let mut shares: Vec<u32> = quotas.iter().map(|q| q.floor() as u32).collect();
+    let given: u32 = shares.iter().sum();
+    // Largest remainders first (ties: the earlier view), among lit views only.
+    let mut order: Vec<usize> = (0..views).filter(|&v| powers[v] > 0.0).collect();
+    order.sort_by(|&a, &b| (quotas[b] - quotas[b].floor()).total_cmp(&(quotas[a] - quotas[a].floor())).then(a.cmp(&b)));
+    for &v in order.iter().take((rest as u32).saturating_sub(given) as usize) {
+        shares[v] += 1;
+    }
+    for (share, p) in shares.iter_mut().zip(&powers) {
+        if *p > 0.0 {
+            *share += 1;
+        }
+    }
+    shares
 }
 
 /// One light's RSM as a method sees it.
@@ -39,7 +75,8 @@ pub struct LightRsm<'a> {
     /// Which of the light's RSMs this is (a point light's cube face, `CUBE_FACES` order; 0
     /// for a spot light).
     pub view: usize,
-    /// Virtual lights to make from this RSM ([`view_budgets`] of `RsmSettings::budget`).
+    /// Virtual lights to make from this RSM (its [`power_budgets`] share of
+    /// `RsmSettings::budget`; never 0: views without a share are not handed to the method).
     pub budget: u32,
     /// The light as the RSM passes see it: `position` is the origin its RSM positions are
     /// relative to, relative to the frame origin (the light itself for a spot or point light;
@@ -50,8 +87,75 @@ pub struct LightRsm<'a> {
     pub rsm: &'a Rsm,
 }
 
-/// Renders the RSM of each light in turn and calls `per_light` after each; `false` (and a
-/// reason in `ctx.skipped`) when the scene has no light, so there is no indirect light.
+/// What renders one RSM: the shared targets and the three passes.
+struct RsmPasses {
+    rsm: Rsm,
+    visibility_targets: VisibilityTargets,
+    visibility: Arc<VisibilityPass>,
+    material: Arc<MaterialPass>,
+    flux: Arc<RsmFluxPass>,
+}
+
+impl RsmPasses {
+    /// Renders `view` of the light in `light` into the shared RSM (`what`: the pass-name
+    /// prefix, `rsm` or `rsm_power`).
+    fn record(&self, ctx: &mut FrameContext<'_>, what: &str, view: &crate::frame::uniforms::FrameUniforms, light: &wgpu::Buffer) {
+        let n = self.rsm.size;
+        let view_buf = ctx.rec.uniform("rsm_view_uniform_buffer", view);
+        let gs = ctx.gpu_scene;
+        self.visibility.record(&mut ctx.rec, &format!("{what}_visibility"), &view_buf, &gs.raster_vertices, gs.raster_vertex_count, &self.visibility_targets);
+        self.material.record(&mut ctx.rec, &format!("{what}_material"), &view_buf, &self.visibility_targets.ids, gs, ctx.features, &self.rsm.gbuffer, (n, n));
+        self.flux.record(&mut ctx.rec, &view_buf, light.as_entire_binding(), &self.rsm, ctx.features);
+    }
+}
+
+/// Light `index` as its RSM passes see it. A directional light's RSM positions are relative to
+/// its image plane's centre (its view_origin, anchor-relative): that point, relative to the
+/// frame origin (computed in f64), takes the place of the light's position, so VPL and VSGL
+/// positions come out relative to the eye like a spot light's (`pos + light.position`,
+/// `light_offset`).
+fn rsm_light(ctx: &FrameContext<'_>, index: usize) -> LightRaw {
+    let mut raw = ctx.lights[index];
+    if let Light::Directional(dir) = &ctx.scene.lights[index] {
+        raw.position = (ctx.gpu_scene.anchor + directional_rsm_origin(dir, ctx.extent) - ctx.origin).as_vec3().to_array();
+    }
+    raw
+}
+
+/// The power each view's RSM reflects (the top of its weight pyramid), in `views` order:
+/// every RSM rendered once more before the method's own pass over them, and read back in the
+/// middle of the frame (a wait for the GPU: frames with one view skip this).
+fn measure_rsm_powers(ctx: &mut FrameContext<'_>, passes: &RsmPasses, views: &[Vec<crate::frame::uniforms::FrameUniforms>]) -> Result<Vec<f64>> {
+    let pdf_mips = ctx.passes.get::<PdfMipsPass>()?;
+    let count: usize = views.iter().map(Vec::len).sum();
+    let bytes = count as u64 * 4;
+    let staging = kept_staging_buffer(ctx.gpu, ctx.power_staging, "rsm_power_staging_buffer", bytes);
+    let (_, texels) = crate::frame::pyramid_layout(passes.rsm.size);
+    let top = (texels as u64 - 1) * 4;
+    let mut slot = 0u64;
+    for (index, light_views) in views.iter().enumerate() {
+        let raw = rsm_light(ctx, index);
+        let light = ctx.rec.storage_init("light_rsm_storage_buffer", bytemuck::bytes_of(&raw));
+        for view in light_views {
+            passes.record(ctx, "rsm_power", view, &light);
+            pdf_mips.record(&mut ctx.rec, &passes.rsm);
+            ctx.rec.enc.copy_buffer_to_buffer(&passes.rsm.pyramid, top, &staging, slot * 4, 4);
+            slot += 1;
+        }
+    }
+    let submission = ctx.submit_so_far();
+    let powers = read_staging::<f32>(ctx.gpu, &staging, bytes, Some(&submission), "RSM power readback")?;
+    Ok(powers.into_iter().map(f64::from).collect())
+}
+
+/// Renders the RSM of each light in turn and calls `per_light` after each view that gets
+/// virtual lights; `false` (and a reason in `ctx.skipped`) when the scene has no light, so
+/// there is no indirect light.
+///
+/// With a budget (`vpl`, `vsgl`) and more than one RSM in the frame (several lights, or a
+/// point light's six faces), the budget is split over the RSMs by [`power_budgets`], from
+/// powers measured first ([`measure_rsm_powers`]), and RSMs that reflect nothing are left out
+/// (`frame.skipped`). One RSM takes the whole budget with no measuring.
 pub fn for_each_light(ctx: &mut FrameContext<'_>, s: &RsmSettings, mut per_light: impl FnMut(&mut FrameContext<'_>, &LightRsm<'_>) -> Result<()>) -> Result<bool> {
     if ctx.lights.is_empty() {
         ctx.skip("indirect", "the scene has no light");
@@ -59,41 +163,51 @@ pub fn for_each_light(ctx: &mut FrameContext<'_>, s: &RsmSettings, mut per_light
     }
     let (anchor, extent, layer_size) = (ctx.gpu_scene.anchor, ctx.extent, ctx.gpu_scene.texture_layer_size);
     let views: Vec<_> = ctx.scene.lights.iter().map(|l| rsm_views(l, anchor, extent, s.size, layer_size)).collect();
+    let n = s.size;
+    let passes = RsmPasses {
+        rsm: Rsm::new(&mut ctx.rec, n, ctx.features.specular, s.sampling),
+        visibility_targets: VisibilityTargets::new(&mut ctx.rec, n, n),
+        visibility: ctx.passes.get::<VisibilityPass>()?,
+        material: ctx.passes.get::<MaterialPass>()?,
+        flux: ctx.passes.get::<RsmFluxPass>()?,
+    };
+    let view_count: usize = views.iter().map(Vec::len).sum();
+    let budgets: Vec<Vec<u32>> = if s.budget > 0 && view_count > 1 && s.sampling {
+        let shares = power_budgets(s.budget, &measure_rsm_powers(ctx, &passes, &views)?);
+        let mut shares = shares.into_iter();
+        views.iter().map(|v| shares.by_ref().take(v.len()).collect()).collect()
+    } else {
+        views.iter().map(|v| vec![s.budget; v.len()]).collect()
+    };
     if s.budget > 0 {
         // What each light's RSMs got, e.g. "256" for a spot light, "43+43+43+43+42+42" for a
         // point light (`frame.settings["virtual_lights_per_light"]`, lights separated by ";").
-        let rows: Vec<String> = views.iter().map(|v| view_budgets(s.budget, v.len() as u32).iter().map(u32::to_string).collect::<Vec<_>>().join("+")).collect();
+        let rows: Vec<String> = budgets.iter().map(|b| b.iter().map(u32::to_string).collect::<Vec<_>>().join("+")).collect();
         ctx.settings.push(("virtual_lights_per_light".into(), rows.join(";")));
     }
-    let n = s.size;
-    let rsm = Rsm::new(&mut ctx.rec, n, ctx.features.specular, s.sampling);
-    let rsm_visibility = VisibilityTargets::new(&mut ctx.rec, n, n);
-    let (visibility, material, flux) = (ctx.passes.get::<VisibilityPass>()?, ctx.passes.get::<MaterialPass>()?, ctx.passes.get::<RsmFluxPass>()?);
-    let lights = ctx.lights;
-    for ((index, raw), light_views) in lights.iter().enumerate().zip(&views) {
-        let budgets = view_budgets(s.budget, light_views.len() as u32);
-        // A directional light's RSM positions are relative to its image plane's centre (its
-        // view_origin, anchor-relative): that point, relative to the frame origin (computed in
-        // f64), takes the place of the light's position, so VPL and VSGL positions come out
-        // relative to the eye like a spot light's (`pos + light.position`, `light_offset`).
-        let mut raw = *raw;
-        if let Light::Directional(dir) = &ctx.scene.lights[index] {
-            raw.position = (anchor + directional_rsm_origin(dir, extent) - ctx.origin).as_vec3().to_array();
-        }
+    for (index, (light_views, light_budgets)) in views.iter().zip(&budgets).enumerate() {
+        let raw = rsm_light(ctx, index);
         let raw = &raw;
         let light = ctx.rec.storage_init("light_rsm_storage_buffer", bytemuck::bytes_of(raw));
-        for (view_index, (view, &budget)) in light_views.iter().zip(&budgets).enumerate() {
-            let view_buf = ctx.rec.uniform("rsm_view_uniform_buffer", view);
-            let gs = ctx.gpu_scene;
-            visibility.record(&mut ctx.rec, "rsm_visibility", &view_buf, &gs.raster_vertices, gs.raster_vertex_count, &rsm_visibility);
-            material.record(&mut ctx.rec, "rsm_material", &view_buf, &rsm_visibility.ids, gs, ctx.features, &rsm.gbuffer, (n, n));
-            flux.record(&mut ctx.rec, &view_buf, light.as_entire_binding(), &rsm, ctx.features);
-            per_light(ctx, &LightRsm { index, view: view_index, budget, raw, light: &light, rsm: &rsm })?;
-            if index == 0 && s.capture {
+        for (view_index, (view, &budget)) in light_views.iter().zip(light_budgets).enumerate() {
+            let dark = s.budget > 0 && budget == 0;
+            let capture = index == 0 && s.capture;
+            if dark {
+                let what = if light_views.len() > 1 { format!("light {index} view {view_index}") } else { format!("light {index}") };
+                ctx.skip(&format!("virtual lights of {what}"), "its RSM reflects no light (it sees no lit, non-black geometry)");
+                if !capture {
+                    continue;
+                }
+            }
+            passes.record(ctx, "rsm", view, &light);
+            if !dark {
+                per_light(ctx, &LightRsm { index, view: view_index, budget, raw, light: &light, rsm: &passes.rsm })?;
+            }
+            if capture {
                 // Read back before the next view overwrites the shared RSM buffers; a point
                 // light's six faces are stacked (CUBE_FACES order) along the first axis.
                 ctx.submit_so_far();
-                let face = read_rsm(ctx, &rsm)?;
+                let face = read_rsm(ctx, &passes.rsm)?;
                 match &mut ctx.captured_rsm {
                     Some((_, stacked)) if view_index > 0 => {
                         for ((_, _, all), (_, _, more)) in stacked.iter_mut().zip(face.1) {
@@ -142,17 +256,31 @@ pub fn check_rsm_size(gpu: &crate::gpu::Gpu, n: u32) -> Result<()> {
 
 #[cfg(test)]
 mod tests {
-    use super::view_budgets;
+    use super::power_budgets;
 
     #[test]
-    fn view_budgets_add_up_to_the_light_budget() {
+    fn power_budgets_add_up_and_follow_power() {
+        // Six equal faces: equal shares adding up to n (the remainder to the first faces).
         for n in [6, 7, 16, 255, 256, 1 << 20] {
-            let b = view_budgets(n, 6);
+            let b = power_budgets(n, &[1.0; 6]);
             assert_eq!(b.iter().sum::<u32>(), n, "n = {n}: {b:?}");
             assert!(b.iter().max().unwrap() - b.iter().min().unwrap() <= 1, "equal shares: {b:?}");
         }
-        assert_eq!(view_budgets(256, 1), vec![256], "a spot light keeps its whole budget");
-        // Fewer than one per face: every face still gets one (none of its light is dropped).
-        assert_eq!(view_budgets(4, 6), vec![1; 6]);
+        assert_eq!(power_budgets(256, &[3.5]), vec![256], "one RSM keeps the whole budget");
+        // In proportion to power: 1 each, then 97 shared 1:2:3 (16.17, 32.33, 48.5 → 16, 32, 49).
+        assert_eq!(power_budgets(100, &[1.0, 2.0, 3.0]), vec![17, 33, 50]);
+        // Dark views get nothing; every lit view at least one, even a very dim one.
+        let b = power_budgets(64, &[0.0, 1e-9, 5.0, 0.0]);
+        assert_eq!(b, vec![0, 1, 63, 0]);
+        // Fewer virtual lights than lit views: one each (the frame uses more than asked).
+        assert_eq!(power_budgets(2, &[1.0, 1.0, 0.0, 1.0]), vec![1, 1, 0, 1]);
+        // No usable power (all dark, NaN, infinite): equal shares over every view.
+        assert_eq!(power_budgets(12, &[0.0; 3]), vec![4, 4, 4]);
+        assert_eq!(power_budgets(12, &[f64::NAN, 1.0, 1.0]), vec![4, 4, 4]);
+        assert_eq!(power_budgets(12, &[f64::INFINITY, 1.0, 1.0]), vec![4, 4, 4]);
+        for (n, powers) in [(1000u32, vec![0.3, 7.0, 0.001, 2.0, 0.0, 9.0]), (7, vec![1.0, 1e6, 1.0])] {
+            let b = power_budgets(n, &powers);
+            assert_eq!(b.iter().sum::<u32>(), n, "{powers:?}: {b:?}");
+        }
     }
 }

@@ -1,4 +1,4 @@
-//! `method="vpl"`: N virtual point lights per light, importance-sampled from its RSM by
+//! `method="vpl"`: N virtual point lights, importance-sampled from the lights' RSMs by
 //! hierarchical sample warping over the weight pyramid (the papers' baseline; Dachsbacher and
 //! Stamminger 2005 for the RSM), optionally interleaved and denoised like `vsgl`.
 
@@ -13,7 +13,7 @@ use crate::passes::vpl_shading::VplShadingPass;
 
 pub const INFO: MethodInfo = MethodInfo {
     name: "vpl",
-    summary: "num_lights virtual point lights per light, importance-sampled from its reflective shadow map (the papers' baseline)",
+    summary: "num_lights virtual point lights importance-sampled from the lights' reflective shadow maps (the papers' baseline)",
     options: OPTIONS,
     direct_light: DirectLight::ShadowMapped,
     indirect: true,
@@ -82,8 +82,8 @@ impl Method for Vpl {
         let lit = for_each_light(ctx, &rsm, |ctx, light| {
             let feat = ctx.features;
             pdf_mips.record(&mut ctx.rec, light.rsm);
-            // This RSM's share of num_lights (a point light splits it over its cube faces); the
-            // buffer holds num_lights, the largest share.
+            // This RSM's share of num_lights (split over lights and cube faces by reflected
+            // power, `power_budgets`); the buffer holds num_lights, the largest share.
             sample.record_importance(&mut ctx.rec, light.light.as_entire_binding(), light.rsm, light.budget, self.sampling, self.seed, &vpls, feat);
             let target = shading_out.target(ctx.indirect);
             shading.record(&mut ctx.rec, ctx.frame_uniforms, &vpls, light.budget, self.interleave, min_distance2, ctx.gbuffer, target, feat, ctx.size);

@@ -1,4 +1,4 @@
-//! `method="vsgl"`: N virtual spherical Gaussian lights per light by filtered importance
+//! `method="vsgl"`: N virtual spherical Gaussian lights by filtered importance
 //! sampling of the mipmapped RSM (Tokuyoshi 2015 with the 2016 integral kernel), shaded with
 //! interleaving and a geometry-aware filter.
 
@@ -18,7 +18,7 @@ use std::borrow::Cow;
 
 pub const INFO: MethodInfo = MethodInfo {
     name: "vsgl",
-    summary: "num_lights VSGLs per light by filtered importance sampling of the mipmapped RSM (2015/2016 papers), interleaved and denoised",
+    summary: "num_lights VSGLs by filtered importance sampling of the mipmapped RSM (2015/2016 papers), interleaved and denoised",
     options: OPTIONS,
     direct_light: DirectLight::ShadowMapped,
     indirect: true,
@@ -129,7 +129,8 @@ impl Method for Vsgl {
             pdf_mips.record(&mut ctx.rec, light.rsm);
             moments.record(&mut ctx.rec, light.rsm, chains, light.raw.rsm_light_dir(), feat);
             moment_mips.record(&mut ctx.rec, self.rsm_size, chains);
-            // This RSM's share of num_lights (a point light splits it over its cube faces).
+            // This RSM's share of num_lights (split over lights and cube faces by reflected
+            // power, `power_budgets`).
             let buf = ctx.rec.storage("vsgl_buffer", light.budget as u64 * VSGL_BYTES);
             let settings = GenSettings {
                 count: light.budget,
@@ -143,7 +144,7 @@ impl Method for Vsgl {
             gen.record(&mut ctx.rec, light.rsm, chains, &settings, &buf);
             let target = shading_out.target(ctx.indirect);
             shading.record(&mut ctx.rec, ctx.frame_uniforms, &buf, light.budget, self.interleave, self.diffuse, ctx.gbuffer, target, feat, ctx.size);
-            if light.index == 0 && light.view == 0 {
+            if ctx.vsgls.is_none() {
                 ctx.vsgls = Some(buf);
             }
             Ok(())

@@ -70,7 +70,7 @@ impl Method for Vsgl2 {
             let buf = ctx.rec.storage("vsgl2_buffer", VSGL2_COUNT as u64 * VSGL_BYTES);
             reduce.record(&mut ctx.rec, light.rsm, light.raw.position, light.raw.rsm_light_dir(), &buf, feat, reduction)?;
             shading.record(&mut ctx.rec, ctx.frame_uniforms, &buf, VSGL2_COUNT, 1, self.diffuse, ctx.gbuffer, ctx.indirect, feat, ctx.size);
-            if light.index == 0 && light.view == 0 {
+            if ctx.vsgls.is_none() {
                 ctx.vsgls = Some(buf);
             }
             Ok(())

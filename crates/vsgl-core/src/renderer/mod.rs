@@ -64,6 +64,8 @@ struct ReadbackSlot {
     timer: PassTimer,
     aov_staging: Option<wgpu::Buffer>,
     vsgl_staging: Option<wgpu::Buffer>,
+    /// The RSM powers of a frame with several lights or cube faces (read in mid-frame).
+    power_staging: Option<wgpu::Buffer>,
 }
 
 /// What the frame script hands [`Renderer::submit`]: see [`SubmittedFrame`].
@@ -161,7 +163,7 @@ impl Renderer {
         let job = FrameJob { scene, camera: &camera, opts, info, options: &options, method: &*method };
         let started = Instant::now();
         let slot = self.readback_slots.lock().unwrap_or_else(|e| e.into_inner()).pop();
-        let mut slot = slot.unwrap_or_else(|| ReadbackSlot { timer: PassTimer::new(&self.gpu, TIMER_CAPACITY), aov_staging: None, vsgl_staging: None });
+        let mut slot = slot.unwrap_or_else(|| ReadbackSlot { timer: PassTimer::new(&self.gpu, TIMER_CAPACITY), aov_staging: None, vsgl_staging: None, power_staging: None });
         let (recorded, log) = log_frame(|| self.gpu.scoped("render", || self.render_inner(&job, &mut slot)));
         match recorded {
             Ok(Recorded { frame, features, submission, aovs, vsgl_bytes }) => {
@@ -370,6 +372,7 @@ impl Renderer {
             stderr: None,
             settings: Vec::new(),
             stop: job.opts.stop.as_ref(),
+            power_staging: &mut slot.power_staging,
         };
         job.method.record(&mut ctx)?;
         let FrameContext { mut rec, skipped: method_skipped, vsgls, captured_rsm, stderr, settings: method_settings, .. } = ctx;
