@@ -562,3 +562,63 @@ def test_the_shared_lights_spot_scene_renders_all_three_spots(shared_scenes, ren
         parts.append(renderer.render(one, method="direct", aovs=["image"]).image)
     assert all(p.max() > 0 for p in parts), "a spot lights nothing"
     np.testing.assert_allclose(sum(parts), full, rtol=1e-6, atol=1e-7 * float(full.max()))
+
+
+# ------------------------------------------------------------------------------------------
+# Lights from the command line (`--light`, vsgl.lightspec)
+# ------------------------------------------------------------------------------------------
+
+
+def test_light_specs_make_each_light_type():
+    from vsgl.lightspec import parse_light
+
+    spot = parse_light("spot position=0,1.9,0.5 direction=0,-1,0 intensity=20 color=1,0.5,0.25 inner_cone_deg=10 outer_cone_deg=25")
+    assert isinstance(spot, vsgl.SpotLight)
+    assert spot.position == pytest.approx((0, 1.9, 0.5)) and spot.direction == pytest.approx((0, -1, 0))
+    assert (spot.intensity, spot.inner_cone_deg, spot.outer_cone_deg) == pytest.approx((20, 10, 25))
+    assert spot.color == pytest.approx((1, 0.5, 0.25))
+    point = parse_light("  point   intensity=3.5 position=-1,2,3e-1 ")
+    assert isinstance(point, vsgl.PointLight) and point.position == pytest.approx((-1, 2, 0.3)) and point.intensity == 3.5
+    sun = parse_light("directional direction=0,-2,0 intensity=7")
+    assert isinstance(sun, vsgl.DirectionalLight) and sun.direction == pytest.approx((0, -1, 0)) and sun.color == pytest.approx((1, 1, 1))
+
+
+@pytest.mark.parametrize(
+    "text,says",
+    [
+        ("", "first word must be the type"),
+        ("lamp position=0,0,0 intensity=1", "'lamp'"),
+        ("point position=0,1 intensity=1", "position needs three numbers"),
+        ("point position=0,1,0", "needs intensity"),
+        ("point position=0,1,0 intensity=1 direction=0,-1,0", "no field 'direction'"),
+        ("point position=0,1,0 intensity=x", "intensity='x' is not a number"),
+        ("point position=0,1,0 intensity=1 intensity=2", "intensity is given twice"),
+        ("point position=0,1,0 intensity", "expected name=value"),
+        ("directional direction=0,0,0 intensity=1", "direction"),
+        ("spot position=0,1,0 direction=0,-1,0 intensity=-1", "intensity"),
+    ],
+)
+def test_bad_light_specs_name_what_is_wrong(text, says):
+    from vsgl.lightspec import parse_light
+
+    with pytest.raises(ValueError, match=f"light {text!r}" if text else "light ''") as e:
+        parse_light(text)
+    assert says in str(e.value)
+
+
+def test_cli_lights_a_scene_with_every_light_type(tmp_path):
+    import subprocess
+    import sys
+
+    out = tmp_path / "lit.npy"
+    args = [sys.executable, "-m", "vsgl", "render", "cornell_box", "--method", "vpl", "--size", "24x16", "--lights", "32", "--rsm-size", "32",
+            "--no-error", "--no-scene-lights", "--light", "point position=0,1,0 intensity=3",
+            "--light", "directional direction=0.2,-1,-0.3 intensity=2", "-o", str(out)]
+    run = subprocess.run(args, capture_output=True, text=True, timeout=300)
+    assert run.returncode == 0, run.stderr
+    assert "lights    1 point, 1 directional" in run.stdout
+    assert np.load(out).mean() > 0
+    dark = subprocess.run(args[:args.index("--light")] + ["-o", str(tmp_path / "dark.npy")], capture_output=True, text=True, timeout=300)
+    assert "lights    none" in dark.stdout and "no light" in dark.stdout
+    bad = subprocess.run(args[:-2] + ["--light", "point position=0,1 intensity=3"], capture_output=True, text=True, timeout=300)
+    assert bad.returncode == 2 and "argument --light" in bad.stderr and "three numbers" in bad.stderr

@@ -12,6 +12,7 @@ def _render(args: argparse.Namespace) -> int:
     import numpy as np
 
     import vsgl
+    from vsgl.lightspec import describe_lights
 
     if args.scene in vsgl.scenes.names():
         scene = vsgl.scenes.load(args.scene)
@@ -24,6 +25,10 @@ def _render(args: argparse.Namespace) -> int:
             file=sys.stderr,
         )
         return 2
+    if args.no_scene_lights:
+        scene.lights = []
+    for light in args.light:
+        scene.add_light(light)
     width, height = args.size
     t0 = time.perf_counter()
     renderer = vsgl.Renderer(width=width, height=height, adapter=args.adapter)
@@ -41,6 +46,7 @@ def _render(args: argparse.Namespace) -> int:
     frame.save(args.output, exposure=args.exposure)
     image = frame.image
     print(f"scene     {scene!r}")
+    print(f"lights    {describe_lights(scene)}")
     print(f"adapter   {renderer.adapter['name']} ({renderer.adapter['device_type']})")
     print(f"method    {args.method}, {width}x{height}")
     for warning in frame.warnings:
@@ -101,6 +107,15 @@ def _size(text: str) -> tuple[int, int]:
     return w, h
 
 
+def _light(text: str):
+    from vsgl.lightspec import parse_light
+
+    try:
+        return parse_light(text)
+    except ValueError as e:
+        raise argparse.ArgumentTypeError(str(e)) from None
+
+
 def _methods(args: argparse.Namespace) -> int:
     import vsgl
 
@@ -134,7 +149,12 @@ def main(argv: list[str] | None = None) -> int:
     render.add_argument("-o", "--output", default="out.png", help="output image, .png or .npy (default: out.png)")
     render.add_argument("--size", type=_size, default=(320, 180), help="WIDTHxHEIGHT (default: 320x180)")
     render.add_argument("--method", default="vsgl", choices=list(vsgl.METHODS), help="the method (default: vsgl); `python -m vsgl methods` describes each")
-    render.add_argument("--lights", type=int, default=1024, help="VPLs or VSGLs per spot light (default: 1024)")
+    render.add_argument("--lights", type=int, default=1024, help="VPLs or VSGLs in all, split over the lights by reflected power (default: 1024)")
+    render.add_argument("--light", action="append", default=[], type=_light, metavar="SPEC",
+                        help='add a light (repeatable): "spot position=X,Y,Z direction=X,Y,Z intensity=W [color=R,G,B] '
+                             '[inner_cone_deg=D] [outer_cone_deg=D]", "point position=X,Y,Z intensity=W [color=R,G,B]" '
+                             'or "directional direction=X,Y,Z intensity=LUX [color=R,G,B]" (intensities in W/sr, lux)')
+    render.add_argument("--no-scene-lights", action="store_true", help="drop the scene's own lights (then light it with --light)")
     render.add_argument("--rsm-size", type=int, default=None, help="RSM side, power of two; any 32..4096 for vsgl2 (default: 256; reference 1024)")
     render.add_argument("--kernel", default="integral", choices=["integral", "density"], help="VSGL kernel size rule (default: integral)")
     render.add_argument("--interleave", type=int, default=None,
