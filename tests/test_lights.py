@@ -99,6 +99,29 @@ def test_diffuse_plane_under_point_light_matches_closed_form(tmp_path, make_rend
     np.testing.assert_allclose(centre(frame), rho / math.pi * intensity / d**2, rtol=0.01)
 
 
+def test_shadow_maps_that_miss_the_scene_are_left_out_and_change_nothing(tmp_path, make_renderer):
+    """A point light 2 m over a 1 m plane sees the scene through its −Y face only, and a spot
+    light beside it points away: their other shadow-map layers are not rendered (nor the
+    RSMs of the virtual-light methods), and the plane still gets ρ/π · I/d² at its centre."""
+    d, rho, intensity = 2.0, 0.8, 20.0
+    scene = vsgl.Scene.load(write_quad(tmp_path, half_size=0.5, base_color=(rho, rho, rho), specular=0.0))
+    scene.lights = [
+        vsgl.PointLight(position=(0, d, 0), intensity=intensity),
+        vsgl.SpotLight(position=(0.2, d, 0), direction=(0, 1, 0), intensity=50.0, outer_cone_deg=60),
+    ]
+    cam = vsgl.Camera.look_at(eye=(0, 1.5 * d, 0.5), target=(0, 0, 0), up=(0, 0, -1), fov_y_deg=30)
+    r = make_renderer(SIZE, SIZE)
+    frame = r.render(scene, camera=cam, method="direct")
+    left_out = sorted(k for k in frame.skipped if k.startswith("shadow_map of"))
+    assert left_out == [f"shadow_map of light 0 face {f}" for f in (0, 1, 2, 4, 5)] + ["shadow_map of light 1"]
+    np.testing.assert_allclose(centre(frame), rho / math.pi * intensity / d**2, rtol=0.01)
+    # The virtual-light methods leave out the same views' RSMs.
+    vpl = r.render(scene, camera=cam, method="vpl", num_lights=64, rsm_size=32)
+    assert sorted(k for k in vpl.skipped if k.startswith("virtual lights of")) == [f"virtual lights of light 0 view {f}" for f in (0, 1, 2, 4, 5)] + ["virtual lights of light 1"]
+    assert vpl.settings["virtual_lights_per_light"] == "0+0+0+64+0+0;0"
+    _assert_finite(vpl)
+
+
 @pytest.mark.parametrize("method", ["direct", "pathtrace"])
 @pytest.mark.parametrize("theta_deg", [0.0, 60.0, 80.0])
 def test_diffuse_plane_under_directional_light_matches_closed_form(tmp_path, make_renderer, method, theta_deg):
@@ -244,6 +267,21 @@ def test_direct_light_of_three_light_types_adds_up(tmp_path, renderer):
     assert all(p.max() > 0.05 * together.max() for p in parts), "every light must contribute"
     # Same per-light terms, summed in another order: equal to float rounding.
     np.testing.assert_allclose(together, sum(parts), rtol=1e-5, atol=1e-6 * together.max())
+
+
+def test_reference_indirect_light_of_three_light_types_adds_up(tmp_path, renderer):
+    """The every-texel reference sums each light's RSMs (one spot, six point faces, one
+    orthographic): three lights together give the sum of the three alone."""
+    scene, lights = three_light_scene(tmp_path)
+    cam = vsgl.Camera.look_at(eye=(1.5, 2.0, 3.0), target=(0, 0.5, 0), fov_y_deg=60)
+    scene.lights = lights
+    together = renderer.render(scene, camera=cam, method="reference", rsm_size=32).aov("indirect").astype(np.float64)
+    parts = []
+    for light in lights:
+        scene.lights = [light]
+        parts.append(renderer.render(scene, camera=cam, method="reference", rsm_size=32).aov("indirect").astype(np.float64))
+    assert all(p.max() > 0.05 * together.max() for p in parts), "every light must contribute"
+    np.testing.assert_allclose(together, sum(parts), rtol=1e-4, atol=1e-5 * together.max())
 
 
 def test_pathtrace_of_three_light_types_adds_up_within_its_error(tmp_path, renderer):

@@ -133,6 +133,37 @@ pub fn cube_face_view_proj(pos: DVec3, face: usize, extent: f64) -> Mat4 {
     (proj * view).as_mat4()
 }
 
+/// Which of a light's views (its shadow-map layers and RSMs, [`shadow_view_projs`] order) can
+/// see any of the scene: the sphere around the scene's bounds (centre `anchor`, radius half the
+/// bounds' diagonal `extent`) meets the view's cone of directions. Conservative — a view that
+/// fails sees no geometry, so no shaded point ever looks up its shadow map and its RSM reflects
+/// nothing; leaving it out changes no pixel:
+/// - a spot light's view is its cone (half-angle `outer_cone`);
+/// - a cube face's view lies inside the cone around its axis through the face's corners
+///   (half-angle atan √2 ≈ 54.7°);
+/// - a directional light's box is fitted to the sphere, and a light inside (or on) the sphere
+///   may see geometry in every direction: both are always kept.
+/// A sphere at distance d and radius R subtends the half-angle asin(R/d) from the light: the
+/// view sees it when the angle between the view's axis and the sphere's centre is at most the
+/// view's half-angle plus that (with a 1e-6 rad margin against rounding).
+pub fn views_seeing_scene(light: &Light, anchor: DVec3, extent: f64) -> Vec<bool> {
+    let radius = 0.5 * extent;
+    let sees = |position: DVec3, axis: DVec3, half_angle: f64| -> bool {
+        let to_centre = anchor - position;
+        let distance = to_centre.length();
+        if !(distance > radius) || !distance.is_finite() {
+            return true;
+        }
+        let between = axis.normalize().dot(to_centre / distance).clamp(-1.0, 1.0).acos();
+        between <= half_angle + (radius / distance).asin() + 1e-6
+    };
+    match light {
+        Light::Spot(spot) => vec![sees(spot.position, spot.direction, spot.outer_cone as f64)],
+        Light::Point(point) => CUBE_FACES.iter().map(|(forward, _)| sees(point.position, *forward, 2f64.sqrt().atan())).collect(),
+        Light::Directional(_) => vec![true],
+    }
+}
+
 /// Margin of the directional light's orthographic box over the scene's bounding sphere, so
 /// geometry on the sphere is not clipped by rounding.
 const DIRECTIONAL_BOX_MARGIN: f64 = 1.01;
@@ -361,5 +392,73 @@ pub fn light_view_uniforms(light: &SpotLight, anchor: DVec3, extent: f64, size: 
         shadow_size: size as f32,
         orthographic: 0,
         _pad: 0.0,
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::{views_seeing_scene, CUBE_FACES};
+    use crate::rng::SplitMix64;
+    use crate::scene::{DirectionalLight, Light, PointLight, SpotLight};
+    use glam::{DVec3, Vec3};
+
+    fn point(at: DVec3) -> Light {
+        Light::Point(PointLight { position: at, intensity: 1.0, color: Vec3::ONE })
+    }
+
+    fn spot(at: DVec3, direction: DVec3, outer_deg: f32) -> Light {
+        let outer = outer_deg.to_radians();
+        Light::Spot(SpotLight { position: at, direction, intensity: 1.0, color: Vec3::ONE, inner_cone: 0.5 * outer, outer_cone: outer })
+    }
+
+    #[test]
+    fn cube_faces_facing_away_from_the_scene_are_left_out() {
+        // Scene: the unit sphere around the origin (bounds diagonal 2).
+        let above = views_seeing_scene(&point(DVec3::new(0.0, 3.0, 0.0)), DVec3::ZERO, 2.0);
+        assert_eq!(above, vec![false, false, false, true, false, false], "only −Y sees a sphere 3 away below");
+        // Closer (the sphere subtends 56°): the side faces see its top, +Y still nothing.
+        let near = views_seeing_scene(&point(DVec3::new(0.0, 1.2, 0.0)), DVec3::ZERO, 2.0);
+        assert_eq!(near, vec![true, true, false, true, true, true]);
+        assert_eq!(views_seeing_scene(&point(DVec3::new(0.1, 0.2, 0.3)), DVec3::ZERO, 2.0), vec![true; 6], "inside: all");
+        assert_eq!(views_seeing_scene(&point(DVec3::splat(f64::NAN)), DVec3::ZERO, 2.0), vec![true; 6], "no position: keep");
+        let at = DVec3::new(0.0, 3.0, 0.0);
+        assert_eq!(views_seeing_scene(&spot(at, DVec3::Y, 80.0), DVec3::ZERO, 2.0), vec![false], "pointing away");
+        assert_eq!(views_seeing_scene(&spot(at, -DVec3::Y, 5.0), DVec3::ZERO, 2.0), vec![true]);
+        assert_eq!(views_seeing_scene(&spot(at, DVec3::X, 30.0), DVec3::ZERO, 2.0), vec![false], "90° off, 30° + 19.5° cone");
+        assert_eq!(views_seeing_scene(&spot(at, DVec3::X, 80.0), DVec3::ZERO, 2.0), vec![true], "90° off, 80° + 19.5° cone");
+        let sun = Light::Directional(DirectionalLight { direction: DVec3::Y, intensity: 1.0, color: Vec3::ONE });
+        assert_eq!(views_seeing_scene(&sun, DVec3::ZERO, 2.0), vec![true]);
+    }
+
+    /// Conservative: for random lights around a sphere, every cube face that holds a random point
+    /// of the sphere (the face of its dominant axis from the light) is kept, and so is every
+    /// spot light whose cone holds one.
+    #[test]
+    fn no_view_that_sees_part_of_the_scene_is_left_out() {
+        let mut rng = SplitMix64(7);
+        let mut unit = |rng: &mut SplitMix64| DVec3::new(rng.next_f64() * 2.0 - 1.0, rng.next_f64() * 2.0 - 1.0, rng.next_f64() * 2.0 - 1.0);
+        let mut left_out = 0;
+        for _ in 0..200 {
+            let anchor = unit(&mut rng) * 5.0;
+            let radius = 0.2 + rng.next_f64() * 2.0;
+            let at = anchor + unit(&mut rng).normalize() * radius * (1.01 + rng.next_f64() * 3.0);
+            let faces = views_seeing_scene(&point(at), anchor, 2.0 * radius);
+            let direction = unit(&mut rng).normalize();
+            let outer_deg = 1.0 + 88.0 * rng.next_f64() as f32;
+            let cone = views_seeing_scene(&spot(at, direction, outer_deg), anchor, 2.0 * radius)[0];
+            left_out += faces.iter().filter(|f| !**f).count();
+            for _ in 0..400 {
+                let mut p = unit(&mut rng);
+                while p.length() > 1.0 {
+                    p = unit(&mut rng);
+                }
+                let d = anchor + p * radius - at;
+                let face = CUBE_FACES.iter().position(|(axis, _)| axis.dot(d) >= d.abs().max_element() * (1.0 - 1e-12)).unwrap();
+                assert!(faces[face], "face {face} holds a point of the sphere but was left out (light {at}, sphere {anchor} r {radius})");
+                let inside_cone = direction.dot(d.normalize()).clamp(-1.0, 1.0).acos() <= (outer_deg as f64).to_radians();
+                assert!(!inside_cone || cone, "a spot light's cone holds a point of the sphere but was left out");
+            }
+        }
+        assert!(left_out > 100, "the test should exercise faces that are left out: {left_out}");
     }
 }

@@ -6,7 +6,7 @@
 
 use super::{CapturedRsm, FrameContext};
 use crate::error::Result;
-use crate::frame::uniforms::{directional_rsm_origin, rsm_views, LightRaw};
+use crate::frame::uniforms::{directional_rsm_origin, rsm_views, views_seeing_scene, LightRaw};
 use crate::scene::Light;
 use crate::frame::{Rsm, VisibilityTargets};
 use crate::gpu::{kept_staging_buffer, read_staging};
@@ -70,11 +70,6 @@ pub fn power_budgets(n: u32, powers: &[f64]) -> Vec<u32> {
 
 /// One light's RSM as a method sees it.
 pub struct LightRsm<'a> {
-    /// Index of the light in the scene (and in `ctx.lights`).
-    pub index: usize,
-    /// Which of the light's RSMs this is (a point light's cube face, `CUBE_FACES` order; 0
-    /// for a spot light).
-    pub view: usize,
     /// Virtual lights to make from this RSM (its [`power_budgets`] share of
     /// `RsmSettings::budget`; never 0: views without a share are not handed to the method).
     pub budget: u32,
@@ -125,18 +120,18 @@ fn rsm_light(ctx: &FrameContext<'_>, index: usize) -> LightRaw {
 /// The power each view's RSM reflects (the top of its weight pyramid), in `views` order:
 /// every RSM rendered once more before the method's own pass over them, and read back in the
 /// middle of the frame (a wait for the GPU: frames with one view skip this).
-fn measure_rsm_powers(ctx: &mut FrameContext<'_>, passes: &RsmPasses, views: &[Vec<crate::frame::uniforms::FrameUniforms>]) -> Result<Vec<f64>> {
+fn measure_rsm_powers(ctx: &mut FrameContext<'_>, passes: &RsmPasses, views: &[Vec<crate::frame::uniforms::FrameUniforms>], seeing: &[Vec<bool>]) -> Result<Vec<f64>> {
     let pdf_mips = ctx.passes.get::<PdfMipsPass>()?;
-    let count: usize = views.iter().map(Vec::len).sum();
+    let count = seeing.iter().flatten().filter(|s| **s).count();
     let bytes = count as u64 * 4;
     let staging = kept_staging_buffer(ctx.gpu, ctx.power_staging, "rsm_power_staging_buffer", bytes);
     let (_, texels) = crate::frame::pyramid_layout(passes.rsm.size);
     let top = (texels as u64 - 1) * 4;
     let mut slot = 0u64;
-    for (index, light_views) in views.iter().enumerate() {
+    for (index, (light_views, light_seeing)) in views.iter().zip(seeing).enumerate() {
         let raw = rsm_light(ctx, index);
         let light = ctx.rec.storage_init("light_rsm_storage_buffer", bytemuck::bytes_of(&raw));
-        for view in light_views {
+        for (view, _) in light_views.iter().zip(light_seeing).filter(|(_, sees)| **sees) {
             passes.record(ctx, "rsm_power", view, &light);
             pdf_mips.record(&mut ctx.rec, &passes.rsm);
             ctx.rec.enc.copy_buffer_to_buffer(&passes.rsm.pyramid, top, &staging, slot * 4, 4);
@@ -144,8 +139,10 @@ fn measure_rsm_powers(ctx: &mut FrameContext<'_>, passes: &RsmPasses, views: &[V
         }
     }
     let submission = ctx.submit_so_far();
-    let powers = read_staging::<f32>(ctx.gpu, &staging, bytes, Some(&submission), "RSM power readback")?;
-    Ok(powers.into_iter().map(f64::from).collect())
+    let measured = read_staging::<f32>(ctx.gpu, &staging, bytes, Some(&submission), "RSM power readback")?;
+    // Views that miss the scene reflect nothing (power 0) without being measured.
+    let mut measured = measured.into_iter();
+    Ok(seeing.iter().flatten().map(|&sees| if sees { measured.next().map_or(0.0, f64::from) } else { 0.0 }).collect())
 }
 
 /// Renders the RSM of each light in turn and calls `per_light` after each view that gets
@@ -171,13 +168,15 @@ pub fn for_each_light(ctx: &mut FrameContext<'_>, s: &RsmSettings, mut per_light
         material: ctx.passes.get::<MaterialPass>()?,
         flux: ctx.passes.get::<RsmFluxPass>()?,
     };
-    let view_count: usize = views.iter().map(Vec::len).sum();
+    // Views that miss the scene's bounds reflect nothing: never rendered (nor measured).
+    let seeing: Vec<Vec<bool>> = ctx.scene.lights.iter().map(|l| views_seeing_scene(l, anchor, extent)).collect();
+    let view_count = seeing.iter().flatten().filter(|s| **s).count();
     let budgets: Vec<Vec<u32>> = if s.budget > 0 && view_count > 1 && s.sampling {
-        let shares = power_budgets(s.budget, &measure_rsm_powers(ctx, &passes, &views)?);
+        let shares = power_budgets(s.budget, &measure_rsm_powers(ctx, &passes, &views, &seeing)?);
         let mut shares = shares.into_iter();
         views.iter().map(|v| shares.by_ref().take(v.len()).collect()).collect()
     } else {
-        views.iter().map(|v| vec![s.budget; v.len()]).collect()
+        seeing.iter().map(|v| v.iter().map(|&sees| if sees { s.budget } else { 0 }).collect()).collect()
     };
     if s.budget > 0 {
         // What each light's RSMs got, e.g. "256" for a spot light, "43+43+43+43+42+42" for a
@@ -190,18 +189,20 @@ pub fn for_each_light(ctx: &mut FrameContext<'_>, s: &RsmSettings, mut per_light
         let raw = &raw;
         let light = ctx.rec.storage_init("light_rsm_storage_buffer", bytemuck::bytes_of(raw));
         for (view_index, (view, &budget)) in light_views.iter().zip(light_budgets).enumerate() {
-            let dark = s.budget > 0 && budget == 0;
+            let misses = !seeing[index][view_index];
+            let dark = misses || (s.budget > 0 && budget == 0);
             let capture = index == 0 && s.capture;
             if dark {
                 let what = if light_views.len() > 1 { format!("light {index} view {view_index}") } else { format!("light {index}") };
-                ctx.skip(&format!("virtual lights of {what}"), "its RSM reflects no light (it sees no lit, non-black geometry)");
+                let why = if misses { "its view misses the scene's bounds" } else { "its RSM reflects no light (it sees no lit, non-black geometry)" };
+                ctx.skip(&format!("virtual lights of {what}"), why);
                 if !capture {
                     continue;
                 }
             }
             passes.record(ctx, "rsm", view, &light);
             if !dark {
-                per_light(ctx, &LightRsm { index, view: view_index, budget, raw, light: &light, rsm: &passes.rsm })?;
+                per_light(ctx, &LightRsm { budget, raw, light: &light, rsm: &passes.rsm })?;
             }
             if capture {
                 // Read back before the next view overwrites the shared RSM buffers; a point

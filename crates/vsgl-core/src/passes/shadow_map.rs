@@ -56,23 +56,26 @@ impl ShadowMapPass {
         rec.texture(&desc, size as u64 * size as u64 * layers.max(1) as u64 * 4)
     }
 
-    /// Renders layer `i` from each light's view-projection (`view_projs[i]`); with an empty
-    /// list it only clears layer 0.
+    /// Renders layer `i` from each light's view-projection (`view_projs[i]`); a `None` layer
+    /// sees none of the scene (`views_seeing_scene`) and is left as it is: no shaded point looks
+    /// it up. With an empty list it only clears layer 0.
     pub fn record(
         &self,
         rec: &mut Recorder<'_>,
         target: &wgpu::Texture,
-        view_projs: &[[[f32; 4]; 4]],
+        view_projs: &[Option<[[f32; 4]; 4]>],
         vertices: &wgpu::Buffer,
         vertex_count: u32,
     ) {
         let layers = view_projs.len().max(1);
         // Each layer's view uniform, made before the passes borrow the encoder.
-        let binds: Vec<wgpu::BindGroup> = view_projs
+        let binds: Vec<Option<wgpu::BindGroup>> = view_projs
             .iter()
             .map(|vp| {
-                let uniform = rec.uniform("shadow_map_view_uniform_buffer", vp);
-                rec.bind_group("shadow_map_bind_group", PipelineRef::Render(&self.pipeline), 0, &[uniform.as_entire_binding()])
+                vp.as_ref().map(|vp| {
+                    let uniform = rec.uniform("shadow_map_view_uniform_buffer", vp);
+                    rec.bind_group("shadow_map_bind_group", PipelineRef::Render(&self.pipeline), 0, &[uniform.as_entire_binding()])
+                })
             })
             .collect();
         let views: Vec<wgpu::TextureView> = (0..layers)
@@ -88,6 +91,9 @@ impl ShadowMapPass {
             .collect();
         rec.in_debug_group("shadow_map", |rec| {
             for (layer, view) in views.iter().enumerate() {
+                if matches!(view_projs.get(layer), Some(None)) {
+                    continue;
+                }
                 let q = rec.timer.begin("shadow_map");
                 let mut pass = rec.enc.begin_render_pass(&wgpu::RenderPassDescriptor {
                     label: Some("shadow_map_pass"),
@@ -101,7 +107,7 @@ impl ShadowMapPass {
                     occlusion_query_set: None,
                     multiview_mask: None,
                 });
-                let Some(bind) = binds.get(layer) else { continue };
+                let Some(Some(bind)) = binds.get(layer) else { continue };
                 if vertex_count == 0 {
                     continue;
                 }

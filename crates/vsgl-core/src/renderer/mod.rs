@@ -11,7 +11,7 @@ pub use frame::Frame;
 pub use options::{Progress, RenderOptions, StopCheck, AOV_NAMES, ON_REQUEST_AOVS};
 
 use crate::error::{Error, Result};
-use crate::frame::uniforms::{frame_uniforms, light_raws, shadow_layer_count, shadow_view_projs};
+use crate::frame::uniforms::{frame_uniforms, light_raws, shadow_layer_count, shadow_view_projs, views_seeing_scene};
 use crate::frame::{GBuffer, IndirectTargets, VisibilityTargets};
 use crate::gpu::frame_log::{log_frame, FrameLog};
 use crate::gpu::{kept_staging_buffer, read_staging, FrameResources, Gpu, PassCache, PassTimer, Recorder};
@@ -319,7 +319,20 @@ impl Renderer {
         if shadow_needed {
             // The shadow maps rasterise anchor-relative vertices; the direct pass looks them
             // up with eye-relative positions through `LightRaw::view_proj`.
-            let vps: Vec<_> = scene.lights.iter().flat_map(|l| shadow_view_projs(l, anchor, extent)).map(|m| m.to_cols_array_2d()).collect();
+            // Layers whose view misses the scene's bounding sphere are left out (a cube face
+            // looking away from the scene, a spot light pointing away: nothing looks them up).
+            let mut vps = Vec::new();
+            for (index, light) in scene.lights.iter().enumerate() {
+                let seeing = views_seeing_scene(light, anchor, extent);
+                let faces = seeing.len();
+                for (face, (m, sees)) in shadow_view_projs(light, anchor, extent).into_iter().zip(seeing).enumerate() {
+                    if !sees {
+                        let what = if faces > 1 { format!("shadow_map of light {index} face {face}") } else { format!("shadow_map of light {index}") };
+                        skipped.push((what, "its view misses the scene's bounds: no shaded point looks it up".into()));
+                    }
+                    vps.push(sees.then(|| m.to_cols_array_2d()));
+                }
+            }
             shadow_map.record(&mut rec, &shadow_tex, &vps, &gscene.raster_vertices, gscene.raster_vertex_count);
         } else {
             // Clear the one placeholder layer so the binding is defined.
