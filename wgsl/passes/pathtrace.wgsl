@@ -19,8 +19,25 @@
 // with Chan, Golub & LeVeque 1979 (the pairwise update), so the variance never comes from
 // E[x²] − E[x]², which cancels (DESIGN.md, Numerics).
 //
+// Bidirectional mode (`strategy="bidirectional"`, STRATEGY_BIDIRECTIONAL) adds a second strategy
+// for the same paths, light tracing: photons leave a light (sampled by power, then uniformly
+// over its cone or sphere, or over a disk covering the scene for a directional light), hit x,
+// are reflected once by sampling x's BRDF, hit y, and are connected to the eye and splatted into
+// y's pixel [Veach 1997, ch. 10: bidirectional path tracing's light-to-eye strategy]. `strategy=
+// "light"` (STRATEGY_LIGHT) keeps light tracing alone, a check on the others. Light tracing finds spot → near-mirror → diffuse paths (caustics) that camera
+// paths reach only by chance. Splatted paths land anywhere in a pixel, so in this mode both
+// strategies estimate the radiance averaged over the pixel's area (camera rays are jittered
+// over the pixel) and are combined with the balance heuristic [Veach 1997, §9.2], with
+// W·H photons per camera sample:
+//   w_light = N_L p_light / (N_L p_light + N_cam p_cam),   w_cam = 1 − w_light,
+// p_* the densities of the path's two free vertices (x, y) per unit area under each strategy
+// (mis_light_weight). The light part is accumulated per batch and its variance taken over
+// batches (light_fold); `resolve` adds it to the camera part. The `direct` AOV stays the
+// pixel-centre value in both modes.
+//
 // Entry points: `indirect` (one batch), `direct` (the pixel's direct light with shadow rays, for
-// the `direct` AOV of this method) and `resolve` (standard error of the mean, per channel).
+// the `direct` AOV of this method), `light_paths` and `light_fold` (bidirectional: one batch of
+// photons, folded into the light part) and `resolve` (standard error of the mean, per channel).
 #include "common/constants.wgsl"
 #include "common/frame.wgsl"
 #include "common/gbuffer.wgsl"
@@ -31,6 +48,9 @@
 #include "common/material_eval.wgsl"
 
 const WORKGROUP: u32 = 8u;
+const STRATEGY_CAMERA: u32 = 0u;
+const STRATEGY_BIDIRECTIONAL: u32 = 1u;
+const STRATEGY_LIGHT: u32 = 2u;
 // Ray origins are moved off their surface along the geometric normal by this fraction of the
 // point's coordinate magnitude (relative to the frame origin, where f32 rounding is ~6e-8 of
 // it): about 170 ulps, and never less than RAY_OFFSET_RELATIVE × RAY_OFFSET_EXTENT_FRACTION of
@@ -46,7 +66,10 @@ struct PathParams {
     // Samples per pixel accumulated before this dispatch (for `resolve`: all of them).
     sample_offset: u32,
     batch_samples: u32,
-    _pad0: u32,
+    // STRATEGY_BIDIRECTIONAL: camera and light strategies combined by MIS over pixel areas;
+    // STRATEGY_LIGHT: light tracing alone; STRATEGY_CAMERA (0): camera paths only, from the
+    // pixel centre's G-buffer point.
+    strategy: u32,
 }
 
 @group(0) @binding(0) var<uniform> frame: FrameUniforms;
@@ -73,6 +96,12 @@ struct PathParams {
 @group(0) @binding(19) var<storage, read_write> indirect_m2: array<vec4f>;
 @group(0) @binding(20) var<storage, read_write> direct_out: array<vec4f>;
 @group(0) @binding(21) var<storage, read_write> stderr_out: array<vec4f>;
+// Bidirectional mode: this batch's light-tracing splats, f32 bits added atomically (diffuse
+// rgb, specular rgb, 2 unused per pixel); the light part's running means over batches (diffuse
+// rgb + batch count in w, specular rgb), and its weighted M2 (rgb) and total weight (w).
+@group(0) @binding(22) var<storage, read_write> light_splat: array<atomic<u32>>;
+@group(0) @binding(23) var<storage, read_write> light_mean: array<vec4f>;
+@group(0) @binding(24) var<storage, read_write> light_m2: array<vec4f>;
 
 // What shading needs at a surface point.
 struct Surface {
@@ -105,11 +134,139 @@ fn ray_offset(p: vec3f) -> f32 {
     return RAY_OFFSET_RELATIVE * max(m, RAY_OFFSET_EXTENT_FRACTION * frame.scene_extent);
 }
 
+// The camera side of a bidirectional path's MIS weight, known when its bounce point x is shaded.
+struct CameraMis {
+    enabled: bool,
+    // Camera strategy's density of the path's free vertices (y, x) per unit area, less the
+    // factors both strategies share (see mis_light_weight).
+    p_cam: f32,
+    // cos_g at y towards x (a factor of the light strategy's density of y).
+    cos_gy_x: f32,
+}
+
+const NO_MIS = CameraMis(false, 0.0, 0.0);
+
+// Pdf (solid angle) of the lobe-mixture sampling of `indirect` and `light_paths` at s for the
+// direction l given the other direction v: (1 − c_s) cosθ/π + c_s G1(v) D(h)/(4 n·v).
+fn bsdf_pdf(s: Surface, l: vec3f, v: vec3f) -> f32 {
+    let weight_d = s.rd.r + s.rd.g + s.rd.b;
+    let weight_s = s.rs.r + s.rs.g + s.rs.b;
+    let c_s = select(0.0, weight_s / (weight_d + weight_s), weight_d + weight_s > 0.0);
+    return (1.0 - c_s) * cosine_hemisphere_pdf(dot(s.ns, l)) + c_s * ggx_vndf_reflection_pdf(s.ns, v, l, s.alpha);
+}
+
+// Draws a direction from the same mixture about s.ns for the other direction v (local frame).
+fn sample_bsdf(s: Surface, v: vec3f, u_lobe: f32, u1: f32, u2: f32) -> vec3f {
+    let weight_d = s.rd.r + s.rd.g + s.rd.b;
+    let weight_s = s.rs.r + s.rs.g + s.rs.b;
+    let c_s = select(0.0, weight_s / (weight_d + weight_s), weight_d + weight_s > 0.0);
+    let basis = orthonormal_basis(s.ns);
+    let v_local = v * basis;
+    var l_local: vec3f;
+    if (u_lobe < c_s) {
+        let h = sample_ggx_vndf(v_local, s.alpha, u1, u2);
+        l_local = 2.0 * dot(v_local, h) * h - v_local;
+    } else {
+        l_local = sample_cosine_hemisphere(u1, u2);
+    }
+    return safe_normalize(basis * l_local, s.ns);
+}
+
+// Radius of the disk a directional light's photons start from: it covers the sphere around the
+// scene's bounds (half the diagonal) with the shadow map's 1% margin.
+fn directional_disk_radius() -> f32 {
+    return 0.505 * frame.scene_extent;
+}
+
+// Power a light sends out (rgb summed): what photons are drawn by. Spot: I·2π(1 − cos θ_outer)
+// (the cone's falloff is applied per photon, so this bounds it); point: 4π I; directional:
+// E times the photon disk's area.
+fn light_power(light: LightRaw) -> f32 {
+    let c = light.color.r + light.color.g + light.color.b;
+    if (light.kind == LIGHT_KIND_DIRECTIONAL) {
+        let r = directional_disk_radius();
+        return light.intensity * c * PI * r * r;
+    }
+    if (light.kind == LIGHT_KIND_SPOT) {
+        return light.intensity * c * TWO_PI * (1.0 - light.cos_outer);
+    }
+    return light.intensity * c * 2.0 * TWO_PI;
+}
+
+fn light_pick_probability(i: u32) -> f32 {
+    var total = 0.0;
+    for (var k = 0u; k < frame.light_count; k++) {
+        total += light_power(lights[k]);
+    }
+    return select(0.0, light_power(lights[i]) / total, total > 0.0);
+}
+
+// Pdf (solid angle) of a photon's direction from a spot (uniform over the outer cone) or point
+// light (uniform over the sphere).
+fn light_direction_pdf(light: LightRaw) -> f32 {
+    if (light.kind == LIGHT_KIND_SPOT) {
+        return 1.0 / (TWO_PI * max(1.0 - light.cos_outer, FLT_MIN));
+    }
+    return 0.25 * INV_PI;
+}
+
+// The light strategy's density of x per unit area for light i (picked with its probability):
+// p_dir · cos_g(x, l)/d² for a spot or point light at distance d, cos_g(x, l)/(π R²) for a
+// directional light's disk of radius R. l points from x to the light.
+fn light_emission_density(light: LightRaw, i: u32, x: Surface, l: vec3f, dist: f32) -> f32 {
+    let cos_x = max(dot(x.ng, l), 0.0);
+    var density: f32;
+    if (light.kind == LIGHT_KIND_DIRECTIONAL) {
+        let r = directional_disk_radius();
+        density = cos_x / (PI * r * r);
+    } else {
+        density = light_direction_pdf(light) * cos_x / max(dist * dist, FLT_MIN);
+    }
+    return light_pick_probability(i) * density;
+}
+
+// Area of one pixel on the image plane at distance 1 (the camera's pixel footprint).
+fn pixel_area() -> f32 {
+    return 4.0 * length(frame.cam_right.xyz) * length(frame.cam_up.xyz) / (f32(frame.size.x) * f32(frame.size.y));
+}
+
+// Image-plane area per unit surface area at a point y seen from the eye (frame origin) with
+// geometric normal ng: cos_g(y, eye) / (d² cos³θ_c), θ_c the angle off the camera axis.
+fn image_per_surface_area(y: vec3f, ng: vec3f) -> f32 {
+    let d2 = dot(y, y);
+    let d = sqrt(d2);
+    let cos_c = dot(y, normalize(frame.cam_forward.xyz)) / d;
+    let cos_y = dot(ng, -y / d);
+    return max(cos_y, 0.0) / max(d2 * cos_c * cos_c * cos_c, FLT_MIN);
+}
+
+// Balance-heuristic weight of the light strategy [Veach 1997, §9.2] with W·H photons per
+// camera sample, from the two strategies' densities of the path's free vertices (y, x) per unit
+// area, both divided by the factors they share (cos_g at x and at y towards each other,
+// 1/|x − y|²):
+//   camera: image_per_surface_area(y)/A_pixel · p_bsdf,y(y→x) · cos_g(x, y)
+//   light:  light_emission_density(x) · p_bsdf,x(x→y) · cos_g(y, x)
+// Written as 1/(1 + ratio) so huge or zero densities give 0 or 1, never NaN.
+fn mis_light_weight(p_cam: f32, p_light: f32) -> f32 {
+    if (params.strategy == STRATEGY_LIGHT) {
+        return 1.0;
+    }
+    let photons_per_sample = f32(frame.size.x) * f32(frame.size.y);
+    let a = min(photons_per_sample * p_light, FLT_MAX);
+    let b = min(p_cam, FLT_MAX);
+    if (!(a > 0.0)) {
+        return 0.0;
+    }
+    return 1.0 / (1.0 + b / a);
+}
+
 // Direct light reflected towards v at a surface point from every light, each visible through
 // a shadow ray: Σ f(l, v) ⟨n, l⟩ e, with e the light's irradiance facing it (light_incidence:
 // I·color·cone/d² for spot and point lights, E·color for a directional light) — the direct
 // pass's formula, with a traced shadow ray in place of the shadow map.
-fn lights_radiance(s: Surface, v: vec3f) -> vec3f {
+// `mis`: the camera strategy's side of the MIS weight when s is the bounce point x of a
+// bidirectional camera path (mis.enabled), else ignored.
+fn lights_radiance(s: Surface, v: vec3f, mis: CameraMis) -> vec3f {
     var radiance = vec3f(0.0);
     let origin = s.position + s.ng * ray_offset(s.position);
     for (var i = 0u; i < frame.light_count; i++) {
@@ -138,7 +295,14 @@ fn lights_radiance(s: Surface, v: vec3f) -> vec3f {
             continue;
         }
         let brdf = s.rd * lambert_brdf_over_rd(s.ns, l) + s.rs * ggx_brdf_over_rs(s.ns, l, v, s.alpha);
-        radiance += brdf * inc.e * n_dot_l;
+        var weight = 1.0;
+        if (mis.enabled) {
+            // The light strategy would have made this path by emitting towards x and sampling
+            // x's BRDF towards y (v, from x to y) given the light's direction l.
+            let p_light = light_emission_density(light, i, s, l, inc.dist) * bsdf_pdf(s, v, l) * mis.cos_gy_x;
+            weight = 1.0 - mis_light_weight(mis.p_cam, p_light);
+        }
+        radiance += brdf * inc.e * n_dot_l * weight;
     }
     return min(radiance, vec3f(FLT_MAX));
 }
@@ -197,13 +361,21 @@ fn pixel_surface(pixel: vec2u, index: u32) -> Surface {
 
 // Radiance arriving at `s` from direction l: the direct light reflected by the first surface
 // hit towards s (zero on a miss: there is no environment light).
-fn incoming_radiance(s: Surface, l: vec3f) -> vec3f {
+// In bidirectional mode, `v` (the direction from s to the eye) and `p_y` (the image-plane
+// density of s per unit area over the pixel's area, image_per_surface_area / A_pixel) weigh
+// each light's path against the light strategy.
+fn incoming_radiance(s: Surface, l: vec3f, v: vec3f, p_y: f32) -> vec3f {
     let origin = s.position + s.ng * ray_offset(s.position);
     let hit = bvh_closest_hit(Ray(to_scene(origin), l, RAY_T_MAX_EXTENTS * frame.scene_extent, s.triangle));
     if (hit.triangle == BVH_NO_TRIANGLE) {
         return vec3f(0.0);
     }
-    return lights_radiance(hit_surface(l, hit), -l);
+    let x = hit_surface(l, hit);
+    var mis = NO_MIS;
+    if (params.strategy != STRATEGY_CAMERA) {
+        mis = CameraMis(true, p_y * bsdf_pdf(s, l, v) * max(dot(x.ng, -l), 0.0), max(dot(s.ng, l), 0.0));
+    }
+    return lights_radiance(x, -l, mis);
 }
 
 @compute @workgroup_size(WORKGROUP, WORKGROUP, 1)
@@ -218,16 +390,10 @@ fn indirect(@builtin(global_invocation_id) gid: vec3u) {
         indirect_m2[index] = vec4f(0.0);
         return;
     }
-    let s = pixel_surface(gid.xy, index);
-    let p = s.position;
-    let n = s.ns;
-    let v = -p / max(length(p), FLT_MIN);
-    let basis = orthonormal_basis(n);
-    // v in the frame (x, y, n): transpose(basis)·v.
-    let v_local = v * basis;
-    let weight_d = s.rd.r + s.rd.g + s.rd.b;
-    let weight_s = s.rs.r + s.rs.g + s.rs.b;
-    let c_s = select(0.0, weight_s / (weight_d + weight_s), weight_d + weight_s > 0.0);
+    let centre = pixel_surface(gid.xy, index);
+    let v_centre = -centre.position / max(length(centre.position), FLT_MIN);
+    // Primary rays of bidirectional mode start at the eye and run past the far side of the scene.
+    let primary_t_max = length(frame.view_origin.xyz) + RAY_T_MAX_EXTENTS * frame.scene_extent;
 
     var mean = vec3f(0.0);
     var m2 = vec3f(0.0);
@@ -235,24 +401,39 @@ fn indirect(@builtin(global_invocation_id) gid: vec3u) {
     var sum_s = vec3f(0.0);
     for (var k = 0u; k < params.batch_samples; k++) {
         var rng = rng_init(index, params.sample_offset + k, params.seed);
+        // The receiver: the pixel centre's G-buffer point, or in bidirectional mode the point a
+        // ray through a uniformly jittered position in the pixel hits (p_y: its density per unit
+        // area, for the MIS weights; a miss is a zero sample of the pixel's average).
+        var s = centre;
+        var v = v_centre;
+        var p_y = 0.0;
+        var hit_receiver = true;
+        if (params.strategy == STRATEGY_LIGHT) {
+            // Light tracing alone: the camera part is zero (no samples, no variance).
+            hit_receiver = false;
+        } else if (params.strategy != STRATEGY_CAMERA) {
+            let jitter = vec2f(rng_uniform(&rng), rng_uniform(&rng));
+            let dir = camera_ray(frame, vec2f(gid.xy) + jitter);
+            let hit = bvh_closest_hit(Ray(to_scene(vec3f(0.0)), dir, primary_t_max, BVH_NO_TRIANGLE));
+            hit_receiver = hit.triangle != BVH_NO_TRIANGLE;
+            if (hit_receiver) {
+                s = hit_surface(dir, hit);
+                v = -dir;
+                p_y = image_per_surface_area(s.position, s.ng) / pixel_area();
+            }
+        }
         let u_lobe = rng_uniform(&rng);
         let u1 = rng_uniform(&rng);
         let u2 = rng_uniform(&rng);
-        var l_local: vec3f;
-        if (u_lobe < c_s) {
-            let h = sample_ggx_vndf(v_local, s.alpha, u1, u2);
-            l_local = 2.0 * dot(v_local, h) * h - v_local;
-        } else {
-            l_local = sample_cosine_hemisphere(u1, u2);
-        }
-        let l = safe_normalize(basis * l_local, n);
         var x_d = vec3f(0.0);
         var x_s = vec3f(0.0);
+        let l = sample_bsdf(s, v, u_lobe, u1, u2);
+        let n = s.ns;
         let cos_l = dot(n, l);
-        if (cos_l > 0.0 && dot(s.ng, l) > 0.0) {
-            let pdf = (1.0 - c_s) * cosine_hemisphere_pdf(cos_l) + c_s * ggx_vndf_reflection_pdf(n, v, l, s.alpha);
+        if (hit_receiver && cos_l > 0.0 && dot(s.ng, l) > 0.0) {
+            let pdf = bsdf_pdf(s, l, v);
             if (pdf > 0.0) {
-                let li = incoming_radiance(s, l);
+                let li = incoming_radiance(s, l, v, p_y);
                 if (any(li > vec3f(0.0))) {
                     let w = li * (cos_l / pdf);
                     x_d = min(s.rd * INV_PI * w, vec3f(FLT_MAX));
@@ -301,7 +482,207 @@ fn direct(@builtin(global_invocation_id) gid: vec3u) {
     }
     let s = pixel_surface(gid.xy, index);
     let v = -s.position / max(length(s.position), FLT_MIN);
-    direct_out[index] = vec4f(lights_radiance(s, v), 1.0);
+    direct_out[index] = vec4f(lights_radiance(s, v, NO_MIS), 1.0);
+}
+
+// Adds `value` to the f32 stored as bits in light_splat[i] (WGSL has no float atomics: a
+// compare-exchange loop on the bits).
+fn splat_add(i: u32, value: f32) {
+    var old = atomicLoad(&light_splat[i]);
+    loop {
+        let r = atomicCompareExchangeWeak(&light_splat[i], old, bitcast<u32>(bitcast<f32>(old) + value));
+        if (r.exchanged) {
+            break;
+        }
+        old = r.old_value;
+    }
+}
+
+const LIGHT_WORKGROUP: u32 = 64u;
+
+// One photon per thread (batch_samples · W · H of them): light → x → y → eye, splatted into y's
+// pixel with its MIS weight, divided by the batch's photon count (so a batch's splats are its
+// estimate of the light part). The path throughput follows the measurement with shading normals
+// [Veach 1997, ch. 5: with shading normals the adjoint BRDF gains cos_s/cos_g where light arrives]:
+//   C = I(ω)/(q p_dir) · cos_s(x,l)/cos_g(x,l) · f_x · cos_g(x,y)/p_x(y) · f_y · cos_s(y,x)/cos_g(y,x)
+//       · image_per_surface_area(y) / A_pixel
+// (for a directional light I/p_dir is E · π R², the disk's flux).
+@compute @workgroup_size(LIGHT_WORKGROUP, 1, 1)
+fn light_paths(@builtin(global_invocation_id) gid: vec3u, @builtin(num_workgroups) groups: vec3u) {
+    let photon = gid.x + gid.y * groups.x * LIGHT_WORKGROUP;
+    let photons = params.batch_samples * frame.size.x * frame.size.y;
+    if (photon >= photons || frame.light_count == 0u) {
+        return;
+    }
+    // A stream apart from the camera paths' (those hash (pixel, sample, seed)).
+    var rng = rng_init(photon, params.sample_offset, params.seed ^ 0x5bd1e995u);
+    var total = 0.0;
+    for (var k = 0u; k < frame.light_count; k++) {
+        total += light_power(lights[k]);
+    }
+    if (!(total > 0.0)) {
+        return;
+    }
+    let u_pick = rng_uniform(&rng) * total;
+    var pick = frame.light_count - 1u;
+    var acc = 0.0;
+    for (var k = 0u; k < frame.light_count; k++) {
+        acc += light_power(lights[k]);
+        if (u_pick < acc) {
+            pick = k;
+            break;
+        }
+    }
+    let light = lights[pick];
+    let q = light_power(light) / total;
+    let u1 = rng_uniform(&rng);
+    let u2 = rng_uniform(&rng);
+    var origin: vec3f;
+    var dir: vec3f;
+    var flux: vec3f;
+    if (light.kind == LIGHT_KIND_DIRECTIONAL) {
+        dir = normalize(light.direction);
+        let r = directional_disk_radius();
+        // The scene's centre (the upload anchor) is at −view_origin in frame space.
+        let centre = -frame.view_origin.xyz - dir * r;
+        let radius = r * sqrt(u1);
+        let phi = TWO_PI * u2;
+        origin = centre + orthonormal_basis(dir) * vec3f(radius * cos(phi), radius * sin(phi), 0.0);
+        flux = light.intensity * light.color * (PI * r * r) / q;
+    } else {
+        origin = light.position;
+        var cos_t: f32;
+        if (light.kind == LIGHT_KIND_SPOT) {
+            cos_t = 1.0 - u1 * (1.0 - light.cos_outer);
+        } else {
+            cos_t = 1.0 - 2.0 * u1;
+        }
+        let sin_t = sqrt(max(1.0 - cos_t * cos_t, 0.0));
+        let phi = TWO_PI * u2;
+        let axis = select(vec3f(0.0, 0.0, 1.0), normalize(light.direction), light.kind == LIGHT_KIND_SPOT);
+        dir = safe_normalize(orthonormal_basis(axis) * vec3f(sin_t * cos(phi), sin_t * sin(phi), cos_t), axis);
+        var cone = 1.0;
+        if (light.kind == LIGHT_KIND_SPOT) {
+            cone = spot_cone_attenuation(light, -dir);
+        }
+        flux = light.intensity * light.color * cone / (light_direction_pdf(light) * q);
+    }
+    if (all(flux <= vec3f(0.0))) {
+        return;
+    }
+    let t_max = length(to_scene(origin)) + RAY_T_MAX_EXTENTS * frame.scene_extent;
+    let hit_x = bvh_closest_hit(Ray(to_scene(origin), dir, t_max, BVH_NO_TRIANGLE));
+    if (hit_x.triangle == BVH_NO_TRIANGLE) {
+        return;
+    }
+    let x = hit_surface(dir, hit_x);
+    let to_light = -dir;
+    let cos_gx_l = dot(x.ng, to_light);
+    let cos_sx_l = dot(x.ns, to_light);
+    if (cos_gx_l <= 0.0 || cos_sx_l <= 0.0) {
+        return;
+    }
+    let to_y = sample_bsdf(x, to_light, rng_uniform(&rng), rng_uniform(&rng), rng_uniform(&rng));
+    let cos_gx_y = dot(x.ng, to_y);
+    if (dot(x.ns, to_y) <= 0.0 || cos_gx_y <= 0.0) {
+        return;
+    }
+    let p_x = bsdf_pdf(x, to_y, to_light);
+    if (!(p_x > 0.0)) {
+        return;
+    }
+    let f_x = x.rd * INV_PI + x.rs * ggx_brdf_over_rs(x.ns, to_y, to_light, x.alpha);
+    let throughput = flux * (cos_sx_l / cos_gx_l) * f_x * (cos_gx_y / p_x);
+    let origin_x = x.position + x.ng * ray_offset(x.position);
+    let hit_y = bvh_closest_hit(Ray(to_scene(origin_x), to_y, RAY_T_MAX_EXTENTS * frame.scene_extent, x.triangle));
+    if (hit_y.triangle == BVH_NO_TRIANGLE) {
+        return;
+    }
+    let y = hit_surface(to_y, hit_y);
+    // Connect y to the eye (the frame origin): in front of the camera, inside the image, facing
+    // the eye on the side x lit, and unoccluded.
+    let d2 = dot(y.position, y.position);
+    let d = sqrt(d2);
+    let to_eye = -y.position / max(d, FLT_MIN);
+    let to_x = -to_y;
+    let cos_gy_x = dot(y.ng, to_x);
+    let cos_sy_x = dot(y.ns, to_x);
+    if (dot(y.ng, to_eye) <= 0.0 || dot(y.ns, to_eye) <= 0.0 || cos_sy_x <= 0.0 || cos_gy_x <= 0.0) {
+        return;
+    }
+    let z = dot(y.position, normalize(frame.cam_forward.xyz));
+    if (z <= 0.0) {
+        return;
+    }
+    let right = frame.cam_right.xyz;
+    let up = frame.cam_up.xyz;
+    let ndc = vec2f(dot(y.position, right) / (dot(right, right) * z), dot(y.position, up) / (dot(up, up) * z));
+    if (any(abs(ndc) >= vec2f(1.0))) {
+        return;
+    }
+    let pixel = min(vec2u(vec2f((ndc.x + 1.0) * 0.5 * f32(frame.size.x), (1.0 - ndc.y) * 0.5 * f32(frame.size.y))), frame.size - vec2u(1u));
+    let index = pixel.y * frame.size.x + pixel.x;
+    // Both strategies leave out pixels whose centre sees the background (as `indirect` does).
+    if (gbuf_position[index].w == GBUFFER_BACKGROUND) {
+        return;
+    }
+    let origin_y = y.position + y.ng * ray_offset(y.position);
+    let eye_len = length(origin_y);
+    if (bvh_any_hit(Ray(to_scene(origin_y), -origin_y / max(eye_len, FLT_MIN), eye_len - ray_offset(vec3f(0.0)), y.triangle))) {
+        return;
+    }
+    let p_y = image_per_surface_area(y.position, y.ng) / pixel_area();
+    let p_cam = p_y * bsdf_pdf(y, to_x, to_eye) * cos_gx_y;
+    let p_light = light_emission_density(light, pick, x, to_light, distance(x.position, light.position)) * p_x * cos_gy_x;
+    let weight = mis_light_weight(p_cam, p_light);
+    if (!(weight > 0.0)) {
+        return;
+    }
+    let arriving = throughput * (cos_sy_x / cos_gy_x) * p_y * (weight / f32(photons));
+    let c_d = min(y.rd * INV_PI * arriving, vec3f(FLT_MAX));
+    let c_s = min(y.rs * ggx_brdf_over_rs(y.ns, to_x, to_eye, y.alpha) * arriving, vec3f(FLT_MAX));
+    let base = 8u * index;
+    for (var c = 0u; c < 3u; c++) {
+        if (c_d[c] > 0.0) {
+            splat_add(base + c, c_d[c]);
+        }
+        if (c_s[c] > 0.0) {
+            splat_add(base + 3u + c, c_s[c]);
+        }
+    }
+}
+
+// Folds this batch's splats (its estimate Y of the light part, weight c = batch_samples) into
+// the light part's weighted running mean and M2 [West 1979: M2 += c·δ·(Y − mean_new)], and
+// clears them for the next batch.
+@compute @workgroup_size(WORKGROUP, WORKGROUP, 1)
+fn light_fold(@builtin(global_invocation_id) gid: vec3u) {
+    if (gid.x >= frame.size.x || gid.y >= frame.size.y) {
+        return;
+    }
+    let index = gid.y * frame.size.x + gid.x;
+    let base = 8u * index;
+    var y_d: vec3f;
+    var y_s: vec3f;
+    for (var c = 0u; c < 3u; c++) {
+        y_d[c] = bitcast<f32>(atomicLoad(&light_splat[base + c]));
+        y_s[c] = bitcast<f32>(atomicLoad(&light_splat[base + 3u + c]));
+        atomicStore(&light_splat[base + c], 0u);
+        atomicStore(&light_splat[base + 3u + c], 0u);
+    }
+    let c = f32(params.batch_samples);
+    let old_d = light_mean[2u * index];
+    let old_s = light_mean[2u * index + 1u].rgb;
+    let old_m2 = light_m2[index];
+    let total = old_m2.w + c;
+    let f = c / total;
+    let y = y_d + y_s;
+    let delta = y - (old_d.rgb + old_s);
+    let new_d = old_d.rgb + (y_d - old_d.rgb) * f;
+    let new_s = old_s + (y_s - old_s) * f;
+    light_mean[2u * index] = vec4f(new_d, old_d.w + 1.0);
+    light_mean[2u * index + 1u] = vec4f(new_s, 0.0);
+    light_m2[index] = vec4f(min(old_m2.rgb + c * delta * (y - (new_d + new_s)), vec3f(FLT_MAX)), total);
 }
 
 // Standard error of the mean per channel: √(M2 / ((N − 1) N)). One sample carries no variance
@@ -318,6 +699,24 @@ fn resolve(@builtin(global_invocation_id) gid: vec3u) {
         err = abs(indirect_diffuse[index].rgb + indirect_specular[index].rgb);
     } else {
         err = sqrt(max(indirect_m2[index].rgb, vec3f(0.0)) / ((n - 1.0) * n));
+    }
+    if (params.strategy != STRATEGY_CAMERA) {
+        // The light part: its mean joins the camera part's (the two MIS-weighted strategies add
+        // up to the estimate) and its variance, over batches, joins the camera part's. Batch b's
+        // estimate Y_b has variance σ²/c_b: σ² ≈ M2/(B − 1), the mean's variance σ²/Σc_b. One
+        // batch carries no variance estimate: |Y| stands in, as |x| does above.
+        let d = light_mean[2u * index];
+        let sp = light_mean[2u * index + 1u].rgb;
+        let m2 = light_m2[index];
+        indirect_diffuse[index] = vec4f(indirect_diffuse[index].rgb + d.rgb, 0.0);
+        indirect_specular[index] = vec4f(indirect_specular[index].rgb + sp, 0.0);
+        var light_var: vec3f;
+        if (d.w < 2.0) {
+            light_var = (d.rgb + sp) * (d.rgb + sp);
+        } else {
+            light_var = max(m2.rgb, vec3f(0.0)) / ((d.w - 1.0) * max(m2.w, 1.0));
+        }
+        err = sqrt(err * err + light_var);
     }
     stderr_out[index] = vec4f(min(err, vec3f(FLT_MAX)), 0.0);
 }

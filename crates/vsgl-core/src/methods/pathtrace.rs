@@ -5,7 +5,7 @@
 use super::{options::common, DirectLight, FrameContext, Method, MethodInfo, OptionKind, OptionSpec, OptionValue, Options};
 use crate::error::Result;
 use crate::gpu::Gpu;
-use crate::passes::pathtrace::{PathTraceInputs, PathTracePass};
+use crate::passes::pathtrace::{PathTraceInputs, PathTracePass, Strategy};
 
 pub const INFO: MethodInfo = MethodInfo {
     name: "pathtrace",
@@ -14,7 +14,14 @@ pub const INFO: MethodInfo = MethodInfo {
     direct_light: DirectLight::ByMethod,
     indirect: true,
     extra_aovs: &["stderr"],
-    configure: |o| Ok(Box::new(PathTrace { options: o.clone(), spp: o.u32("spp")?, seed: o.u32("seed")?, time_budget_s: o.f32("time_budget_s")? as f64 })),
+    configure: |o| {
+        let strategy = match o.str("strategy")? {
+            "bidirectional" => Strategy::Bidirectional,
+            "light" => Strategy::Light,
+            _ => Strategy::Camera,
+        };
+        Ok(Box::new(PathTrace { options: o.clone(), spp: o.u32("spp")?, seed: o.u32("seed")?, time_budget_s: o.f32("time_budget_s")? as f64, strategy }))
+    },
 };
 
 const OPTIONS: &[OptionSpec] = &[
@@ -33,6 +40,13 @@ const OPTIONS: &[OptionSpec] = &[
         help: "stop adding samples after this many seconds (0: no budget); frame.settings['spp_done'] says how many were taken",
         note: "",
     },
+    OptionSpec {
+        name: "strategy",
+        kind: OptionKind::Choice(&["camera", "bidirectional", "light"]),
+        default: OptionValue::Str(std::borrow::Cow::Borrowed("camera")),
+        help: "\"camera\": BRDF-sampled bounces from each pixel centre; \"bidirectional\": also light tracing (photons reflected once and splatted), combined by MIS over each pixel's area, for caustics; \"light\": light tracing alone (a check on the others)",
+        note: "",
+    },
 ];
 
 struct PathTrace {
@@ -40,6 +54,7 @@ struct PathTrace {
     spp: u32,
     seed: u32,
     time_budget_s: f64,
+    strategy: Strategy,
 }
 
 impl Method for PathTrace {
@@ -55,6 +70,7 @@ impl Method for PathTrace {
             features: ctx.features,
             stop: ctx.stop,
             time_budget_s: (self.time_budget_s > 0.0).then_some(self.time_budget_s),
+            strategy: self.strategy,
         };
         let out = pass.record(&mut ctx.rec, &input, ctx.indirect, ctx.direct, self.spp, self.seed, ctx.size)?;
         ctx.settings.push(("spp_done".into(), out.spp_done.to_string()));

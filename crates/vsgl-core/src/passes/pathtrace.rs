@@ -24,6 +24,12 @@ const SUBMISSIONS_IN_FLIGHT: u32 = 4;
 const SLOW_WAIT: std::time::Duration = std::time::Duration::from_millis(250);
 /// Most samples one thread takes in one dispatch (bounds a dispatch on tiny images too).
 const MAX_SAMPLES_PER_DISPATCH: u32 = 1024;
+/// Threads of a `light_paths` workgroup (pathtrace.wgsl LIGHT_WORKGROUP).
+const LIGHT_WORKGROUP: u32 = 64;
+/// WebGPU's guaranteed limit on workgroups per dispatch dimension.
+const MAX_WORKGROUPS_PER_DIMENSION: u32 = 65535;
+/// Fewest batches in bidirectional mode, whose light part's variance is taken over batches.
+const MIN_LIGHT_BATCHES: u32 = 8;
 
 #[repr(C)]
 #[derive(Clone, Copy, bytemuck::Pod, bytemuck::Zeroable)]
@@ -31,7 +37,18 @@ struct PathParamsRaw {
     seed: u32,
     sample_offset: u32,
     batch_samples: u32,
-    _pad: u32,
+    strategy: u32,
+}
+
+/// `strategy=` of `pathtrace` (the shader's STRATEGY_* values).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Strategy {
+    /// BRDF-sampled bounces from each pixel centre's G-buffer point.
+    Camera = 0,
+    /// Camera paths jittered over each pixel's area and light tracing, combined by MIS.
+    Bidirectional = 1,
+    /// Light tracing alone (over each pixel's area).
+    Light = 2,
 }
 
 /// What the path tracer reads: the frame, its lights, the uploaded scene, the camera G-buffer
@@ -50,6 +67,8 @@ pub struct PathTraceInputs<'a> {
     /// The plan's features: no texture fetches at bounce points without textured materials,
     /// no tangent frames without normal maps.
     pub features: ShaderFeatures,
+    /// Which paths estimate the indirect light.
+    pub strategy: Strategy,
 }
 
 /// What one path-traced frame produced besides the indirect buffers and the direct buffer.
@@ -70,6 +89,8 @@ pub struct PathTracePass {
     indirect: PipelineVariants,
     direct: PipelineVariants,
     resolve: PipelineVariants,
+    light_paths: PipelineVariants,
+    light_fold: PipelineVariants,
     sampler: wgpu::Sampler,
 }
 
@@ -101,6 +122,9 @@ fn binding_types() -> Vec<wgpu::BindingType> {
         rw,                                                                           // 19 indirect_m2
         rw,                                                                           // 20 direct_out
         rw,                                                                           // 21 stderr_out
+        rw,                                                                           // 22 light_splat
+        rw,                                                                           // 23 light_mean
+        rw,                                                                           // 24 light_m2
     ]
 }
 
@@ -122,6 +146,8 @@ impl PathTracePass {
             indirect: variants("indirect"),
             direct: variants("direct"),
             resolve: variants("resolve"),
+            light_paths: variants("light_paths"),
+            light_fold: variants("light_fold"),
             sampler,
         })
     }
@@ -152,8 +178,15 @@ impl PathTracePass {
         let m2 = rec.storage("pathtrace_m2_buffer", pixels * 16);
         let stderr = rec.storage("pathtrace_stderr_buffer", pixels * 16);
         let workgroups = (groups(w, WORKGROUP), groups(h, WORKGROUP), 1);
+        // Light tracing's buffers (16-byte placeholders in camera-only mode): this batch's
+        // splats (8 words a pixel), the light part's means (2 vec4 a pixel) and M2 (1 vec4).
+        let bidirectional = input.strategy != Strategy::Camera;
+        let light_bytes = |per_pixel: u64| if bidirectional { pixels * per_pixel } else { 16 };
+        let light_splat = rec.storage("pathtrace_light_splat_buffer", light_bytes(32));
+        let light_mean = rec.storage("pathtrace_light_mean_buffer", light_bytes(32));
+        let light_m2 = rec.storage("pathtrace_light_m2_buffer", light_bytes(16));
 
-        let dispatch = |rec: &mut Recorder<'_>, label: &str, pipeline: &wgpu::ComputePipeline, params: PathParamsRaw| {
+        let dispatch = |rec: &mut Recorder<'_>, label: &str, pipeline: &wgpu::ComputePipeline, params: PathParamsRaw, workgroups: (u32, u32, u32)| {
             let uniform = rec.uniform("pathtrace_params_uniform_buffer", &params);
             let resources = [
                 input.frame.as_entire_binding(),
@@ -178,6 +211,9 @@ impl PathTracePass {
                 m2.as_entire_binding(),
                 direct_out.as_entire_binding(),
                 stderr.as_entire_binding(),
+                light_splat.as_entire_binding(),
+                light_mean.as_entire_binding(),
+                light_m2.as_entire_binding(),
             ];
             let bind = rec.bind_group("pathtrace_bind_group", PipelineRef::Compute(pipeline), 0, &resources);
             rec.in_debug_group(label, |rec| {
@@ -189,14 +225,19 @@ impl PathTracePass {
             });
         };
 
-        let params = |sample_offset, batch_samples| PathParamsRaw { seed, sample_offset, batch_samples, _pad: 0 };
+        let params = |sample_offset, batch_samples| PathParamsRaw { seed, sample_offset, batch_samples, strategy: input.strategy as u32 };
         // The three entry points share one shader, so they take the same leave-out flags.
         let flags = [("HAS_TEXTURES", input.features.textures), ("HAS_NORMAL_MAPS", input.features.normal_maps)];
-        dispatch(rec, "pathtrace_direct", &self.direct.get(gpu, &flags), params(0, 0));
+        dispatch(rec, "pathtrace_direct", &self.direct.get(gpu, &flags), params(0, 0), workgroups);
         let indirect_pipeline = &self.indirect.get(gpu, &flags);
         // `frame.passes` names the untextured variant of the bounce pass (timed as `pathtrace`).
         let indirect_label = if input.features.textures { "pathtrace" } else { "pathtrace[untextured]" };
-        let per_batch = (PATHS_PER_BATCH / pixels.max(1)).clamp(1, MAX_SAMPLES_PER_DISPATCH as u64) as u32;
+        let mut per_batch = (PATHS_PER_BATCH / pixels.max(1)).clamp(1, MAX_SAMPLES_PER_DISPATCH as u64) as u32;
+        if bidirectional {
+            // The light part's variance is taken over batches: at least MIN_LIGHT_BATCHES of them.
+            per_batch = per_batch.min(spp.div_ceil(MIN_LIGHT_BATCHES)).max(1);
+        }
+        let (light_paths, light_fold) = (self.light_paths.get(gpu, &flags), self.light_fold.get(gpu, &flags));
         let started = std::time::Instant::now();
         let mut done = 0u32;
         let mut batch = 0u32;
@@ -226,10 +267,18 @@ impl PathTracePass {
                     break;
                 }
             }
-            dispatch(rec, indirect_label, indirect_pipeline, params(done, count));
+            dispatch(rec, indirect_label, indirect_pipeline, params(done, count), workgroups);
+            if bidirectional {
+                // count · W · H photons: the same number of light paths as camera paths.
+                let photon_groups = (count as u64 * pixels).div_ceil(LIGHT_WORKGROUP as u64);
+                let x = photon_groups.min(MAX_WORKGROUPS_PER_DIMENSION as u64) as u32;
+                let y = photon_groups.div_ceil(x.max(1) as u64) as u32;
+                dispatch(rec, "pathtrace_light_paths", &light_paths, params(done, count), (x.max(1), y.max(1), 1));
+                dispatch(rec, "pathtrace_light_fold", &light_fold, params(done, count), workgroups);
+            }
             done += count;
         }
-        dispatch(rec, "pathtrace_resolve", &self.resolve.get(gpu, &flags), params(done, 0));
+        dispatch(rec, "pathtrace_resolve", &self.resolve.get(gpu, &flags), params(done, 0), workgroups);
         Ok(PathTraceOutput {
             stderr,
             bvh_built,
