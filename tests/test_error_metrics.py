@@ -74,6 +74,11 @@ def test_ssim_is_one_for_identical_images_and_falls_with_noise():
     a = metrics.ssim(x + rng.normal(0, 0.01, x.shape), x)
     b = metrics.ssim(x + rng.normal(0, 0.05, x.shape), x)
     assert 1.0 > a > b > 0.0
+    # Structure counts, not only local means: the same pattern with its contrast inverted (equal
+    # means and variances, opposite covariance) scores ≈ −1. Built in display (sRGB) values.
+    pattern = np.where(rng.random((32, 32)) < 0.5, 1.0, -1.0)
+    to_linear = lambda d: ((d + 0.055) / 1.055) ** 2.4  # noqa: E731
+    assert metrics.ssim(to_linear(0.5 - 0.2 * pattern), to_linear(0.5 + 0.2 * pattern)) < -0.9
     # Radiance above 1 clips to white, as a display shows it.
     assert metrics.ssim(x + 5.0, x + 7.0) == pytest.approx(1.0)
     # Grey images work, and a tiny image still has a full (mirrored) window.
