@@ -334,7 +334,8 @@ def compare_debiased(best: SeedErrors, other: SeedErrors, *, resamples: int = RE
     # upper bound becomes None once such replicates exceed the upper tail.
     ratios = np.full_like(a, np.inf)
     np.divide(b, a, out=ratios, where=a > 0)
-    lo, hi = (float(v) for v in np.percentile(ratios, [100 * (1 - CONFIDENCE) / 2, 100 * (1 + CONFIDENCE) / 2]))
+    # No interpolation between order statistics: it would subtract inf from inf.
+    lo, hi = (float(v) for v in np.quantile(ratios, [(1 - CONFIDENCE) / 2, (1 + CONFIDENCE) / 2], method="inverted_cdf"))
     finite = lambda v: v if np.isfinite(v) else None  # noqa: E731
     defined = best.relmse_debiased > 0
     return {
