@@ -533,7 +533,7 @@ def _scene_reference(renderer, scene, scene_name, size, reference, ref_settings,
     scale = float(np.mean(ref.indirect.astype(np.float64) ** 2))
     if scale == 0.0:
         report.reference_rel_error[scene_name] = None  # no indirect light: nothing to be relative to
-    elif reference == "pathtrace":
+    elif ref.indirect_var is not None:  # pathtrace: its stderr²
         report.reference_rel_error[scene_name] = float(np.sqrt(np.mean(ref.indirect_var) / scale))
     else:
         n = ref_settings["rsm_size"]
@@ -592,7 +592,7 @@ def _equal_time(rows: list[Row], seed_stats: dict[int, metrics.SeedErrors]) -> l
             out.append({"scene": scene, "budget_ms": None, "best": None, "runner_up": None, "runner_up_vs_best": None,
                         "why": "no row with a debiased error (the reference has no indirect light, or only the reference ran)"})
         for budget in budgets:
-            within = sorted((i for i in eligible if rows[i].total_ms_median <= budget), key=lambda i: rows[i].relmse_indirect_debiased)
+            within = sorted((i for i in eligible if rows[i].total_ms_median <= budget), key=lambda i: seed_stats[i].relmse_debiased)
             best = within[0]
             others = [i for i in within if _label(rows[i]) != _label(rows[best])]
             runner = others[0] if others else None
