@@ -11,6 +11,7 @@ import sys
 import numpy as np
 import pytest
 
+import vsgl
 from vsgl import bench, metrics
 
 
@@ -172,3 +173,30 @@ def test_equal_time_names_a_winner_per_scene_and_the_rsm_reference_reports_its_e
         assert report.reference_batches[scene] >= 2 and report.reference_ms[scene] > 0
     assert "equal time cornell_box" in bench.table(report)
     assert json.loads((tmp_path / "bench.json").read_text())["equal_time"]
+
+
+def test_cpu_defaults_scale_down_only_what_is_not_given():
+    given = {k: None for k in bench.GPU_DEFAULTS}
+    used, scaled = bench._resolve_defaults(given, cpu=True)
+    assert used == bench.CPU_DEFAULTS
+    # Only what differs from the GPU defaults is reported as scaled; the reference shrinks most.
+    assert scaled and all(bench.CPU_DEFAULTS[k] != bench.GPU_DEFAULTS[k] for k in scaled)
+    assert scaled["reference_rsm"] < bench.GPU_DEFAULTS["reference_rsm"]
+    used, scaled = bench._resolve_defaults(dict(given, size=(300, 200)), cpu=True)
+    assert used["size"] == (300, 200) and "size" not in scaled
+    used, scaled = bench._resolve_defaults(given, cpu=False)
+    assert used == bench.GPU_DEFAULTS and scaled == {}
+
+
+def test_the_reference_shows_its_progress_and_counts_every_batch(make_renderer):
+    """Issue 15, item 7: on a CPU adapter the reference submits small batches, reports progress
+    between them, and the bench's cost of it counts them all (wall time over every batch)."""
+    renderer = make_renderer(48, 32)
+    if renderer.adapter["device_type"] != "Cpu":
+        pytest.skip("the small batches are a CPU adapter's (a GPU batches 2^31 evaluations)")
+    seen = []
+    ref = bench._reference(renderer, vsgl.scenes.cornell_box(), (48, 32), "reference", {"rsm_size": 128}, None, lambda *a: seen.append(a))
+    assert len(seen) >= 1 and seen[-1][1] == 128 * 128 and seen[-1][2] == "texels"
+    assert [d for d, _, _ in seen] == sorted(d for d, _, _ in seen)
+    assert ref.batches == len(seen) + 1
+    assert ref.wall_ms > 0

@@ -123,3 +123,11 @@ def test_rel_rmse_matches_its_definition():
 def test_bad_inputs_raise_value_error_naming_the_argument(call, name):
     with pytest.raises(ValueError, match=f"^{name}:"):
         call()
+
+
+def test_flip_where_installed():
+    pytest.importorskip("flip_evaluator", reason="flip-evaluator is not installed: metrics.flip returns None")
+    rng = np.random.default_rng(12)
+    x = 0.1 + 0.5 * _truth(rng) / 1.5
+    assert metrics.flip(x, x) == pytest.approx(0.0, abs=1e-6)
+    assert metrics.flip(x + rng.normal(0, 0.05, x.shape), x) > 0.01
