@@ -43,7 +43,7 @@ def test_small_sweep_writes_files_and_has_sane_numbers(tmp_path, renderer):
         out=tmp_path,
         progress=False,
     )
-    for name in ("bench.csv", "bench.json", "bench.txt", "error_vs_time.png", "error_vs_lights.png"):
+    for name in ("bench.csv", "bench.json", "bench.txt", "error_vs_time.png", "error_vs_lights.png", "bias_noise_vs_lights.png"):
         assert (tmp_path / name).is_file(), name
     rows = list(csv.DictReader(open(tmp_path / "bench.csv")))
     assert len(rows) == len(report.rows) == 5
@@ -56,6 +56,9 @@ def test_small_sweep_writes_files_and_has_sane_numbers(tmp_path, renderer):
     by = {(r.method, r.num_lights): r for r in report.rows}
     # The reference against itself (same RSM, same view) has zero error.
     assert by[("reference", None)].rmse_indirect == 0.0
+    # ... so it is marked and does not compete at equal time (it would win every budget).
+    assert "the reference itself" in by[("reference", None)].notes
+    assert report.equal_time and all(e["best"]["method"] != "reference" for e in report.equal_time)
     # VPL error falls as N grows.
     assert by[("vpl", 512)].rmse_indirect < by[("vpl", 8)].rmse_indirect
     text = bench.table(report)

@@ -7,8 +7,8 @@ rendering, so the GPU leaves its idle clock; from timestamp queries; the SM cloc
 after the timed frames where ``nvidia-ml-py`` is installed), and the error of the ``indirect`` AOV and of the full
 image against the scene's reference (``reference`` by default, computed once per scene, view
 and settings, and cached on disk), as the mean and spread over seeds for stochastic methods.
-Writes a terminal table, ``bench.csv``, ``bench.json`` and, with matplotlib, ``error_vs_time.png``
-and ``error_vs_lights.png``. On a CPU adapter only ratios inside one report mean anything.
+Writes a terminal table, ``bench.csv``, ``bench.json`` and, with matplotlib, ``error_vs_time.png``,
+``error_vs_lights.png`` and ``bias_noise_vs_lights.png``. On a CPU adapter only ratios inside one report mean anything.
 
 Error you can trust (docs/error.md): the reference reports its own error
 (``reference_rel_error``: from its stderr for ``pathtrace``, from the difference to one at half
@@ -498,7 +498,9 @@ def run(
             )
             if ref_has_light:
                 _trust(row, indirects, ref, method in STOCHASTIC, seed_stats, len(report.rows))
-            if method == reference and (method != "reference" or rsm == reference_rsm):
+            if all(np.array_equal(x, ref.indirect) for x in indirects):
+                # Bit for bit the reference (same method and settings): it cannot judge itself,
+                # and it does not compete in equal_time.
                 row.notes.append("the reference itself")
             report.rows.append(row)
             bar.update(1)
@@ -758,6 +760,27 @@ def _plots(report: Report, out: pathlib.Path) -> None:
         ax.legend(fontsize=7)
     fig.tight_layout()
     fig.savefig(out / "error_vs_lights.png", dpi=120)
+    plt.close(fig)
+    # Bias (solid) and noise (dashed) apart: what separates VSGL (bias) from VPL (noise).
+    fig, ax = plt.subplots(figsize=(6, 4.5))
+    for (scene, method, rsm, kernel), rows in series.items():
+        rows = [r for r in rows if r.num_lights and r.bias is not None and r.noise is not None]
+        if rows:
+            label = f"{scene} {method}" + (f" {kernel}" if kernel else "") + (f" rsm{rsm}" if rsm else "")
+            (line,) = ax.plot([r.num_lights for r in rows], [max(r.bias, 1e-6) for r in rows], "o-", label=f"{label}: bias")
+            ax.plot([r.num_lights for r in rows], [max(r.noise, 1e-6) for r in rows], "s--", color=line.get_color(), label=f"{label}: noise")
+    for scene, floor in report.reference_rel_error.items():
+        if floor:
+            ax.axhline(floor, linestyle=":", color="grey", linewidth=1, label=f"{scene}: reference's own error")
+    ax.set_xscale("log")
+    ax.set_yscale("log")
+    ax.set_xlabel("number of VPLs / VSGLs")
+    ax.set_ylabel("relative bias and noise of indirect (over seeds)")
+    ax.set_title(title, fontsize=9)
+    if ax.get_legend_handles_labels()[0]:
+        ax.legend(fontsize=7)
+    fig.tight_layout()
+    fig.savefig(out / "bias_noise_vs_lights.png", dpi=120)
     plt.close(fig)
 
 
