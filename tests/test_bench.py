@@ -11,6 +11,7 @@ import sys
 import numpy as np
 import pytest
 
+import vsgl
 from vsgl import bench, metrics
 
 
@@ -42,7 +43,7 @@ def test_small_sweep_writes_files_and_has_sane_numbers(tmp_path, renderer):
         out=tmp_path,
         progress=False,
     )
-    for name in ("bench.csv", "bench.json", "bench.txt", "error_vs_time.png", "error_vs_lights.png"):
+    for name in ("bench.csv", "bench.json", "bench.txt", "error_vs_time.png", "error_vs_lights.png", "bias_noise_vs_lights.png"):
         assert (tmp_path / name).is_file(), name
     rows = list(csv.DictReader(open(tmp_path / "bench.csv")))
     assert len(rows) == len(report.rows) == 5
@@ -55,6 +56,9 @@ def test_small_sweep_writes_files_and_has_sane_numbers(tmp_path, renderer):
     by = {(r.method, r.num_lights): r for r in report.rows}
     # The reference against itself (same RSM, same view) has zero error.
     assert by[("reference", None)].rmse_indirect == 0.0
+    # ... so it is marked and does not compete at equal time (it would win every budget).
+    assert "the reference itself" in by[("reference", None)].notes
+    assert report.equal_time and all(e["best"]["method"] != "reference" for e in report.equal_time)
     # VPL error falls as N grows.
     assert by[("vpl", 512)].rmse_indirect < by[("vpl", 8)].rmse_indirect
     text = bench.table(report)
@@ -115,3 +119,87 @@ def test_timings_report_quartiles_and_the_warm_up(tmp_path, renderer):
     assert "total_ms_q1" in (tmp_path / "bench.csv").read_text()
     with pytest.raises(ValueError, match="warmup_seconds"):
         bench.run(warmup_seconds=-1.0, size=(8, 8), out=None, progress=False)
+
+
+def test_rows_carry_the_references_own_error_and_flag_a_too_noisy_reference(tmp_path, renderer):
+    """Issue 15, item 2: a 1-spp path-traced reference (its stderr is as large as its image)
+    flags every row "reference too noisy"; a 256-spp one does not flag the rows whose error is
+    far above its own (direct light only, which misses all indirect light: relative error 1)."""
+    common = dict(scenes=["cornell_box"], methods=["direct", "vpl"], lights=[8], size=(48, 32), rsm_sizes=[32],
+                  seeds=(0, 1), frames=1, warmup=0, reference="pathtrace", progress=False)
+    noisy = bench.run(reference_spp=1, out=tmp_path / "noisy", **common)
+    good = bench.run(reference_spp=256, out=tmp_path / "good", **common)
+    assert noisy.reference_rel_error["cornell_box"] > 0.3
+    assert good.reference_rel_error["cornell_box"] < 0.3 * noisy.reference_rel_error["cornell_box"]
+    for r in noisy.rows:
+        assert r.reference_too_noisy and "reference too noisy" in r.notes, r
+    direct = next(r for r in good.rows if r.method == "direct")
+    assert direct.rel_rmse_indirect == pytest.approx(1.0)
+    assert not direct.reference_too_noisy and direct.notes == []
+    data = json.loads((tmp_path / "good" / "bench.json").read_text())
+    assert data["reference_rel_error"]["cornell_box"] == good.reference_rel_error["cornell_box"]
+    for row in data["rows"]:
+        for key in ("reference_rel_error", "bias", "noise", "relmse_indirect_debiased", "relmse_indirect_debiased_interval", "reference_too_noisy"):
+            assert key in row, key
+        lo, hi = row["relmse_indirect_debiased_interval"]
+        assert lo <= row["relmse_indirect_debiased"] <= hi
+    vpl = next(r for r in good.rows if r.method == "vpl")
+    assert vpl.noise > 0 and vpl.bias >= 0
+    assert direct.noise == 0.0
+    csv_rows = list(csv.DictReader(open(tmp_path / "noisy" / "bench.csv")))
+    assert all(r["reference_too_noisy"] == "True" and "reference too noisy" in r["notes"] for r in csv_rows)
+    text = bench.table(noisy)
+    assert "its own error" in text and "reference too noisy" in text
+
+
+def test_equal_time_names_a_winner_per_scene_and_the_rsm_reference_reports_its_error(tmp_path, renderer):
+    """Issue 15, items 2 and 5: every scene gets equal-time entries (the best row within each
+    budget, and its margin over another method with an interval); the every-texel reference's
+    own error comes from one at another RSM size, and the reference's cost counts every batch."""
+    report = bench.run(
+        scenes=["cornell_box", "diffuse_cornell"], methods=["vpl", "vsgl2"], lights=[8, 64], size=(32, 24), rsm_sizes=[32],
+        seeds=(0, 1), frames=1, warmup=0, reference_rsm=64, out=tmp_path, progress=False,
+    )
+    scenes = {e["scene"] for e in report.equal_time}
+    assert scenes == {"cornell_box", "diffuse_cornell"}
+    for scene in scenes:
+        entries = [e for e in report.equal_time if e["scene"] == scene]
+        assert len(entries) == len({r.total_ms_median for r in report.rows if r.scene == scene})
+        last = entries[-1]  # the largest budget holds every row
+        rows = [r for r in report.rows if r.scene == scene]
+        assert last["best"]["relmse_indirect_debiased"] == min(r.relmse_indirect_debiased for r in rows)
+        assert last["runner_up"]["method"] != last["best"]["method"]
+        c = last["runner_up_vs_best"]
+        assert c["difference"] >= 0 and c["difference_interval"][0] <= c["difference"] <= c["difference_interval"][1]
+        # The 64² reference against a 32² one: a small but nonzero error.
+        assert 0 < report.reference_rel_error[scene] < 0.5
+        assert report.reference_batches[scene] >= 2 and report.reference_ms[scene] > 0
+    assert "equal time cornell_box" in bench.table(report)
+    assert json.loads((tmp_path / "bench.json").read_text())["equal_time"]
+
+
+def test_cpu_defaults_scale_down_only_what_is_not_given():
+    given = {k: None for k in bench.GPU_DEFAULTS}
+    used, scaled = bench._resolve_defaults(given, cpu=True)
+    assert used == bench.CPU_DEFAULTS
+    # Only what differs from the GPU defaults is reported as scaled; the reference shrinks most.
+    assert scaled and all(bench.CPU_DEFAULTS[k] != bench.GPU_DEFAULTS[k] for k in scaled)
+    assert scaled["reference_rsm"] < bench.GPU_DEFAULTS["reference_rsm"]
+    used, scaled = bench._resolve_defaults(dict(given, size=(300, 200)), cpu=True)
+    assert used["size"] == (300, 200) and "size" not in scaled
+    used, scaled = bench._resolve_defaults(given, cpu=False)
+    assert used == bench.GPU_DEFAULTS and scaled == {}
+
+
+def test_the_reference_shows_its_progress_and_counts_every_batch(make_renderer):
+    """Issue 15, item 7: on a CPU adapter the reference submits small batches, reports progress
+    between them, and the bench's cost of it counts them all (wall time over every batch)."""
+    renderer = make_renderer(48, 32)
+    if renderer.adapter["device_type"] != "Cpu":
+        pytest.skip("the small batches are a CPU adapter's (a GPU batches 2^31 evaluations)")
+    seen = []
+    ref = bench._reference(renderer, vsgl.scenes.cornell_box(), (48, 32), "reference", {"rsm_size": 128}, None, lambda *a: seen.append(a))
+    assert len(seen) >= 1 and seen[-1][1] == 128 * 128 and seen[-1][2] == "texels"
+    assert [d for d, _, _ in seen] == sorted(d for d, _, _ in seen)
+    assert ref.batches == len(seen) + 1
+    assert ref.wall_ms > 0

@@ -7,8 +7,19 @@ rendering, so the GPU leaves its idle clock; from timestamp queries; the SM cloc
 after the timed frames where ``nvidia-ml-py`` is installed), and the error of the ``indirect`` AOV and of the full
 image against the scene's reference (``reference`` by default, computed once per scene, view
 and settings, and cached on disk), as the mean and spread over seeds for stochastic methods.
-Writes a terminal table, ``bench.csv``, ``bench.json`` and, with matplotlib, ``error_vs_time.png``
-and ``error_vs_lights.png``. On a CPU adapter only ratios inside one report mean anything.
+Writes a terminal table, ``bench.csv``, ``bench.json`` and, with matplotlib, ``error_vs_time.png``,
+``error_vs_lights.png`` and ``bias_noise_vs_lights.png``. On a CPU adapter only ratios inside one report mean anything.
+
+Error you can trust (docs/error.md): the reference reports its own error
+(``reference_rel_error``: from its stderr for ``pathtrace``, from the difference to one at half
+the RSM side for ``reference``), and a row whose error is not at least 3× that is flagged
+"reference too noisy". Stochastic methods get ``bias`` and ``noise`` apart and
+``relmse_indirect_debiased`` (the MSE less the reference's variance) with a 90% interval, and
+``equal_time`` names, per scene and time budget, the method with the lowest debiased error and
+by how much it beats the runner-up.
+
+Called with no sizes on a CPU adapter (lavapipe), the defaults scale down so the run takes about
+two minutes, and the report and stderr say which.
 
 With ``--plans auto,full`` every configuration also runs with the pass plan forced to
 ``"full"`` (nothing left out), and the report gives the pruned/full time ratio per configuration
@@ -35,6 +46,27 @@ import vsgl
 from vsgl import metrics
 
 STOCHASTIC = {"vpl", "vsgl"}
+
+#: Defaults of the settings that decide the run time, on a GPU.
+GPU_DEFAULTS: dict[str, Any] = {
+    "size": (256, 256), "lights": (16, 64, 256), "rsm_sizes": (256,), "seeds": (0, 1, 2),
+    "frames": 5, "warmup": 1, "reference_rsm": 1024, "reference_spp": 256,
+}
+#: The same on a CPU adapter, where lavapipe evaluates ~10⁷–10⁸ pixel·VPL pairs per second: the
+#: GPU defaults took 950 s there (935 s of it the 1024² reference); these take about two minutes.
+CPU_DEFAULTS: dict[str, Any] = {
+    "size": (80, 80), "lights": (16, 64, 256), "rsm_sizes": (128,), "seeds": (0, 1, 2),
+    "frames": 2, "warmup": 1, "reference_rsm": 256, "reference_spp": 256,
+}
+#: A row's error must be at least this many times the reference's own error to be trusted.
+TRUST_FACTOR = 3.0
+#: Convergence order p assumed for the every-texel reference in the RSM side n (error ∝ n^−p),
+#: to turn the difference of two RSM sizes into an error estimate (``_rsm_reference_error``).
+#: First order is the cautious choice: point-sampled texels near contacts and glossy lobes
+#: converge about that slowly, and a smooth scene (p ≈ 2) only makes the estimate an overestimate.
+RSM_REFERENCE_ORDER = 1.0
+#: The smallest RSM side a reference may have (the methods' option range).
+MIN_RSM = 32
 
 
 @dataclass
@@ -64,6 +96,27 @@ class Row:
     warmup_frames: int = 0
     # SM clock (MHz) before and after the timed frames, where NVML is available.
     sm_clock_mhz: tuple[int, int] | None = None
+    # Error you can trust (docs/error.md); None where the reference's indirect light is zero.
+    # ‖x − ref‖/‖ref‖ of the indirect AOV, RMS over seeds: the number the trust check compares.
+    rel_rmse_indirect: float | None = None
+    # Relative RMS error of the mean over seeds, less noise and the reference's variance.
+    bias: float | None = None
+    # Relative RMS of the per-pixel standard deviation over seeds (0 for deterministic methods;
+    # None for a stochastic one run with a single seed).
+    noise: float | None = None
+    # (MSE − mean Var(ref)) / mean(ref²) of the indirect AOV, with its 90% interval.
+    relmse_indirect_debiased: float | None = None
+    relmse_indirect_debiased_interval: tuple[float, float] | None = None
+    # The reference's own estimated relative RMS error (the same for every row of a scene).
+    reference_rel_error: float | None = None
+    # True when rel_rmse_indirect < TRUST_FACTOR × reference_rel_error: the error is mostly the
+    # reference's own; `notes` then holds "reference too noisy".
+    reference_too_noisy: bool = False
+    notes: list[str] = field(default_factory=list)
+    # Perceptual and low-pass errors, mean over seeds: SSIM of the tone-mapped image and the
+    # relative RMS error of 8×8 block averages of the indirect AOV.
+    ssim_image: float | None = None
+    block_rmse_indirect: float | None = None
 
 
 @dataclass
@@ -72,6 +125,8 @@ class Report:
     size: tuple[int, int]
     reference: str
     reference_settings: dict[str, Any]
+    # Per scene: wall milliseconds of the whole reference render, every batch included (on a
+    # CPU adapter lavapipe's timestamps cover a fraction of the work; the wall clock covers all).
     reference_ms: dict[str, float]
     frames: int
     warmup: int
@@ -81,6 +136,18 @@ class Report:
     note: str = ""
     # Per configuration run with both plans: pruned ("auto") over "full" median total time.
     plan_ratios: list[dict[str, Any]] = field(default_factory=list)
+    # Per scene: the sum of the reference's GPU timestamps over all its batches, and how many.
+    reference_gpu_ms: dict[str, float] = field(default_factory=dict)
+    reference_batches: dict[str, int] = field(default_factory=dict)
+    # Per scene: the reference's own estimated relative RMS error of its indirect AOV, and how
+    # it was estimated (reference_error_method).
+    reference_rel_error: dict[str, float | None] = field(default_factory=dict)
+    reference_error_method: str = ""
+    # Per scene and time budget: the method with the lowest debiased error within the budget
+    # and its margin over the best row of another method (see _equal_time).
+    equal_time: list[dict[str, Any]] = field(default_factory=list)
+    # Settings a CPU adapter scaled down from GPU_DEFAULTS (name: value used), if any.
+    scaled_for_cpu: dict[str, Any] = field(default_factory=dict)
 
     def to_json(self) -> dict[str, Any]:
         d = asdict(self)
@@ -132,19 +199,88 @@ def _reference_key(scene: vsgl.Scene, size: tuple[int, int], method: str, settin
     return hashlib.sha256(blob.encode()).hexdigest()[:20]
 
 
-def _reference(renderer, scene, size, method, settings, cache_dir):
+@dataclass
+class _ReferenceRender:
+    image: np.ndarray
+    indirect: np.ndarray
+    # Variance of each value of `indirect` (stderr² of a path tracer); None when deterministic.
+    indirect_var: np.ndarray | None
+    gpu_ms: float
+    wall_ms: float
+    batches: int
+
+
+def _reference(renderer, scene, size, method, settings, cache_dir, progress=None) -> _ReferenceRender:
+    """Renders (or loads from the cache) one reference image with what its error needs."""
     key = _reference_key(scene, size, method, settings)
     path = None if cache_dir is None else pathlib.Path(cache_dir) / f"reference-{key}.npz"
+    fields = ("image", "indirect", "timings", "wall_ms", "batches") + (("stderr",) if method == "pathtrace" else ())
     if path is not None and path.exists():
         data = np.load(path)
-        return data["image"], data["indirect"], json.loads(str(data["timings"]))
-    frame = renderer.render(scene, method=method, aovs=["image", "indirect"], **settings)
-    image, indirect = frame.image, frame.aov("indirect")
+        if all(f in data for f in fields):  # older caches lack the cost and the stderr
+            return _ReferenceRender(
+                data["image"], data["indirect"], data["stderr"].astype(np.float64) ** 2 if "stderr" in fields else None,
+                float(json.loads(str(data["timings"])).get("total", 0.0)), float(data["wall_ms"]), int(data["batches"]),
+            )
+    aovs = ["image", "indirect"] + (["stderr"] if method == "pathtrace" else [])
+    batches = [1]
+
+    def each_batch(done: int, total: int, unit: str) -> None:
+        batches[0] += 1
+        if progress is not None:
+            progress(done, total, unit)
+
+    t = time.perf_counter()
+    frame = renderer.render(scene, method=method, aovs=aovs, progress=each_batch, **settings)
+    wall_ms = 1e3 * (time.perf_counter() - t)
     timings = dict(frame.timings_ms)
+    stderr = frame.aov("stderr") if method == "pathtrace" else None
     if path is not None:
         path.parent.mkdir(parents=True, exist_ok=True)
-        np.savez_compressed(path, image=image, indirect=indirect, timings=json.dumps(timings))
-    return image, indirect, timings
+        extra = {"stderr": stderr} if stderr is not None else {}
+        np.savez_compressed(path, image=frame.image, indirect=frame.aov("indirect"), timings=json.dumps(timings),
+                            wall_ms=wall_ms, batches=batches[0], **extra)
+    return _ReferenceRender(
+        frame.image, frame.aov("indirect"), None if stderr is None else stderr.astype(np.float64) ** 2,
+        float(timings.get("total", 0.0)), wall_ms, batches[0],
+    )
+
+
+def _rsm_reference_error(fine: np.ndarray, other: np.ndarray, other_is_coarser: bool) -> float:
+    """The n² reference's relative RMS error, estimated from its difference to one at n/2 (or
+    2n where n/2 is below the smallest RSM), assuming error ∝ n^−p (RSM_REFERENCE_ORDER):
+    ref(n/2) − ref(n) = e(n)(2^p − 1) and ref(n) − ref(2n) = e(n)(1 − 2^−p), as in Richardson
+    extrapolation. An estimate: it assumes the error's pattern is the same at both sizes."""
+    p = RSM_REFERENCE_ORDER
+    scale = (2**p - 1) if other_is_coarser else (1 - 2**-p)
+    return metrics.rel_rmse(other, fine) / scale
+
+
+def _reference_progress(label: str, enabled: bool):
+    """A progress(done, total, unit) callback showing the reference's own batches on stderr (a
+    tqdm bar, or a line without tqdm), and a function that ends it. (None, no-op) when disabled."""
+    if not enabled:
+        return None, lambda: None
+    state: dict[str, Any] = {}
+
+    def show(done: int, total: int, unit: str) -> None:
+        try:
+            from tqdm import tqdm
+        except ImportError:
+            print(f"\r{label}: {done}/{total} {unit} ({100.0 * done / max(total, 1):.0f}%)", end="", file=sys.stderr, flush=True)
+            state["line"] = True
+            return
+        if "bar" not in state:
+            state["bar"] = tqdm(total=total, unit=unit, unit_scale=True, desc=label, file=sys.stderr, leave=False)
+        state["bar"].update(done - state["bar"].n)
+
+    def close() -> None:
+        if "bar" in state:
+            state["bar"].close()
+        if state.get("line"):
+            print(file=sys.stderr)
+
+    return show, close
 
 
 def _progress(total: int, enabled: bool):
@@ -166,20 +302,29 @@ def _progress(total: int, enabled: bool):
     return _Silent()
 
 
+def _resolve_defaults(given: dict[str, Any], cpu: bool) -> tuple[dict[str, Any], dict[str, Any]]:
+    """The settings to use (the caller's, else the adapter's defaults) and those a CPU adapter
+    scaled down from the GPU defaults."""
+    defaults = CPU_DEFAULTS if cpu else GPU_DEFAULTS
+    used = {k: (defaults[k] if v is None else v) for k, v in given.items()}
+    scaled = {k: defaults[k] for k, v in given.items() if v is None and defaults[k] != GPU_DEFAULTS[k]}
+    return used, scaled
+
+
 def run(
     scenes=("cornell_box",),
     methods=("vpl", "vsgl"),
-    lights=(16, 64, 256),
-    size=(256, 256),
-    rsm_sizes=(256,),
+    lights=None,
+    size=None,
+    rsm_sizes=None,
     kernels=("integral",),
-    seeds=(0, 1, 2),
-    frames=5,
-    warmup=1,
+    seeds=None,
+    frames=None,
+    warmup=None,
     warmup_seconds=1.0,
     reference="reference",
-    reference_rsm=1024,
-    reference_spp=256,
+    reference_rsm=None,
+    reference_spp=None,
     interleave=8,
     vpl_interleave=1,
     plans=("auto",),
@@ -188,8 +333,11 @@ def run(
     cache_dir=None,
     progress=True,
 ) -> Report:
-    """Runs the sweep and returns a :class:`Report`; with ``out`` also writes CSV, JSON and plots."""
-    if frames < 1:
+    """Runs the sweep and returns a :class:`Report`; with ``out`` also writes CSV, JSON and plots.
+
+    Settings left at None take GPU_DEFAULTS, or CPU_DEFAULTS on a CPU adapter (then printed to
+    stderr and listed in ``report.scaled_for_cpu``)."""
+    if frames is not None and frames < 1:
         raise ValueError(f"frames: must be >= 1, got {frames}")
     if not (warmup_seconds >= 0 and np.isfinite(warmup_seconds)):
         raise ValueError(f"warmup_seconds: must be finite and >= 0, got {warmup_seconds}")
@@ -201,13 +349,31 @@ def run(
     bad_plans = [p for p in plans if p not in ("auto", "full")]
     if bad_plans or not plans:
         raise ValueError(f"plans: expected a non-empty list of \"auto\" and \"full\", got {list(plans)}")
+    if seeds is not None and len(seeds) < 1:
+        raise ValueError("seeds: expected at least one seed")
+    # The adapter decides the defaults; a tiny renderer finds it (~0.1 s) before the real one.
+    probe = vsgl.Renderer(width=8, height=8, adapter=adapter) if size is None else None
+    renderer = probe or vsgl.Renderer(width=size[0], height=size[1], adapter=adapter)
+    cpu = renderer.adapter["device_type"] == "Cpu"
+    given = {"size": size, "lights": lights, "rsm_sizes": rsm_sizes, "seeds": seeds, "frames": frames,
+             "warmup": warmup, "reference_rsm": reference_rsm, "reference_spp": reference_spp}
+    used, scaled = _resolve_defaults(given, cpu)
+    size, lights, rsm_sizes, seeds = used["size"], used["lights"], used["rsm_sizes"], used["seeds"]
+    frames, warmup, reference_rsm, reference_spp = used["frames"], used["warmup"], used["reference_rsm"], used["reference_spp"]
     w, h = size
-    renderer = vsgl.Renderer(width=w, height=h, adapter=adapter)
+    if probe is not None:
+        renderer = vsgl.Renderer(width=w, height=h, adapter=adapter)
     ref_settings: dict[str, Any] = {"rsm_size": reference_rsm} if reference == "reference" else {"spp": reference_spp}
     if out is not None and cache_dir is None:
         cache_dir = pathlib.Path(out) / "cache"
-    cpu = renderer.adapter["device_type"] == "Cpu"
     sm_clock = None if cpu else _sm_clock_reader()
+    notes = []
+    if cpu:
+        notes.append("CPU adapter: absolute times are meaningless; compare only ratios within this report (no warm-up time).")
+    if scaled:
+        said = ", ".join(f"{k} {_shown(k, v)} (GPU default {_shown(k, GPU_DEFAULTS[k])})" for k, v in scaled.items())
+        notes.append(f"CPU adapter: defaults scaled down to finish in about two minutes: {said}; set any of them to override.")
+        print(f"bench: {notes[-1]}", file=sys.stderr)
     report = Report(
         adapter=dict(renderer.adapter),
         size=(w, h),
@@ -218,7 +384,14 @@ def run(
         warmup=warmup,
         # A CPU adapter has no clock states to leave: no warm-up time there.
         warmup_seconds=0.0 if cpu else warmup_seconds,
-        note="CPU adapter: absolute times are meaningless; compare only ratios within this report (no warm-up time)." if cpu else "",
+        note=" ".join(notes),
+        scaled_for_cpu=scaled,
+        reference_error_method=(
+            "pathtrace: sqrt(mean(stderr²) / mean(ref²)) of the indirect AOV, the expected relative RMS error of its mean"
+            if reference == "pathtrace" else
+            f"reference: relRMSE to the reference at half the RSM side (double below {2 * MIN_RSM}), assuming error ∝ "
+            f"rsm_size^-{RSM_REFERENCE_ORDER:g}; an estimate; taken as deterministic (zero variance) in the debiased error"
+        ),
     )
     configs = []
     for m in methods:
@@ -235,12 +408,14 @@ def run(
             configs.append((m, None, None, None))
     # Plans alternate inside one configuration so both see the same machine state.
     configs = [(*c, plan) for c in configs for plan in plans]
-    bar = _progress(len(configs) * len(scenes), progress)
+    # Per row (by its index in report.rows): its SeedErrors, for the equal-time comparisons.
+    seed_stats: dict[int, metrics.SeedErrors] = {}
     for scene_name in scenes:
         scene = _scene(scene_name)
-        t = time.perf_counter()
-        ref_image, ref_indirect, ref_timings = _reference(renderer, scene, (w, h), reference, ref_settings, cache_dir)
-        report.reference_ms[scene_name] = ref_timings.get("total", 1e3 * (time.perf_counter() - t))
+        ref = _scene_reference(renderer, scene, scene_name, (w, h), reference, ref_settings, cache_dir, progress, report)
+        ref_error = report.reference_rel_error[scene_name]
+        ref_has_light = bool(np.any(ref.indirect != 0))
+        bar = _progress(len(configs), progress)
         for method, n, rsm, kernel, plan in configs:
             settings: dict[str, Any] = {"plan": plan}
             if n is not None:
@@ -258,7 +433,8 @@ def run(
             settings["aovs"] = ["image"] if method == "direct" else ["image", "indirect"]
             totals: list[float] = []
             per_pass: dict[str, list[float]] = {}
-            errs: dict[str, list[float]] = {"rmse_indirect": [], "rmse_image": [], "relmse_indirect": [], "relmse_image": [], "flip": []}
+            errs: dict[str, list[float]] = {"rmse_indirect": [], "rmse_image": [], "relmse_indirect": [], "relmse_image": [], "flip": [], "ssim": []}
+            indirects: list[np.ndarray] = []
             # Sustained load first: frames back to back (nothing read back) until the GPU has left
             # its idle clock (DESIGN.md, "Clocks"); the seeds that follow keep it busy.
             warm_frames = 0
@@ -284,46 +460,150 @@ def run(
                             per_pass.setdefault(k2, []).append(v)
                 if sm_clock is not None:
                     clocks.append(sm_clock())
-                indirect = frame.aov("indirect") if "indirect" in frame.aovs else np.zeros_like(ref_indirect)
-                errs["rmse_indirect"].append(metrics.rmse(indirect, ref_indirect))
-                errs["rmse_image"].append(metrics.rmse(frame.image, ref_image))
-                errs["relmse_indirect"].append(metrics.relmse(indirect, ref_indirect))
-                errs["relmse_image"].append(metrics.relmse(frame.image, ref_image))
-                f = metrics.flip(frame.image, ref_image)
+                indirect = frame.aov("indirect") if "indirect" in frame.aovs else np.zeros_like(ref.indirect)
+                indirects.append(indirect)
+                errs["rmse_indirect"].append(metrics.rmse(indirect, ref.indirect))
+                errs["rmse_image"].append(metrics.rmse(frame.image, ref.image))
+                errs["relmse_indirect"].append(metrics.relmse(indirect, ref.indirect))
+                errs["relmse_image"].append(metrics.relmse(frame.image, ref.image))
+                errs["ssim"].append(metrics.ssim(frame.image, ref.image))
+                f = metrics.flip(frame.image, ref.image)
                 if f is not None:
                     errs["flip"].append(f)
-            report.rows.append(
-                Row(
-                    scene=scene_name,
-                    method=method,
-                    num_lights=n,
-                    rsm_size=rsm,
-                    kernel=kernel,
-                    seeds=len(run_seeds),
-                    total_ms_median=statistics.median(totals),
-                    total_ms_min=min(totals),
-                    total_ms_max=max(totals),
-                    passes_ms={k2: statistics.median(v) for k2, v in per_pass.items()},
-                    total_ms_q1=_quartiles(totals)[0],
-                    total_ms_q3=_quartiles(totals)[1],
-                    passes_iqr_ms={k2: _quartiles(v) for k2, v in per_pass.items()},
-                    warmup_frames=warm_frames,
-                    sm_clock_mhz=(min(clocks), max(clocks)) if clocks else None,
-                    rmse_indirect=float(np.mean(errs["rmse_indirect"])),
-                    rmse_indirect_std=float(np.std(errs["rmse_indirect"])),
-                    rmse_image=float(np.mean(errs["rmse_image"])),
-                    relmse_indirect=float(np.mean(errs["relmse_indirect"])),
-                    relmse_image=float(np.mean(errs["relmse_image"])),
-                    flip_image=float(np.mean(errs["flip"])) if errs["flip"] else None,
-                    plan=plan,
-                )
+            row = Row(
+                scene=scene_name,
+                method=method,
+                num_lights=n,
+                rsm_size=rsm,
+                kernel=kernel,
+                seeds=len(run_seeds),
+                total_ms_median=statistics.median(totals),
+                total_ms_min=min(totals),
+                total_ms_max=max(totals),
+                passes_ms={k2: statistics.median(v) for k2, v in per_pass.items()},
+                total_ms_q1=_quartiles(totals)[0],
+                total_ms_q3=_quartiles(totals)[1],
+                passes_iqr_ms={k2: _quartiles(v) for k2, v in per_pass.items()},
+                warmup_frames=warm_frames,
+                sm_clock_mhz=(min(clocks), max(clocks)) if clocks else None,
+                rmse_indirect=float(np.mean(errs["rmse_indirect"])),
+                rmse_indirect_std=float(np.std(errs["rmse_indirect"])),
+                rmse_image=float(np.mean(errs["rmse_image"])),
+                relmse_indirect=float(np.mean(errs["relmse_indirect"])),
+                relmse_image=float(np.mean(errs["relmse_image"])),
+                flip_image=float(np.mean(errs["flip"])) if errs["flip"] else None,
+                plan=plan,
+                ssim_image=float(np.mean(errs["ssim"])),
+                reference_rel_error=ref_error,
             )
+            if ref_has_light:
+                _trust(row, indirects, ref, method in STOCHASTIC, seed_stats, len(report.rows))
+            if all(np.array_equal(x, ref.indirect) for x in indirects):
+                # Bit for bit the reference (same method and settings): it cannot judge itself,
+                # and it does not compete in equal_time.
+                row.notes.append("the reference itself")
+            report.rows.append(row)
             bar.update(1)
-    bar.close()
+        bar.close()
     report.plan_ratios = _plan_ratios(report.rows)
+    report.equal_time = _equal_time(report.rows, seed_stats)
     if out is not None:
         write(report, out)
     return report
+
+
+def _shown(name: str, value: Any) -> str:
+    if name == "size":
+        return f"{value[0]}x{value[1]}"
+    if isinstance(value, (tuple, list)):
+        return ",".join(map(str, value))
+    return str(value)
+
+
+def _scene_reference(renderer, scene, scene_name, size, reference, ref_settings, cache_dir, progress, report) -> _ReferenceRender:
+    """The scene's reference (showing its own progress), its cost, and its own error estimate."""
+    show, close = _reference_progress(f"{scene_name}: {reference}", progress)
+    if progress:
+        print(f"bench: {scene_name}: the reference ({reference} {ref_settings}) first; cached in {cache_dir}", file=sys.stderr)
+    try:
+        ref = _reference(renderer, scene, size, reference, ref_settings, cache_dir, show)
+    finally:
+        close()
+    report.reference_ms[scene_name] = ref.wall_ms
+    report.reference_gpu_ms[scene_name] = ref.gpu_ms
+    report.reference_batches[scene_name] = ref.batches
+    scale = float(np.mean(ref.indirect.astype(np.float64) ** 2))
+    if scale == 0.0:
+        report.reference_rel_error[scene_name] = None  # no indirect light: nothing to be relative to
+    elif ref.indirect_var is not None:  # pathtrace: its stderr²
+        report.reference_rel_error[scene_name] = float(np.sqrt(np.mean(ref.indirect_var) / scale))
+    else:
+        n = ref_settings["rsm_size"]
+        coarser = n // 2 >= MIN_RSM
+        other_settings = dict(ref_settings, rsm_size=n // 2 if coarser else 2 * n)
+        show, close = _reference_progress(f"{scene_name}: {reference} at rsm {other_settings['rsm_size']} (its own error)", progress)
+        try:
+            other = _reference(renderer, scene, size, reference, other_settings, cache_dir, show)
+        finally:
+            close()
+        report.reference_ms[scene_name] += other.wall_ms
+        report.reference_gpu_ms[scene_name] += other.gpu_ms
+        report.reference_batches[scene_name] += other.batches
+        report.reference_rel_error[scene_name] = _rsm_reference_error(ref.indirect, other.indirect, coarser)
+    return ref
+
+
+def _trust(row: Row, indirects: list[np.ndarray], ref: _ReferenceRender, stochastic: bool, seed_stats: dict, index: int) -> None:
+    """Fills the row's relative error, bias, noise, debiased error and the trust flag."""
+    row.rel_rmse_indirect = float(np.sqrt(np.mean([metrics.rel_rmse(x, ref.indirect) ** 2 for x in indirects])))
+    row.block_rmse_indirect = float(np.mean([metrics.block_rmse(x, ref.indirect) for x in indirects]))
+    stats = metrics.seed_errors(np.stack(indirects), ref.indirect, ref.indirect_var)
+    seed_stats[index] = stats
+    row.bias = stats.bias
+    # A deterministic method has no noise; a stochastic one with one seed cannot show its own.
+    row.noise = stats.noise if stochastic else 0.0
+    row.relmse_indirect_debiased = stats.relmse_debiased
+    row.relmse_indirect_debiased_interval = stats.interval
+    if row.reference_rel_error is not None and not row.rel_rmse_indirect >= TRUST_FACTOR * row.reference_rel_error:
+        row.reference_too_noisy = True
+        row.notes.append("reference too noisy")
+
+
+def _label(r: Row) -> str:
+    return r.method + (f"[{r.kernel}]" if r.kernel else "")
+
+
+def _brief(r: Row) -> dict[str, Any]:
+    return {"method": r.method, "kernel": r.kernel, "num_lights": r.num_lights, "rsm_size": r.rsm_size, "total_ms": r.total_ms_median,
+            "relmse_indirect_debiased": r.relmse_indirect_debiased, "interval": r.relmse_indirect_debiased_interval,
+            "reference_too_noisy": r.reference_too_noisy}
+
+
+def _equal_time(rows: list[Row], seed_stats: dict[int, metrics.SeedErrors]) -> list[dict[str, Any]]:
+    """Per scene, for each time budget of the sweep (each distinct median total time of its
+    rows): the row with the lowest debiased error among those within the budget, and the best
+    row of another method within it, with the runner-up's excess error over the best (ratio and
+    difference, 90% intervals from a bootstrap on shared pixel tiles). The pruned plan's rows
+    count where both plans ran; the reference itself does not compete."""
+    plan = "auto" if any(r.plan == "auto" for r in rows) else rows[0].plan if rows else "auto"
+    out: list[dict[str, Any]] = []
+    for scene in dict.fromkeys(r.scene for r in rows):
+        eligible = [i for i, r in enumerate(rows) if r.scene == scene and r.plan == plan and i in seed_stats and "the reference itself" not in r.notes]
+        budgets = sorted({rows[i].total_ms_median for i in eligible})
+        if not budgets:
+            out.append({"scene": scene, "budget_ms": None, "best": None, "runner_up": None, "runner_up_vs_best": None,
+                        "why": "no row with a debiased error (the reference has no indirect light, or only the reference ran)"})
+        for budget in budgets:
+            within = sorted((i for i in eligible if rows[i].total_ms_median <= budget), key=lambda i: seed_stats[i].relmse_debiased)
+            best = within[0]
+            others = [i for i in within if _label(rows[i]) != _label(rows[best])]
+            runner = others[0] if others else None
+            out.append({
+                "scene": scene, "budget_ms": budget, "best": _brief(rows[best]),
+                "runner_up": _brief(rows[runner]) if runner is not None else None,
+                "runner_up_vs_best": metrics.compare_debiased(seed_stats[best], seed_stats[runner]) if runner is not None else None,
+            })
+    return out
 
 
 def _plan_ratios(rows: list[Row]) -> list[dict[str, Any]]:
@@ -343,29 +623,81 @@ def _plan_ratios(rows: list[Row]) -> list[dict[str, Any]]:
     return out
 
 
+def _interval(iv) -> str:
+    return f"[{iv[0]:.3g},{iv[1]:.3g}]" if iv is not None else "-"
+
+
+def _num(v, fmt: str) -> str:
+    return "-" if v is None else format(v, fmt)
+
+
 def table(report: Report) -> str:
+    ref_error = ", ".join(f"{k} {_num(v, '.3g')}" for k, v in report.reference_rel_error.items())
+    cost = ", ".join(
+        f"{k} {v / 1e3:.1f} s wall over {report.reference_batches.get(k, 1)} batch(es) ({report.reference_gpu_ms.get(k, 0.0):.1f} ms GPU timestamps)"
+        for k, v in report.reference_ms.items()
+    )
     lines = [
         f"adapter   {report.adapter['name']} ({report.adapter['device_type']}), {report.size[0]}x{report.size[1]}, "
         f"{report.frames} timed frames back to back after {report.warmup} warm-up frame(s) and {report.warmup_seconds:g} s of sustained rendering",
-        f"reference {report.reference} {report.reference_settings}; its cost (ms): "
-        + ", ".join(f"{k} {v:.1f}" for k, v in report.reference_ms.items()),
+        f"reference {report.reference} {report.reference_settings}; its own error (relative RMS of indirect, estimated): {ref_error}",
+        f"          rows whose error is under {TRUST_FACTOR:g}x that are flagged 'reference too noisy'; its cost: {cost}",
     ]
     if report.note:
         lines.append(f"note      {report.note}")
-    head = f"{'scene':<16}{'plan':<6}{'method':<10}{'N':>6}{'rsm':>6}{'kernel':>10}{'total ms':>11}{'IQR':>20}{'[min,max]':>20}{'RMSE ind.':>12}{'± seeds':>10}{'RMSE img':>11}{'relMSE':>10}"
+    head = (f"{'scene':<16}{'plan':<6}{'method':<10}{'N':>6}{'rsm':>6}{'kernel':>10}{'total ms':>11}{'IQR':>20}{'RMSE ind.':>12}{'± seeds':>10}"
+            f"{'rel ind.':>10}{'bias':>9}{'noise':>9}{'debiased':>11}{'90%':>20}{'SSIM':>7}  flag")
     lines += [head, "-" * len(head)]
     for r in report.rows:
         lines.append(
             f"{r.scene:<16}{r.plan:<6}{r.method:<10}{r.num_lights or '-':>6}{r.rsm_size or '-':>6}{r.kernel or '-':>10}"
-            f"{r.total_ms_median:>11.3f}{f'[{r.total_ms_q1:.3f},{r.total_ms_q3:.3f}]':>20}{f'[{r.total_ms_min:.3f},{r.total_ms_max:.3f}]':>20}"
-            f"{r.rmse_indirect:>12.5g}{r.rmse_indirect_std:>10.2g}{r.rmse_image:>11.5g}{r.relmse_indirect:>10.4g}"
+            f"{r.total_ms_median:>11.3f}{f'[{r.total_ms_q1:.3f},{r.total_ms_q3:.3f}]':>20}"
+            f"{r.rmse_indirect:>12.5g}{r.rmse_indirect_std:>10.2g}{_num(r.rel_rmse_indirect, '.4g'):>10}{_num(r.bias, '.3g'):>9}{_num(r.noise, '.3g'):>9}"
+            f"{_num(r.relmse_indirect_debiased, '.4g'):>11}{_interval(r.relmse_indirect_debiased_interval):>20}{_num(r.ssim_image, '.3f'):>7}  {'; '.join(r.notes)}"
         )
     for p in report.plan_ratios:
         lines.append(
             f"plan      {p['scene']} {p['method']} N={p['num_lights'] or '-'} rsm={p['rsm_size'] or '-'}: pruned/full time "
             f"{p['ratio']:.3f} ({p['auto_ms']:.3f} / {p['full_ms']:.3f} ms), image RMSE {p['rmse_image_auto']:.5g} vs {p['rmse_image_full']:.5g}"
         )
+    # Consecutive budgets with the same winner and runner-up say the same: one line for them.
+    groups: list[list[dict[str, Any]]] = []
+    for e in report.equal_time:
+        same = lambda a: (a["scene"], json.dumps(a["best"]), json.dumps(a["runner_up"]))  # noqa: E731
+        if groups and same(groups[-1][-1]) == same(e):
+            groups[-1].append(e)
+        else:
+            groups.append([e])
+    for g in groups:
+        lines.append(_equal_time_line(g[0], g[-1]["budget_ms"]))
     return "\n".join(lines)
+
+
+def _equal_time_line(e: dict[str, Any], last_budget_ms: float | None = None) -> str:
+    if e["best"] is None:
+        return f"equal time {e['scene']}: {e['why']}"
+
+    def who(b: dict[str, Any]) -> str:
+        name = b["method"] + (f"[{b['kernel']}]" if b["kernel"] else "") + (f" N={b['num_lights']}" if b["num_lights"] else "")
+        return f"{name} {b['relmse_indirect_debiased']:.4g} {_interval(b['interval'])}"
+
+    budget = f"<= {e['budget_ms']:.3f} ms" if last_budget_ms in (None, e["budget_ms"]) else f"<= {e['budget_ms']:.3f} to {last_budget_ms:.3f} ms"
+    line = f"equal time {e['scene']} {budget}: best {who(e['best'])}"
+    c = e["runner_up_vs_best"]
+    if c is None:
+        return line + "; no other method within this budget"
+    lo, hi = c["ratio_interval"]
+    ratio = "undefined (best below the reference's resolution)" if c["ratio"] is None else (
+        f"{c['ratio']:.3g}x [{_num(lo, '.3g')},{_num(hi, '.3g')}]")
+    return line + f"; runner-up {who(e['runner_up'])}: {ratio} the best's debiased error, difference {c['difference']:.3g} {_interval(c['difference_interval'])}"
+
+
+CSV_COLUMNS = [
+    "scene", "plan", "method", "num_lights", "rsm_size", "kernel", "seeds", "total_ms_median", "total_ms_q1", "total_ms_q3", "total_ms_min", "total_ms_max",
+    "rmse_indirect", "rmse_indirect_std", "rmse_image", "relmse_indirect", "relmse_image", "flip_image", "rel_rmse_indirect", "bias", "noise",
+    "relmse_indirect_debiased", "relmse_indirect_debiased_lo", "relmse_indirect_debiased_hi", "reference_rel_error", "reference_too_noisy",
+    "ssim_image", "block_rmse_indirect", "notes", "passes_ms",
+]
 
 
 def write(report: Report, out) -> None:
@@ -374,11 +706,11 @@ def write(report: Report, out) -> None:
     (out / "bench.json").write_text(json.dumps(report.to_json(), indent=1))
     with open(out / "bench.csv", "w", newline="") as fh:
         writer = csv.writer(fh)
-        writer.writerow(["scene", "plan", "method", "num_lights", "rsm_size", "kernel", "seeds", "total_ms_median", "total_ms_q1", "total_ms_q3", "total_ms_min", "total_ms_max",
-                         "rmse_indirect", "rmse_indirect_std", "rmse_image", "relmse_indirect", "relmse_image", "flip_image", "passes_ms"])
+        writer.writerow(CSV_COLUMNS)
         for r in report.rows:
-            writer.writerow([r.scene, r.plan, r.method, r.num_lights, r.rsm_size, r.kernel, r.seeds, r.total_ms_median, r.total_ms_q1, r.total_ms_q3, r.total_ms_min, r.total_ms_max,
-                             r.rmse_indirect, r.rmse_indirect_std, r.rmse_image, r.relmse_indirect, r.relmse_image, r.flip_image, json.dumps(r.passes_ms)])
+            iv = r.relmse_indirect_debiased_interval or (None, None)
+            values = dict(asdict(r), relmse_indirect_debiased_lo=iv[0], relmse_indirect_debiased_hi=iv[1], notes="; ".join(r.notes), passes_ms=json.dumps(r.passes_ms))
+            writer.writerow([values[c] for c in CSV_COLUMNS])
     (out / "bench.txt").write_text(table(report) + "\n")
     _plots(report, out)
 
@@ -397,12 +729,18 @@ def _plots(report: Report, out: pathlib.Path) -> None:
         series.setdefault((r.scene, r.method, r.rsm_size, r.kernel), []).append(r)
     fig, ax = plt.subplots(figsize=(6, 4.5))
     for (scene, method, rsm, kernel), rows in series.items():
-        rows = [r for r in rows if r.rmse_indirect > 0]
+        rows = [r for r in rows if r.rel_rmse_indirect]
         if rows:
             label = f"{scene} {method}" + (f" {kernel}" if kernel else "") + (f" rsm{rsm}" if rsm else "")
-            ax.loglog([r.total_ms_median for r in rows], [r.rmse_indirect for r in rows], "o-", label=label)
+            ax.loglog([r.total_ms_median for r in rows], [r.rel_rmse_indirect for r in rows], "o-", label=label)
+    # The reference's own error is the floor no error can be judged below: a row needs 3× it.
+    for scene, floor in report.reference_rel_error.items():
+        if floor:
+            ax.axhline(floor, linestyle="--", color="grey", linewidth=1)
+            ax.axhline(TRUST_FACTOR * floor, linestyle=":", color="grey", linewidth=1)
+            ax.annotate(f"{scene}: reference's own error (dashed), {TRUST_FACTOR:g}x (dotted)", (0.01, floor), xycoords=("axes fraction", "data"), fontsize=6, color="grey")
     ax.set_xlabel("GPU time per frame (ms)")
-    ax.set_ylabel("RMSE of indirect vs reference")
+    ax.set_ylabel("relative RMS error of indirect vs reference")
     ax.set_title(title + (" (CPU: ratios only)" if report.note else ""), fontsize=9)
     if ax.get_legend_handles_labels()[0]:
         ax.legend(fontsize=7)
@@ -423,6 +761,27 @@ def _plots(report: Report, out: pathlib.Path) -> None:
     fig.tight_layout()
     fig.savefig(out / "error_vs_lights.png", dpi=120)
     plt.close(fig)
+    # Bias (solid) and noise (dashed) apart: what separates VSGL (bias) from VPL (noise).
+    fig, ax = plt.subplots(figsize=(6, 4.5))
+    for (scene, method, rsm, kernel), rows in series.items():
+        rows = [r for r in rows if r.num_lights and r.bias is not None and r.noise is not None]
+        if rows:
+            label = f"{scene} {method}" + (f" {kernel}" if kernel else "") + (f" rsm{rsm}" if rsm else "")
+            (line,) = ax.plot([r.num_lights for r in rows], [max(r.bias, 1e-6) for r in rows], "o-", label=f"{label}: bias")
+            ax.plot([r.num_lights for r in rows], [max(r.noise, 1e-6) for r in rows], "s--", color=line.get_color(), label=f"{label}: noise")
+    for scene, floor in report.reference_rel_error.items():
+        if floor:
+            ax.axhline(floor, linestyle=":", color="grey", linewidth=1, label=f"{scene}: reference's own error")
+    ax.set_xscale("log")
+    ax.set_yscale("log")
+    ax.set_xlabel("number of VPLs / VSGLs")
+    ax.set_ylabel("relative bias and noise of indirect (over seeds)")
+    ax.set_title(title, fontsize=9)
+    if ax.get_legend_handles_labels()[0]:
+        ax.legend(fontsize=7)
+    fig.tight_layout()
+    fig.savefig(out / "bias_noise_vs_lights.png", dpi=120)
+    plt.close(fig)
 
 
 def _ints(text: str) -> list[int]:
@@ -437,32 +796,38 @@ def main(argv: list[str] | None = None) -> int:
     p = argparse.ArgumentParser(prog="python -m vsgl bench", description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     p.add_argument("--scene", type=_strs, default=["cornell_box"], help="comma-separated built-in names or .gltf/.glb paths (default: cornell_box)")
     p.add_argument("--methods", type=_strs, default=["vpl", "vsgl"], help="comma-separated names from vsgl.METHODS (default: vpl,vsgl)")
-    p.add_argument("--lights", type=_ints, default=[16, 64, 256], help="comma-separated VPL/VSGL counts (default: 16,64,256)")
-    p.add_argument("--size", default="256x256", help="WIDTHxHEIGHT (default: 256x256)")
-    p.add_argument("--rsm-sizes", type=_ints, default=[256], help="comma-separated RSM sides (default: 256)")
+    p.add_argument("--lights", type=_ints, default=None, help="comma-separated VPL/VSGL counts (default: 16,64,256)")
+    p.add_argument("--size", default=None, help="WIDTHxHEIGHT (default: 256x256; 80x80 on a CPU adapter)")
+    p.add_argument("--rsm-sizes", type=_ints, default=None, help="comma-separated RSM sides (default: 256; 128 on a CPU adapter)")
     p.add_argument("--kernels", type=_strs, default=["integral"], help="VSGL kernels: integral, density (default: integral)")
     p.add_argument("--interleave", type=int, default=8, help="VSGL interleaving (default: 8)")
     p.add_argument("--vpl-interleave", type=int, default=1,
                    help="VPL interleaving, denoised like the VSGLs (default: 1, every VPL at every pixel; 8 compares as the papers do)")
-    p.add_argument("--seeds", type=int, default=3, help="seeds per stochastic configuration (default: 3)")
-    p.add_argument("--frames", type=int, default=5, help="timed frames per configuration and seed (default: 5)")
-    p.add_argument("--warmup", type=int, default=1, help="untimed frames first (default: 1)")
+    p.add_argument("--seeds", type=int, default=None, help="seeds per stochastic configuration (default: 3; bias and noise need 2 or more)")
+    p.add_argument("--frames", type=int, default=None, help="timed frames per configuration and seed (default: 5; 2 on a CPU adapter)")
+    p.add_argument("--warmup", type=int, default=None, help="untimed frames first (default: 1)")
     p.add_argument("--warmup-seconds", type=float, default=1.0, help="then this long of back-to-back rendering before timing, so the GPU leaves its idle clock (default: 1)")
     p.add_argument("--reference", default="reference", choices=["reference", "pathtrace"], help="what errors are measured against (default: reference)")
-    p.add_argument("--reference-rsm", type=int, default=1024, help="RSM side of the reference (default: 1024)")
-    p.add_argument("--reference-spp", type=int, default=256, help="samples per pixel of a pathtrace reference (default: 256)")
+    p.add_argument("--reference-rsm", type=int, default=None,
+                   help="RSM side of the reference (default: 1024; 256 on a CPU adapter); its own error comes from one at half the side")
+    p.add_argument("--reference-spp", type=int, default=None, help="samples per pixel of a pathtrace reference (default: 256); its own error comes from its stderr")
     p.add_argument("--plans", type=_strs, default=["auto"], help="pass plans to time: auto, full (default: auto; auto,full reports the pruned/full ratio)")
     p.add_argument("--adapter", default=None, help="adapter name substring")
     p.add_argument("--out", default="bench-out", help="output folder for CSV, JSON, plots and the reference cache (default: bench-out)")
     p.add_argument("--no-progress", action="store_true", help="no progress bar")
     a = p.parse_args(argv)
-    try:
-        w, h = (int(x) for x in a.size.lower().split("x"))
-    except ValueError:
-        p.error(f"--size: expected WIDTHxHEIGHT, got {a.size!r}")
+    size = None
+    if a.size is not None:
+        try:
+            w, h = (int(x) for x in a.size.lower().split("x"))
+        except ValueError:
+            p.error(f"--size: expected WIDTHxHEIGHT, got {a.size!r}")
+        size = (w, h)
+    if a.seeds is not None and a.seeds < 1:
+        p.error(f"--seeds: must be >= 1, got {a.seeds}")
     report = run(
-        scenes=a.scene, methods=a.methods, lights=a.lights, size=(w, h), rsm_sizes=a.rsm_sizes, kernels=a.kernels,
-        seeds=tuple(range(a.seeds)), frames=a.frames, warmup=a.warmup, warmup_seconds=a.warmup_seconds, reference=a.reference, reference_rsm=a.reference_rsm,
+        scenes=a.scene, methods=a.methods, lights=a.lights, size=size, rsm_sizes=a.rsm_sizes, kernels=a.kernels,
+        seeds=None if a.seeds is None else tuple(range(a.seeds)), frames=a.frames, warmup=a.warmup, warmup_seconds=a.warmup_seconds, reference=a.reference, reference_rsm=a.reference_rsm,
         reference_spp=a.reference_spp, interleave=a.interleave, vpl_interleave=a.vpl_interleave, plans=tuple(a.plans), adapter=a.adapter, out=a.out, progress=not a.no_progress,
     )
     print(table(report))

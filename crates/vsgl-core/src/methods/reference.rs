@@ -32,6 +32,9 @@ const MAX_BATCHES: u64 = 1024;
 /// Pixel·VPL evaluations per submission: small enough that no batch runs long enough to trip
 /// a GPU watchdog (~10 ms on an H100), unless that would exceed the batch cap.
 const BATCH_EVALUATIONS: u64 = 1 << 31;
+/// The same on a CPU adapter (lavapipe evaluates ~10⁷–10⁸ per second, so 2³¹ would be one
+/// silent submission of minutes): ~0.2–2 s per batch, so progress and Ctrl-C come that often.
+const BATCH_EVALUATIONS_CPU: u64 = 1 << 24;
 
 struct Reference {
     options: Options,
@@ -62,14 +65,15 @@ impl Method for Reference {
         let lit = for_each_light(ctx, &rsm, |ctx, light| {
             let (gpu, feat) = (ctx.gpu, ctx.features);
             let pixels = ctx.size.0 as u64 * ctx.size.1 as u64;
-            let per_batch = (BATCH_EVALUATIONS / pixels.max(1)).max(texels.div_ceil(MAX_BATCHES)).clamp(64, capacity);
+            let batch_evaluations = if gpu.adapter.device_type == "Cpu" { BATCH_EVALUATIONS_CPU } else { BATCH_EVALUATIONS };
+            let per_batch = (batch_evaluations / pixels.max(1)).max(texels.div_ceil(MAX_BATCHES)).clamp(64, capacity);
             let mut first = 0u64;
             while first < texels {
                 let count = per_batch.min(texels - first);
                 sample.record_every_texel(&mut ctx.rec, light.light.as_entire_binding(), light.rsm, first as u32, count as u32, &vpls, feat);
                 shading.record(&mut ctx.rec, ctx.frame_uniforms, &vpls, count as u32, 1, min_distance2, ctx.gbuffer, ctx.indirect, feat, ctx.size);
                 first += count;
-                if first < texels && count * pixels >= BATCH_EVALUATIONS / 2 {
+                if first < texels && count * pixels >= batch_evaluations / 2 {
                     // Submit this batch on its own so no submission runs for long.
                     ctx.submit_so_far();
                     gpu.wait("reference batch")?;
