@@ -203,3 +203,21 @@ def test_the_reference_shows_its_progress_and_counts_every_batch(make_renderer):
     assert [d for d, _, _ in seen] == sorted(d for d, _, _ in seen)
     assert ref.batches == len(seen) + 1
     assert ref.wall_ms > 0
+
+
+def test_bench_lights_scenes_from_the_shell(tmp_path, capsys):
+    """--no-scene-lights and --light (any type) light every scene of the sweep; a bad --light
+    is a usage error naming it."""
+    out = tmp_path / "lit"
+    argv = ["--scene", "cornell_box", "--methods", "vpl", "--lights", "16", "--size", "24x16", "--rsm-sizes", "32", "--seeds", "1",
+            "--frames", "1", "--warmup-seconds", "0", "--reference-rsm", "32", "--no-progress", "--out", str(out),
+            "--no-scene-lights", "--light", "point position=0,1,0 intensity=3", "--light", "directional direction=0.3,-1,-0.2 intensity=2"]
+    assert bench.main(argv) == 0
+    data = json.loads((out / "bench.json").read_text())
+    row = data["rows"][0]
+    assert row["method"] == "vpl" and math.isfinite(row["rmse_indirect"])
+    frame_lights = bench._scene("cornell_box")
+    assert len(frame_lights.lights) == 1, "the built-in scene itself is untouched"
+    with pytest.raises(SystemExit) as e:
+        bench.main(argv[:-4] + ["--light", "lamp"])
+    assert e.value.code == 2 and "--light" in capsys.readouterr().err

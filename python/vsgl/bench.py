@@ -325,6 +325,9 @@ def run(
     reference="reference",
     reference_rsm=None,
     reference_spp=None,
+    reference_strategy="bidirectional",
+    add_lights=(),
+    scene_lights=True,
     interleave=8,
     vpl_interleave=1,
     plans=("auto",),
@@ -343,6 +346,8 @@ def run(
         raise ValueError(f"warmup_seconds: must be finite and >= 0, got {warmup_seconds}")
     if reference not in ("reference", "pathtrace"):
         raise ValueError(f"reference: must be \"reference\" or \"pathtrace\", got {reference!r}")
+    if reference_strategy not in ("camera", "bidirectional", "light"):
+        raise ValueError(f"reference_strategy: must be \"camera\", \"bidirectional\" or \"light\", got {reference_strategy!r}")
     unknown = [m for m in methods if m not in vsgl.METHODS]
     if unknown:
         raise ValueError(f"methods: unknown {unknown}; valid: {', '.join(vsgl.METHODS)}")
@@ -363,7 +368,10 @@ def run(
     w, h = size
     if probe is not None:
         renderer = vsgl.Renderer(width=w, height=h, adapter=adapter)
-    ref_settings: dict[str, Any] = {"rsm_size": reference_rsm} if reference == "reference" else {"spp": reference_spp}
+    # A pathtrace reference combines light tracing with camera paths by default (caustics
+    # converge), and so averages each pixel's area where the methods shade its centre: at
+    # geometric edges that difference is part of the error it reports (docs/error.md).
+    ref_settings: dict[str, Any] = {"rsm_size": reference_rsm} if reference == "reference" else {"spp": reference_spp, "strategy": reference_strategy}
     if out is not None and cache_dir is None:
         cache_dir = pathlib.Path(out) / "cache"
     sm_clock = None if cpu else _sm_clock_reader()
@@ -412,6 +420,10 @@ def run(
     seed_stats: dict[int, metrics.SeedErrors] = {}
     for scene_name in scenes:
         scene = _scene(scene_name)
+        if not scene_lights:
+            scene.lights = []
+        for light in add_lights:
+            scene.add_light(light)
         ref = _scene_reference(renderer, scene, scene_name, (w, h), reference, ref_settings, cache_dir, progress, report)
         ref_error = report.reference_rel_error[scene_name]
         ref_has_light = bool(np.any(ref.indirect != 0))
@@ -811,6 +823,11 @@ def main(argv: list[str] | None = None) -> int:
     p.add_argument("--reference-rsm", type=int, default=None,
                    help="RSM side of the reference (default: 1024; 256 on a CPU adapter); its own error comes from one at half the side")
     p.add_argument("--reference-spp", type=int, default=None, help="samples per pixel of a pathtrace reference (default: 256); its own error comes from its stderr")
+    p.add_argument("--reference-strategy", default="bidirectional", choices=["camera", "bidirectional", "light"],
+                   help="paths of a pathtrace reference: bidirectional (light tracing + camera paths by MIS, per pixel area; default), camera (pixel centres) or light")
+    p.add_argument("--light", action="append", default=[], metavar="SPEC",
+                   help='add a light to every scene (repeatable), e.g. "point position=0,1.5,0 intensity=10"; `python -m vsgl render --help` lists the forms')
+    p.add_argument("--no-scene-lights", action="store_true", help="drop the scenes' own lights (then light them with --light)")
     p.add_argument("--plans", type=_strs, default=["auto"], help="pass plans to time: auto, full (default: auto; auto,full reports the pruned/full ratio)")
     p.add_argument("--adapter", default=None, help="adapter name substring")
     p.add_argument("--out", default="bench-out", help="output folder for CSV, JSON, plots and the reference cache (default: bench-out)")
@@ -825,10 +842,16 @@ def main(argv: list[str] | None = None) -> int:
         size = (w, h)
     if a.seeds is not None and a.seeds < 1:
         p.error(f"--seeds: must be >= 1, got {a.seeds}")
+    from vsgl.lightspec import parse_light
+
+    try:
+        add_lights = [parse_light(text) for text in a.light]
+    except ValueError as e:
+        p.error(f"--light: {e}")
     report = run(
         scenes=a.scene, methods=a.methods, lights=a.lights, size=size, rsm_sizes=a.rsm_sizes, kernels=a.kernels,
         seeds=None if a.seeds is None else tuple(range(a.seeds)), frames=a.frames, warmup=a.warmup, warmup_seconds=a.warmup_seconds, reference=a.reference, reference_rsm=a.reference_rsm,
-        reference_spp=a.reference_spp, interleave=a.interleave, vpl_interleave=a.vpl_interleave, plans=tuple(a.plans), adapter=a.adapter, out=a.out, progress=not a.no_progress,
+        reference_spp=a.reference_spp, reference_strategy=a.reference_strategy, add_lights=add_lights, scene_lights=not a.no_scene_lights, interleave=a.interleave, vpl_interleave=a.vpl_interleave, plans=tuple(a.plans), adapter=a.adapter, out=a.out, progress=not a.no_progress,
     )
     print(table(report))
     print(f"wrote     {os.path.join(a.out, 'bench.csv')}, bench.json, bench.txt and plots (with matplotlib)")
