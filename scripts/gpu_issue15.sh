@@ -1,0 +1,35 @@
+#!/usr/bin/env bash
+# Issue 15's GPU acceptance figures (one device call, ~8 min; results under $OUT): at 960x540, for
+# the built-in glossy_cornell, caustics_ring, cave_flashlight and the shared LightsSpot scene, the
+# error of vsgl / vpl / vsgl2 at N up to 4096 against a converged ground truth — `pathtrace
+# strategy="bidirectional"` (light tracing + camera paths by MIS) — with the ground truth's own
+# error (`reference_rel_error`, which must be <= 1/3 of the best method's error) and the
+# equal-time table (`equal_time` in bench.json). Also issue 16's cost of splitting num_lights
+# over several lights (the RSM power pass) on LightsSpot (three spots).
+# Prepare with ../shared/tools/gpu-prep.sh and begin the device command with the lines it prints.
+set -uo pipefail
+OUT=${OUT:-out}; mkdir -p "$OUT"
+export PYTHONUNBUFFERED=1
+cd "$(dirname "$0")/.."
+nvidia-smi --query-gpu=name,driver_version,clocks.sm,clocks.max.sm --format=csv > "$OUT/gpu.txt" 2>&1; cat "$OUT/gpu.txt"
+scenes=glossy_cornell,caustics_ring,cave_flashlight
+[ -f ../shared/scenes/LightsSpot/LightsSpot.gltf ] && scenes="$scenes,../shared/scenes/LightsSpot/LightsSpot.gltf"
+timeout 480 python3 -m vsgl bench --scene "$scenes" --methods vsgl,vpl,vsgl2 --lights 256,1024,4096 \
+  --size 960x540 --rsm-sizes 256 --seeds 3 --frames 10 --warmup-seconds 2 \
+  --reference pathtrace --reference-strategy bidirectional --reference-spp 4096 \
+  --no-progress --out "$OUT/bench_issue15" 2>&1 | tail -80
+# The ground truth's own convergence: stderr at 1024 vs 4096 spp should halve.
+timeout 90 python3 - <<'PY' 2>&1 | tee "$OUT/pathtrace_convergence.txt"
+import numpy as np, vsgl, time
+r = vsgl.Renderer(width=960, height=540)
+for name in ("glossy_cornell", "caustics_ring"):
+    s = vsgl.scenes.load(name)
+    for strategy in ("camera", "bidirectional"):
+        for spp in (1024, 4096):
+            t = time.perf_counter()
+            f = r.render(s, method="pathtrace", spp=spp, strategy=strategy, seed=1)
+            ind, se = f.aov("indirect").sum(-1), f.aov("stderr").sum(-1)
+            lit = ind > 1e-3 * ind.max()
+            print(name, strategy, spp, f"{time.perf_counter() - t:.2f} s", "median rel stderr", float(np.median(se[lit] / ind[lit])),
+                  "rel error of the mean", float(np.sqrt((se**2).sum()) / ind.sum()))
+PY
