@@ -1,6 +1,7 @@
 // VPL shading (compute): every pixel sums the VPLs of the current batch, without visibility
-// (the papers' configuration for accuracy comparisons). With interleave k, a pixel sums only
-// the VPLs of its class (j ≡ c mod k², common/interleave.wgsl) scaled by k², as VSGL shading
+// (the papers' configuration for accuracy comparisons), or with `visibility="raytrace"`
+// (VISIBILITY_TRACED) only those a shadow ray through the scene's BVH reaches. With
+// interleave k, a pixel sums only the VPLs of its class (j ≡ c mod k², common/interleave.wgsl) scaled by k², as VSGL shading
 // does [Tok15 §5 compares both with 8×8 interleaving]; the denoise pass recombines them.
 // A workgroup shades pixels of one class, so the VPLs it needs are the same for all its threads
 // and are staged through workgroup memory in tiles: each is read from device memory once per
@@ -12,6 +13,8 @@
 #include "common/vpl.wgsl"
 #include "common/interleave.wgsl"
 #include "common/receiver.wgsl"
+#include "common/bvh.wgsl"
+#include "common/shadow_ray.wgsl"
 
 struct ShadeParams {
     // This dispatch shades VPLs first … first + vpl_count − 1.
@@ -36,6 +39,13 @@ const TILE: u32 = 64u; // = WORKGROUP², one VPL loaded per thread
 @group(1) @binding(6) var<storage, read_write> indirect_diffuse: array<vec4f>;
 @group(1) @binding(7) var<storage, read_write> indirect_specular: array<vec4f>;
 
+// visibility="raytrace": the scene's BVH and the camera's triangle ids (the receiver's own
+// triangle is skipped by its shadow rays). Placeholders otherwise.
+override VISIBILITY_TRACED: bool = false;
+@group(2) @binding(0) var<storage, read> bvh_nodes: array<BvhNode>;
+@group(2) @binding(1) var<storage, read> bvh_triangles: array<BvhTriangle>;
+@group(2) @binding(2) var visibility_ids: texture_2d<u32>;
+
 var<workgroup> tile: array<Vpl, TILE>;
 
 @compute @workgroup_size(WORKGROUP, WORKGROUP, 1)
@@ -56,6 +66,12 @@ fn main(@builtin(workgroup_id) wg: vec3u, @builtin(local_invocation_id) lid: vec
     let rs = rcv.rs;
     let alpha = rcv.alpha;
     let has_surface = rcv.has_surface;
+    var ng = vec3f(0.0, 0.0, 1.0);
+    var own_triangle = BVH_NO_TRIANGLE;
+    if (VISIBILITY_TRACED && has_surface) {
+        ng = gbuf_geo_normal[index].xyz;
+        own_triangle = textureLoad(visibility_ids, vec2i(ip.pixel), 0).r - 1u;
+    }
     var diffuse = vec3f(0.0);
     var specular = vec3f(0.0);
     // The class's VPLs are params.first + class_index + m·k², m = 0 … class_count − 1.
@@ -72,6 +88,10 @@ fn main(@builtin(workgroup_id) wg: vec3u, @builtin(local_invocation_id) lid: vec
         if (has_surface) {
             for (var k = 0u; k < n_tile; k++) {
                 let r = vpl_radiance(tile[k], p, n, v, rd, rs, alpha, params.min_distance2);
+                if (VISIBILITY_TRACED && any((r.diffuse + r.specular) > vec3f(0.0))
+                    && !virtual_light_visible(p, ng, own_triangle, tile[k].position, frame.view_origin.xyz, frame.scene_extent)) {
+                    continue;
+                }
                 diffuse += r.diffuse;
                 specular += r.specular;
             }

@@ -6,7 +6,8 @@
 // A workgroup shades pixels of one interleave class (common/interleave.wgsl), so the VSGLs it
 // needs are the same for all its threads and are staged through workgroup memory in tiles of
 // TILE: one device-memory load serves WORKGROUP² pixels. Visibility is not evaluated
-// (visibility = "none").
+// (visibility = "none"), or with `visibility="raytrace"` (VISIBILITY_TRACED) by one shadow ray
+// to each VSGL's mean position μ (issue 17: the VSGL's lobes count only where μ is visible).
 #include "common/constants.wgsl"
 #include "common/math.wgsl"
 #include "common/sg.wgsl"
@@ -17,6 +18,8 @@
 #include "common/plan.wgsl"
 #include "common/interleave.wgsl"
 #include "common/receiver.wgsl"
+#include "common/bvh.wgsl"
+#include "common/shadow_ray.wgsl"
 
 struct ShadeParams {
     // This dispatch shades VSGLs first … first + count − 1 (first is a multiple of k²).
@@ -40,6 +43,13 @@ const TILE: u32 = 64u; // = WORKGROUP², one VSGL loaded per thread
 @group(1) @binding(5) var<storage, read> gbuf_base_color: array<vec4f>;
 @group(1) @binding(6) var<storage, read_write> indirect_diffuse: array<vec4f>;
 @group(1) @binding(7) var<storage, read_write> indirect_specular: array<vec4f>;
+
+// visibility="raytrace": the scene's BVH and the camera's triangle ids (the receiver's own
+// triangle is skipped by its shadow rays). Placeholders otherwise.
+override VISIBILITY_TRACED: bool = false;
+@group(2) @binding(0) var<storage, read> bvh_nodes: array<BvhNode>;
+@group(2) @binding(1) var<storage, read> bvh_triangles: array<BvhTriangle>;
+@group(2) @binding(2) var visibility_ids: texture_2d<u32>;
 
 var<workgroup> tile: array<VsglRaw, TILE>;
 
@@ -71,6 +81,12 @@ fn main(@builtin(workgroup_id) wg: vec3u, @builtin(local_invocation_id) lid: vec
     let rs = rcv.rs;
     let alpha = rcv.alpha;
     let has_surface = rcv.has_surface;
+    var ng = vec3f(0.0, 0.0, 1.0);
+    var own_triangle = BVH_NO_TRIANGLE;
+    if (VISIBILITY_TRACED && has_surface) {
+        ng = gbuf_geo_normal[index].xyz;
+        own_triangle = textureLoad(visibility_ids, vec2i(ip.pixel), 0).r - 1u;
+    }
     // The class's VSGLs are params.first + class_index + m·k², m = 0 … class_count − 1.
     let class_first = params.first + ip.class_index;
     let class_count = class_light_count(ip.class_index, params.count, k);
@@ -87,6 +103,9 @@ fn main(@builtin(workgroup_id) wg: vec3u, @builtin(local_invocation_id) lid: vec
         if (has_surface) {
             for (var t = 0u; t < n_tile; t++) {
                 let light = tile[t];
+                if (VISIBILITY_TRACED && !virtual_light_visible(p, ng, own_triangle, light.mean, frame.view_origin.xyz, frame.scene_extent)) {
+                    continue;
+                }
                 let position = VsglPosition(light.mean, light.variance);
                 // Each lobe: radiance SG per unit power (amplitude 1/A(λ)), times its rgb
                 // power. A lobe without power (vsgl2's records carry one lobe each; metal

@@ -51,7 +51,7 @@ impl ShaderFeatures {
 /// Passes with a `HAS_SPECULAR` variant.
 const SPECULAR_PASSES: &[&str] = &[
     "direct", "rsm_flux", "vpl_sample", "vpl_sample[every_texel]", "vpl_shading", "vsgl_moments", "vsgl2_reduce",
-    "vsgl_shading", "denoise",
+    "vsgl_shading", "denoise", "vpl_shading[raytrace]", "vsgl_shading[raytrace]",
 ];
 
 /// A frame's scene-derived plan: the shader features and what they leave out, with reasons.

@@ -16,6 +16,7 @@ mod reference;
 mod vpl;
 mod vsgl;
 mod vsgl2;
+pub mod visibility;
 
 use crate::error::{Error, Result};
 use crate::frame::uniforms::LightRaw;

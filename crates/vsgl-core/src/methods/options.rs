@@ -249,10 +249,10 @@ pub mod common {
     };
     pub const VISIBILITY: OptionSpec = OptionSpec {
         name: "visibility",
-        kind: OptionKind::Choice(&["none"]),
+        kind: OptionKind::Choice(&["none", "raytrace"]),
         default: OptionValue::Str(Cow::Borrowed("none")),
-        help: "visibility of virtual lights",
-        note: "only \"none\" is available in this build: virtual lights are unshadowed",
+        help: "visibility of virtual lights: \"none\" (unshadowed, the papers' accuracy setting) or \"raytrace\" (a shadow ray per pixel and virtual light through the scene's BVH; to the mean position of a VSGL)",
+        note: "",
     };
     pub const CAPTURE_RSM: OptionSpec = OptionSpec {
         name: "capture_rsm",

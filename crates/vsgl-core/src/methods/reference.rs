@@ -3,6 +3,7 @@
 
 use super::rsm_lights::{check_rsm_size, for_each_light, RsmSettings};
 use super::{options::common, DirectLight, FrameContext, Method, MethodInfo, OptionSpec, OptionValue, Options};
+use super::visibility::{VirtualLightVisibility, VisibilityMode};
 use crate::error::Result;
 use crate::gpu::Gpu;
 use crate::passes::vpl_sample::{VplSamplePass, VPL_BYTES};
@@ -38,6 +39,7 @@ const BATCH_EVALUATIONS_CPU: u64 = 1 << 24;
 
 struct Reference {
     options: Options,
+    visibility: VisibilityMode,
     rsm_size: u32,
     vpl_clamp: f32,
     capture_rsm: bool,
@@ -45,7 +47,7 @@ struct Reference {
 
 impl Reference {
     fn new(o: &Options) -> Result<Self> {
-        Ok(Self { options: o.clone(), rsm_size: o.u32("rsm_size")?, vpl_clamp: o.f32("vpl_clamp")?, capture_rsm: o.bool("capture_rsm")? })
+        Ok(Self { options: o.clone(), visibility: VisibilityMode::from_options(o)?, rsm_size: o.u32("rsm_size")?, vpl_clamp: o.f32("vpl_clamp")?, capture_rsm: o.bool("capture_rsm")? })
     }
 }
 
@@ -62,6 +64,7 @@ impl Method for Reference {
         let vpls = ctx.rec.storage("vpl_buffer", capacity * VPL_BYTES);
         let min_distance2 = (self.vpl_clamp as f64 * ctx.extent).powi(2) as f32;
         let rsm = RsmSettings { size: n, sampling: false, capture: self.capture_rsm, budget: 0 };
+        let vis = VirtualLightVisibility::new(ctx, self.visibility)?;
         let lit = for_each_light(ctx, &rsm, |ctx, light| {
             let (gpu, feat) = (ctx.gpu, ctx.features);
             let pixels = ctx.size.0 as u64 * ctx.size.1 as u64;
@@ -71,7 +74,7 @@ impl Method for Reference {
             while first < texels {
                 let count = per_batch.min(texels - first);
                 sample.record_every_texel(&mut ctx.rec, light.light.as_entire_binding(), light.rsm, first as u32, count as u32, &vpls, feat);
-                shading.record(&mut ctx.rec, ctx.frame_uniforms, &vpls, count as u32, 1, min_distance2, ctx.gbuffer, ctx.indirect, feat, ctx.size);
+                shading.record(&mut ctx.rec, ctx.frame_uniforms, &vpls, count as u32, 1, min_distance2, ctx.gbuffer, ctx.indirect, feat, ctx.size, &vis);
                 first += count;
                 if first < texels && count * pixels >= batch_evaluations / 2 {
                     // Submit this batch on its own so no submission runs for long.

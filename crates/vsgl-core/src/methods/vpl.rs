@@ -5,6 +5,7 @@
 use super::interleaved::InterleavedShading;
 use super::rsm_lights::{check_rsm_size, for_each_light, RsmSettings};
 use super::{options::common, DirectLight, FrameContext, Method, MethodInfo, OptionSpec, Options};
+use super::visibility::{VirtualLightVisibility, VisibilityMode};
 use crate::error::Result;
 use crate::gpu::Gpu;
 use crate::passes::pdf_mips::PdfMipsPass;
@@ -36,6 +37,7 @@ const OPTIONS: &[OptionSpec] = &[
 
 struct Vpl {
     options: Options,
+    visibility: VisibilityMode,
     num_lights: u32,
     rsm_size: u32,
     sampling: Sampling,
@@ -55,6 +57,7 @@ impl Vpl {
     fn new(o: &Options) -> Result<Self> {
         Ok(Self {
             options: o.clone(),
+            visibility: VisibilityMode::from_options(o)?,
             num_lights: o.u32("num_lights")?,
             rsm_size: o.u32("rsm_size")?,
             sampling: sampling(o)?,
@@ -79,6 +82,7 @@ impl Method for Vpl {
         let min_distance2 = (self.vpl_clamp as f64 * ctx.extent).powi(2) as f32;
         let shading_out = InterleavedShading::new(ctx, self.interleave, self.denoise);
         let rsm = RsmSettings { size: self.rsm_size, sampling: true, capture: self.capture_rsm, budget: self.num_lights };
+        let vis = VirtualLightVisibility::new(ctx, self.visibility)?;
         let lit = for_each_light(ctx, &rsm, |ctx, light| {
             let feat = ctx.features;
             pdf_mips.record(&mut ctx.rec, light.rsm);
@@ -86,7 +90,7 @@ impl Method for Vpl {
             // power, `power_budgets`); the buffer holds num_lights, the largest share.
             sample.record_importance(&mut ctx.rec, light.light.as_entire_binding(), light.rsm, light.budget, self.sampling, self.seed, &vpls, feat);
             let target = shading_out.target(ctx.indirect);
-            shading.record(&mut ctx.rec, ctx.frame_uniforms, &vpls, light.budget, self.interleave, min_distance2, ctx.gbuffer, target, feat, ctx.size);
+            shading.record(&mut ctx.rec, ctx.frame_uniforms, &vpls, light.budget, self.interleave, min_distance2, ctx.gbuffer, target, feat, ctx.size, &vis);
             Ok(())
         })?;
         if lit {

@@ -4,6 +4,7 @@
 
 use super::interleaved::InterleavedShading;
 use super::rsm_lights::{check_rsm_size, for_each_light, RsmSettings};
+use super::visibility::{VirtualLightVisibility, VisibilityMode};
 use super::{options::common, DirectLight, FrameContext, Method, MethodInfo, OptionKind, OptionSpec, OptionValue, Options};
 use crate::error::{Error, Result};
 use crate::frame::MomentChains;
@@ -62,6 +63,7 @@ const OPTIONS: &[OptionSpec] = &[
 
 struct Vsgl {
     options: Options,
+    visibility: VisibilityMode,
     num_lights: u32,
     rsm_size: u32,
     sampling: Sampling,
@@ -88,6 +90,7 @@ impl Vsgl {
     fn new(o: &Options) -> Result<Self> {
         Ok(Self {
             options: o.clone(),
+            visibility: VisibilityMode::from_options(o)?,
             num_lights: o.u32("num_lights")?,
             rsm_size: o.u32("rsm_size")?,
             sampling: super::vpl::sampling(o)?,
@@ -123,6 +126,7 @@ impl Method for Vsgl {
         let shading_out = InterleavedShading::new(ctx, self.interleave, self.denoise);
         let mut chains: Option<MomentChains> = None;
         let rsm = RsmSettings { size: self.rsm_size, sampling: true, capture: self.capture_rsm, budget: self.num_lights };
+        let vis = VirtualLightVisibility::new(ctx, self.visibility)?;
         let lit = for_each_light(ctx, &rsm, |ctx, light| {
             let feat = ctx.features;
             let chains = chains.get_or_insert_with(|| MomentChains::new(&mut ctx.rec, self.rsm_size));
@@ -143,7 +147,7 @@ impl Method for Vsgl {
             };
             gen.record(&mut ctx.rec, light.rsm, chains, &settings, &buf);
             let target = shading_out.target(ctx.indirect);
-            shading.record(&mut ctx.rec, ctx.frame_uniforms, &buf, light.budget, self.interleave, self.diffuse, ctx.gbuffer, target, feat, ctx.size);
+            shading.record(&mut ctx.rec, ctx.frame_uniforms, &buf, light.budget, self.interleave, self.diffuse, ctx.gbuffer, target, feat, ctx.size, &vis);
             if ctx.vsgls.is_none() {
                 ctx.vsgls = Some(buf);
             }

@@ -3,6 +3,7 @@
 
 use super::rsm_lights::{check_rsm_size, for_each_light, RsmSettings};
 use super::{options::common, DirectLight, FrameContext, Method, MethodInfo, OptionKind, OptionSpec, OptionValue, Options};
+use super::visibility::{VirtualLightVisibility, VisibilityMode};
 use crate::error::Result;
 use crate::gpu::Gpu;
 use crate::passes::vsgl2_reduce::{Vsgl2Reduce, Vsgl2Reduction, VSGL2_COUNT};
@@ -38,6 +39,7 @@ const OPTIONS: &[OptionSpec] = &[
 
 struct Vsgl2 {
     options: Options,
+    visibility: VisibilityMode,
     rsm_size: u32,
     diffuse: DiffuseMode,
     reduction: Vsgl2Reduction,
@@ -51,7 +53,7 @@ impl Vsgl2 {
             "shared_memory" => Vsgl2Reduction::SharedMemory,
             _ => Vsgl2Reduction::Auto,
         };
-        Ok(Self { options: o.clone(), rsm_size: o.u32("rsm_size")?, diffuse: super::vsgl::diffuse_mode(o)?, reduction, capture_rsm: o.bool("capture_rsm")? })
+        Ok(Self { options: o.clone(), visibility: VisibilityMode::from_options(o)?, rsm_size: o.u32("rsm_size")?, diffuse: super::vsgl::diffuse_mode(o)?, reduction, capture_rsm: o.bool("capture_rsm")? })
     }
 }
 
@@ -65,11 +67,12 @@ impl Method for Vsgl2 {
         let (reduce, shading) = (ctx.passes.get::<Vsgl2Reduce>()?, ctx.passes.get::<VsglShadingPass>()?);
         let reduction = Vsgl2Reduce::resolve(ctx.gpu, self.reduction)?;
         let rsm = RsmSettings { size: self.rsm_size, sampling: false, capture: self.capture_rsm, budget: 0 };
+        let vis = VirtualLightVisibility::new(ctx, self.visibility)?;
         let lit = for_each_light(ctx, &rsm, |ctx, light| {
             let feat = ctx.features;
             let buf = ctx.rec.storage("vsgl2_buffer", VSGL2_COUNT as u64 * VSGL_BYTES);
             reduce.record(&mut ctx.rec, light.rsm, light.raw.position, light.raw.rsm_light_dir(), &buf, feat, reduction)?;
-            shading.record(&mut ctx.rec, ctx.frame_uniforms, &buf, VSGL2_COUNT, 1, self.diffuse, ctx.gbuffer, ctx.indirect, feat, ctx.size);
+            shading.record(&mut ctx.rec, ctx.frame_uniforms, &buf, VSGL2_COUNT, 1, self.diffuse, ctx.gbuffer, ctx.indirect, feat, ctx.size, &vis);
             if ctx.vsgls.is_none() {
                 ctx.vsgls = Some(buf);
             }

@@ -4,6 +4,7 @@ use crate::frame::IndirectTargets;
 use crate::error::Result;
 use crate::frame::GBuffer;
 use crate::gpu::{for_each_chunk, interleaved_groups, Gpu, PipelineVariants, Recorder};
+use crate::methods::visibility::VirtualLightVisibility;
 use crate::plan::ShaderFeatures;
 
 const WORKGROUP: u32 = 8;
@@ -21,6 +22,8 @@ struct ShadeParamsRaw {
 /// 65536 iterations in all (seen: 131072 VPLs shaded as 65536), so long VPL lists are split
 /// over several dispatches that add into the same targets.
 const VPLS_PER_DISPATCH: u32 = 16384;
+/// The same with `visibility="raytrace"`.
+const TRACED_VPLS_PER_DISPATCH: u32 = 1024;
 
 
 pub struct VplShadingPass {
@@ -45,16 +48,23 @@ impl VplShadingPass {
         out: &IndirectTargets,
         features: ShaderFeatures,
         size: (u32, u32),
+        visibility: &VirtualLightVisibility,
     ) {
         let gpu = rec.gpu;
-        let pipeline = self.pipelines.get(gpu, &features.specular_flags());
+        let [specular] = features.specular_flags();
+        let pipeline = self.pipelines.get(gpu, &[specular, visibility.flag()]);
+        // `frame.passes` names the shadow-ray variant.
+        let label = if visibility.traced { "vpl_shading[raytrace]" } else { "vpl_shading" };
         // Chunks are multiples of k² so the interleaved classes stay j ≡ c (mod k²).
-        for_each_chunk(vpl_count, VPLS_PER_DISPATCH * interleave * interleave, |first, count| {
+        // With shadow rays each VPL also loops over BVH nodes: fewer VPLs per dispatch keep
+        // lavapipe under its loop-iteration cap (and a GPU dispatch short).
+        let per_dispatch = if visibility.traced { TRACED_VPLS_PER_DISPATCH } else { VPLS_PER_DISPATCH };
+        for_each_chunk(vpl_count, per_dispatch * interleave * interleave, |first, count| {
             let uniform = rec.uniform("vpl_shading_params_uniform_buffer", &ShadeParamsRaw { vpl_count: count, min_distance2, first, interleave });
             rec.compute(
-                "vpl_shading",
+                label,
                 &pipeline,
-                &[&[frame.as_entire_binding()], &out.shading_bindings(&uniform, vpls, gbuffer)],
+                &[&[frame.as_entire_binding()], &out.shading_bindings(&uniform, vpls, gbuffer), &visibility.bindings()],
                 interleaved_groups(size, interleave, WORKGROUP),
             );
         });

@@ -3,6 +3,7 @@
 use crate::error::Result;
 use crate::frame::{GBuffer, IndirectTargets};
 use crate::gpu::{for_each_chunk, interleaved_groups, Gpu, PipelineVariants, Recorder};
+use crate::methods::visibility::VirtualLightVisibility;
 use crate::plan::ShaderFeatures;
 
 const WORKGROUP: u32 = 8;
@@ -20,6 +21,8 @@ struct ShadeParamsRaw {
 /// ends shader loops after 65536 iterations (seen: 131072 VSGLs at interleave=1 shaded as
 /// 65536), so long lists are split over dispatches that add into the same targets.
 const VSGLS_PER_PIXEL_PER_DISPATCH: u32 = 16384;
+/// The same with `visibility="raytrace"` (each VSGL also loops over BVH nodes).
+const TRACED_VSGLS_PER_PIXEL_PER_DISPATCH: u32 = 1024;
 
 /// Diffuse shading form.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -75,18 +78,23 @@ impl VsglShadingPass {
         out: &IndirectTargets,
         features: ShaderFeatures,
         size: (u32, u32),
+        visibility: &VirtualLightVisibility,
     ) {
         let gpu = rec.gpu;
-        let pipeline = self.pipelines.get(gpu, &features.specular_flags());
+        let [specular] = features.specular_flags();
+        let pipeline = self.pipelines.get(gpu, &[specular, visibility.flag()]);
+        // `frame.passes` names the shadow-ray variant.
+        let label = if visibility.traced { "vsgl_shading[raytrace]" } else { "vsgl_shading" };
         // Chunks are multiples of k² so the interleaved subsets stay j ≡ t (mod k²).
-        let chunk = VSGLS_PER_PIXEL_PER_DISPATCH * interleave * interleave;
+        let per_dispatch = if visibility.traced { TRACED_VSGLS_PER_PIXEL_PER_DISPATCH } else { VSGLS_PER_PIXEL_PER_DISPATCH };
+        let chunk = per_dispatch * interleave * interleave;
         for_each_chunk(count, chunk, |first, n| {
             let params = ShadeParamsRaw { count: n, interleave, diffuse_mode: diffuse.shader_code(), first };
             let uniform = rec.uniform("vsgl_shading_params_uniform_buffer", &params);
             rec.compute(
-                "vsgl_shading",
+                label,
                 &pipeline,
-                &[&[frame.as_entire_binding()], &out.shading_bindings(&uniform, vsgls, gbuffer)],
+                &[&[frame.as_entire_binding()], &out.shading_bindings(&uniform, vsgls, gbuffer), &visibility.bindings()],
                 interleaved_groups(size, interleave, WORKGROUP),
             );
         });
