@@ -196,7 +196,12 @@ impl PyScene {
         if s.has_metallic { features.push("metallic"); }
         if s.has_specular { features.push("specular"); }
         if s.has_diffuse { features.push("diffuse"); }
+        if s.has_emission { features.push("emissive"); }
         d.set_item("features", features)?;
+        if s.has_emission {
+            // The one place a user reads that emission is not a light (no warning per frame).
+            d.set_item("emission", "emissive surfaces show in the image with their emitted radiance but light no other surface; add lights to light the scene")?;
+        }
         Ok(d)
     }
     /// Adds a light: a SpotLight, PointLight or DirectionalLight.

@@ -326,7 +326,16 @@ impl Renderer {
             skipped.push(("shadow_map".into(), why));
         }
 
-        let gbuffer = GBuffer::new(&mut rec, w, h);
+        // Emission is seen by the camera only, so only the camera's G-buffer gets the channel,
+        // and only when some material emits (`plan="full"`: always). The rule lives here
+        // rather than in the plan's shader features because no pass but the camera's material
+        // pass and the compositing (aov_pack) reads it.
+        let scene_emits = scene.stats().has_emission;
+        let emission = scene_emits || job.opts.plan == "full";
+        if !emission {
+            skipped.push(("emission".into(), "no material in the scene is emissive: no emission channel, nothing added to the image".into()));
+        }
+        let gbuffer = GBuffer::with_emission(&mut rec, w, h, emission);
         self.passes.get::<MaterialPass>()?.record(&mut rec, "material", &frame_buf, &vis.ids, &gscene, feat, &gbuffer, (w, h));
 
         // Written for every pixel by the direct pass (or the path tracer's direct entry point).
@@ -416,7 +425,10 @@ impl Renderer {
             passes: Vec::new(),
             skipped,
             settings,
-            warnings: if scene.lights.is_empty() {
+            warnings: if scene.lights.is_empty() && scene_emits {
+                // Not black: emissive surfaces show, but they light nothing else.
+                vec!["the scene has no light: only its emissive surfaces show, and they light no other surface (add a light with scene.add_light, or load a file with KHR_lights_punctual lights)".to_string()]
+            } else if scene.lights.is_empty() {
                 vec!["the scene has no light: the image is black (add one with scene.add_light, or load a file with KHR_lights_punctual lights)".to_string()]
             } else {
                 Vec::new()
