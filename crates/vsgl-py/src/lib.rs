@@ -1,16 +1,18 @@
 //! PyO3 bindings of vsgl-core: argument checking, error mapping and NumPy conversion only.
 //! The Python package `vsgl` (python/vsgl) re-exports these as its public API.
 
+mod args;
 mod errors;
 mod lights;
 mod stability;
 
+use args::{int_in_range, py_int, IntArg};
 use errors::{argument_error, to_py};
 use glam::{DMat4, DVec3};
 use numpy::{PyArray1, PyArrayMethods};
 use pyo3::exceptions::PyTypeError;
 use pyo3::prelude::*;
-use pyo3::types::{PyBool, PyBytes, PyDict, PyFloat, PyInt, PyIterator, PyString, PyTuple};
+use pyo3::types::{PyBool, PyBytes, PyDict, PyFloat, PyIterator, PyString, PyTuple};
 use std::sync::Arc;
 use vsgl_core::methods::{self, OptionValue};
 use vsgl_core::passes::vsgl_gen::{VSGL_FIELDS, VSGL_FLOATS};
@@ -45,7 +47,14 @@ struct PySpotLight {
 impl PySpotLight {
     #[new]
     #[pyo3(signature = (position, direction, intensity, color=vec![1.0, 1.0, 1.0], inner_cone_deg=30.0, outer_cone_deg=40.0))]
-    fn new(position: Vec<f64>, direction: Vec<f64>, intensity: f64, color: Vec<f64>, inner_cone_deg: f64, outer_cone_deg: f64) -> PyResult<Self> {
+    fn new(
+        #[pyo3(from_py_with = crate::args::floats)] position: Vec<f64>,
+        #[pyo3(from_py_with = crate::args::floats)] direction: Vec<f64>,
+        #[pyo3(from_py_with = crate::args::float)] intensity: f64,
+        #[pyo3(from_py_with = crate::args::floats)] color: Vec<f64>,
+        #[pyo3(from_py_with = crate::args::float)] inner_cone_deg: f64,
+        #[pyo3(from_py_with = crate::args::float)] outer_cone_deg: f64,
+    ) -> PyResult<Self> {
         let position = limits::position("position", vec3("position", position)?).map_err(to_py)?;
         let direction = limits::unit_direction("direction", vec3("direction", direction)?).map_err(to_py)?;
         let intensity = limits::intensity("intensity", "candela", finite("intensity", intensity)?).map_err(to_py)?;
@@ -118,7 +127,12 @@ impl PyCamera {
     /// A camera at `eye` looking at `target`, with vertical field of view `fov_y_deg`.
     #[staticmethod]
     #[pyo3(signature = (eye, target, up=vec![0.0, 1.0, 0.0], fov_y_deg=45.0))]
-    fn look_at(eye: Vec<f64>, target: Vec<f64>, up: Vec<f64>, fov_y_deg: f64) -> PyResult<Self> {
+    fn look_at(
+        #[pyo3(from_py_with = crate::args::floats)] eye: Vec<f64>,
+        #[pyo3(from_py_with = crate::args::floats)] target: Vec<f64>,
+        #[pyo3(from_py_with = crate::args::floats)] up: Vec<f64>,
+        #[pyo3(from_py_with = crate::args::float)] fov_y_deg: f64,
+    ) -> PyResult<Self> {
         let fov = finite("fov_y_deg", fov_y_deg)?;
         if !(fov > 0.0 && fov < 180.0) {
             return Err(argument_error(format!("fov_y_deg: must be in (0, 180), got {fov}")));
@@ -267,15 +281,13 @@ fn os_error(py: Python<'_>, path: &std::path::Path, e: std::io::Error) -> PyErr 
     }
 }
 
-/// A byte count given as a positive Python int (not a bool, not a float).
+/// A byte count given as a positive Python int (not a bool, not a float), below 2**64.
 fn positive_bytes(name: &str, value: &Bound<'_, PyAny>) -> PyResult<u64> {
-    if value.is_instance_of::<PyBool>() || !value.is_instance_of::<PyInt>() {
+    if py_int(value).is_none() {
         return Err(argument_error(format!("{name}: expected a positive int (bytes), got {}", value.get_type().name()?)));
     }
-    match value.extract::<u64>() {
-        Ok(v) if v > 0 => Ok(v),
-        _ => Err(argument_error(format!("{name}: expected a positive int (bytes) below 2**64, got {value}"))),
-    }
+    // In range by the check, so the conversion cannot fail.
+    Ok(int_in_range(name, value, 1, u64::MAX as i128)? as u64)
 }
 
 /// Sets the local transform of every node called `node_name` (the checks of
@@ -596,10 +608,12 @@ impl PyFrame {
     /// Writes the image: `.png` (tone-mapped sRGB, `exposure` multiplies first), `.exr` or
     /// `.npy` (both linear float32, the latter of shape (H, W, 3)).
     #[pyo3(signature = (path, exposure=1.0))]
-    fn save(&self, py: Python<'_>, path: std::path::PathBuf, exposure: f32) -> PyResult<()> {
-        if !exposure.is_finite() || exposure <= 0.0 {
-            return Err(argument_error(format!("exposure: must be positive and finite, got {exposure}")));
+    fn save(&self, py: Python<'_>, path: std::path::PathBuf, #[pyo3(from_py_with = crate::args::float)] exposure: f64) -> PyResult<()> {
+        // Checked in f64: a value past f32's range would be Inf once converted.
+        if !(exposure.is_finite() && exposure > 0.0 && exposure <= f32::MAX as f64) {
+            return Err(argument_error(format!("exposure: must be positive and finite in f32, got {exposure}")));
         }
+        let exposure = exposure as f32;
         let ext = path.extension().and_then(|e| e.to_str()).unwrap_or("").to_ascii_lowercase();
         let rgb = self.image_floats(py)?;
         let (w, h) = (self.inner.width, self.inner.height);
@@ -635,17 +649,16 @@ impl PyRenderer {
     /// `adapter=None` picks the best adapter (or the `VSGL_ADAPTER` substring); a string picks
     /// the first adapter whose name contains it.
     #[new]
-    #[pyo3(signature = (width=640, height=360, adapter=None))]
-    fn new(py: Python<'_>, width: i64, height: i64, adapter: Option<String>) -> PyResult<Self> {
-        for (n, v) in [("width", width), ("height", height)] {
-            if v < 1 || v > 16384 {
-                return Err(argument_error(format!("{n}: must be in 1..=16384, got {v}")));
-            }
-        }
+    // The sizes are `IntArg`s (any Python int, range-checked here by name); the text signature
+    // shows their defaults, which PyO3 cannot print for a non-literal default.
+    #[pyo3(signature = (width=IntArg::new(640), height=IntArg::new(360), adapter=None), text_signature = "(width=640, height=360, adapter=None)")]
+    fn new(py: Python<'_>, width: IntArg, height: IntArg, adapter: Option<String>) -> PyResult<Self> {
+        let width = width.in_range("width", 1, 16384)?;
+        let height = height.in_range("height", 1, 16384)?;
         let r = py
             .detach(|| {
                 let gpu = vsgl_core::gpu::Gpu::new(adapter.as_deref())?;
-                Renderer::new(gpu, width as u32, height as u32)
+                Renderer::new(gpu, width, height)
             })
             .map_err(to_py)?;
         Ok(Self { inner: Arc::new(r) })
@@ -809,14 +822,14 @@ fn render_options(method: &str, plan: &str, aovs: Option<Vec<String>>, options: 
         if value.is_none() {
             continue; // None: the method's default
         }
-        opts.options.push((name.clone(), option_value(&name, &value)?));
+        opts.options.push((name.clone(), option_value(method, &name, &value)?));
     }
     Ok(opts)
 }
 
 /// A keyword option as the core takes it. Names that no method takes are a `TypeError`, as
 /// for any unexpected keyword; values are checked by the method's option specs.
-fn option_value(name: &str, value: &Bound<'_, PyAny>) -> PyResult<OptionValue> {
+fn option_value(method: &str, name: &str, value: &Bound<'_, PyAny>) -> PyResult<OptionValue> {
     if !methods::every_option_name().contains(&name) {
         return Err(PyTypeError::new_err(format!(
             "render() got an unexpected keyword argument {name:?}; options of the methods: {}",
@@ -825,9 +838,17 @@ fn option_value(name: &str, value: &Bound<'_, PyAny>) -> PyResult<OptionValue> {
     }
     if value.is_instance_of::<PyBool>() {
         Ok(OptionValue::Bool(value.extract()?))
-    } else if value.is_instance_of::<PyInt>() {
-        let v: i64 = value.extract().map_err(|_| argument_error(format!("{name}: integer out of range: {value}")))?;
-        Ok(OptionValue::Int(v))
+    } else if let Some(v) = py_int(value) {
+        match v.as_ref().map(|v| i64::try_from(*v)) {
+            Ok(Ok(v)) => Ok(OptionValue::Int(v)),
+            // Beyond i64: no option allows it; say what the method's option does allow.
+            _ => {
+                let size = match v { Ok(v) => v.to_string(), Err(size) => size };
+                let spec = methods::info(method).ok().and_then(|info| info.options.iter().find(|o| o.name == name));
+                let allowed = spec.map(|s| s.allowed()).unwrap_or_else(|| format!("an option of method={method:?}"));
+                Err(argument_error(format!("{name}: must be {allowed}, got {size}")))
+            }
+        }
     } else if value.is_instance_of::<PyFloat>() {
         Ok(OptionValue::Float(value.extract()?))
     } else if value.is_instance_of::<PyString>() {
