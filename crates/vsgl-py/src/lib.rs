@@ -188,7 +188,8 @@ impl PyScene {
         let scene = py.detach(|| vsgl_core::scene::gltf::load_with(&path, &options)).map_err(to_py)?;
         Ok(Self { inner: Arc::new(scene) })
     }
-    /// Triangle, mesh, material, texture and light counts and the features the scene uses.
+    /// Triangle, mesh, material, texture and light counts and the features the scene uses;
+    /// `emission`, when a material emits, says what emission does (shown, lights nothing).
     #[getter]
     fn stats<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyDict>> {
         let s = self.inner.stats();
@@ -680,7 +681,13 @@ impl PyRenderer {
     /// The adapter in use: name, backend, device type, driver, timestamp support.
     #[getter]
     fn adapter<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyDict>> {
-        adapter_dict(py, &self.inner.gpu.adapter)
+        let d = adapter_dict(py, &self.inner.gpu.adapter)?;
+        // The device limits a scene's lights are checked against (ResourceLimitError).
+        let limits = &self.inner.gpu.limits;
+        d.set_item("max_texture_array_layers", limits.max_texture_array_layers)?;
+        d.set_item("max_buffer_size", limits.max_buffer_size)?;
+        d.set_item("max_storage_buffer_binding_size", limits.max_storage_buffer_binding_size)?;
+        Ok(d)
     }
     /// Renders `scene` seen by `camera` (default: the scene's first camera, else one framing
     /// the scene) with `method`, and returns a `Frame`. Releases the GIL while the GPU works.
@@ -932,6 +939,7 @@ fn _vsgl(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add("GpuError", py.get_type::<errors::GpuError>())?;
     m.add("NumericsError", py.get_type::<errors::NumericsError>())?;
     m.add("ArgumentError", errors::argument_error_type(py)?)?;
+    m.add("ResourceLimitError", errors::resource_limit_error_type(py)?)?;
     m.add("METHODS", method_names(py)?)?;
     m.add_class::<PyRenderer>()?;
     m.add_class::<PyScene>()?;
