@@ -97,3 +97,46 @@ def test_the_cornell_box_ceiling_light_shows_its_emitted_radiance(shared_scenes,
             assert not corner.any(), (method, corner)
         if "indirect" in f.aovs:
             assert not f.aov("indirect").any()
+
+
+def test_loaded_materials_show_their_emission(emissive_quad):
+    (glow,) = emissive_quad.materials
+    assert glow["name"] == "glow"
+    assert glow["emissive"] == pytest.approx([f * fx.EMISSIVE_STRENGTH for f in fx.EMISSIVE_FACTOR])
+    assert glow["textures"] == ["emissive"]
+
+
+def test_a_material_made_emissive_from_python_shows_in_the_image(make_renderer):
+    r = make_renderer(32, 32)
+    scene = vsgl.scenes.cornell_box()
+    scene.lights = []
+    assert all(m["emissive"] == [0.0, 0.0, 0.0] for m in scene.materials)
+    # Rendered once before the edit: the edit must re-upload the materials, not reuse the cache.
+    assert not r.render(scene, method="vsgl", **SMALL["vsgl"]).image.any()
+    scene.set_material("red", emissive=(2.0, 0.5, 0.0))
+    assert "emissive" in scene.stats["features"]
+    f = r.render(scene, method="vsgl", **SMALL["vsgl"])
+    shown = f.image.reshape(-1, 3)
+    # Only the red wall emits: its pixels show exactly its radiance, every other pixel is black
+    # (no light, and the wall lights nothing).
+    lit = shown.any(axis=1)
+    assert lit.any() and not lit.all()
+    np.testing.assert_array_equal(shown[lit], np.broadcast_to(np.float32([2.0, 0.5, 0.0]), shown[lit].shape))
+    assert not f.aov("indirect").any()
+
+
+@pytest.mark.parametrize("kw, message", [
+    (dict(emissive=(-1.0, 0.0, 0.0)), r"emissive: must be finite, >= 0 and at most 1e32"),
+    (dict(emissive=(1e33, 0.0, 0.0)), r"emissive: must be finite, >= 0 and at most 1e32"),
+    (dict(roughness=1.5), r"roughness: must be in \[0, 1\], got 1.5"),
+    (dict(base_color=(1.0, 2.0, 0.0)), r"base_color: must be in \[0, 1\], got 2"),
+    (dict(metallic=10**400), r"metallic: must be in \[0, 1\], got inf"),
+])
+def test_bad_material_values_are_refused_by_name_and_change_nothing(kw, message):
+    scene = vsgl.scenes.cornell_box()
+    before = scene.materials
+    with pytest.raises(vsgl.ArgumentError, match=message):
+        scene.set_material("red", **kw)
+    assert scene.materials == before
+    with pytest.raises(vsgl.ArgumentError, match=r'name: no material named "no such"'):
+        scene.set_material("no such", roughness=0.5)

@@ -219,6 +219,82 @@ impl PyScene {
         }
         Ok(d)
     }
+    /// The materials as dicts: name, base_color (RGBA, linear), metallic, roughness, specular
+    /// (the KHR_materials_specular factor), emissive (the emitted radiance L_e, linear RGB; 0 for
+    /// a material that does not emit) and which textures it has.
+    #[getter]
+    fn materials<'py>(&self, py: Python<'py>) -> PyResult<Vec<Bound<'py, PyDict>>> {
+        self.inner.materials.iter().map(|m| {
+            let d = PyDict::new(py);
+            d.set_item("name", &m.name)?;
+            d.set_item("base_color", m.base_color_factor.to_vec())?;
+            d.set_item("metallic", m.metallic_factor)?;
+            d.set_item("roughness", m.roughness_factor)?;
+            d.set_item("specular", m.specular_factor)?;
+            d.set_item("emissive", m.emissive.to_vec())?;
+            let textures: Vec<&str> = [
+                ("base_color", m.base_color_texture),
+                ("metallic_roughness", m.metallic_roughness_texture),
+                ("normal", m.normal_texture),
+                ("emissive", m.emissive_texture),
+            ].into_iter().filter(|(_, t)| t.is_some()).map(|(n, _)| n).collect();
+            d.set_item("textures", textures)?;
+            Ok(d)
+        }).collect()
+    }
+    /// Edits every material called `name`: the factors given replace the material's own
+    /// (`base_color`: 3 or 4 numbers in [0, 1]; `metallic`, `roughness` in [0, 1]; `emissive`:
+    /// the emitted radiance L_e, 3 numbers >= 0, shown where the camera sees the surface but
+    /// lighting nothing). Raises ArgumentError naming a bad value, or `name` when no material
+    /// has it; nothing is changed then.
+    #[pyo3(signature = (name, *, base_color=None, metallic=None, roughness=None, emissive=None))]
+    fn set_material(
+        &mut self,
+        name: &str,
+        #[pyo3(from_py_with = optional_floats)] base_color: Option<Vec<f64>>,
+        #[pyo3(from_py_with = optional_float)] metallic: Option<f64>,
+        #[pyo3(from_py_with = optional_float)] roughness: Option<f64>,
+        #[pyo3(from_py_with = optional_floats)] emissive: Option<Vec<f64>>,
+    ) -> PyResult<()> {
+        let unit = |arg: &str, v: f64| -> PyResult<f32> {
+            if (0.0..=1.0).contains(&v) { Ok(v as f32) } else { Err(argument_error(format!("{arg}: must be in [0, 1], got {v}"))) }
+        };
+        let base_color = match base_color {
+            Some(c) if c.len() == 3 || c.len() == 4 => {
+                let mut rgba = [1.0f32; 4];
+                for (i, v) in c.iter().enumerate() {
+                    rgba[i] = unit("base_color", *v)?;
+                }
+                Some(rgba)
+            }
+            Some(c) => return Err(argument_error(format!("base_color: expected 3 or 4 numbers, got {}", c.len()))),
+            None => None,
+        };
+        let metallic = metallic.map(|v| unit("metallic", v)).transpose()?;
+        let roughness = roughness.map(|v| unit("roughness", v)).transpose()?;
+        let emissive = match emissive {
+            Some(e) => {
+                let e = vec3("emissive", e)?;
+                let mut out = [0.0f32; 3];
+                for (o, v) in out.iter_mut().zip(e.to_array()) {
+                    *o = limits::emitted_radiance("emissive", v).map_err(to_py)?;
+                }
+                Some(out)
+            }
+            None => None,
+        };
+        if !self.inner.materials.iter().any(|m| m.name == name) {
+            let names: Vec<&str> = self.inner.materials.iter().map(|m| m.name.as_str()).collect();
+            return Err(argument_error(format!("name: no material named {name:?}; materials: {names:?}")));
+        }
+        Arc::make_mut(&mut self.inner).edit_materials(name, |m| {
+            if let Some(c) = base_color { m.base_color_factor = c; }
+            if let Some(v) = metallic { m.metallic_factor = v; }
+            if let Some(v) = roughness { m.roughness_factor = v; }
+            if let Some(e) = emissive { m.emissive = e; }
+        });
+        Ok(())
+    }
     /// Adds a light: a SpotLight, PointLight or DirectionalLight.
     fn add_light(&mut self, light: AnyLight) {
         Arc::make_mut(&mut self.inner).add_light(Light::from(light));
@@ -263,6 +339,16 @@ impl PyScene {
         let s = self.inner.stats();
         format!("Scene({:?}, triangles={}, materials={}, lights={})", self.inner.source, s.triangles, s.materials, s.lights)
     }
+}
+
+/// An optional float keyword (`None` allowed), as `args::float` takes it.
+fn optional_float(value: &Bound<'_, PyAny>) -> PyResult<Option<f64>> {
+    if value.is_none() { Ok(None) } else { crate::args::float(value).map(Some) }
+}
+
+/// An optional list of floats (`None` allowed), as `args::floats` takes it.
+fn optional_floats(value: &Bound<'_, PyAny>) -> PyResult<Option<Vec<f64>>> {
+    if value.is_none() { Ok(None) } else { crate::args::floats(value).map(Some) }
 }
 
 /// The `OSError` that Python's own `open()` would raise for `e` on `path`: the subclass of its

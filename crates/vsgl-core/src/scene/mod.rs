@@ -290,6 +290,20 @@ impl Scene {
         n
     }
 
+    /// Applies `edit` to every material called `name`; returns how many matched. Materials
+    /// are part of the upload, so an edit re-uploads the scene at the next frame.
+    pub fn edit_materials(&mut self, name: &str, edit: impl Fn(&mut Material)) -> usize {
+        let mut n = 0;
+        for m in self.materials.iter_mut().filter(|m| m.name == name) {
+            edit(m);
+            n += 1;
+        }
+        if n > 0 {
+            self.geometry_version += 1;
+        }
+        n
+    }
+
     pub fn add_light(&mut self, light: impl Into<Light>) {
         self.lights.push(light.into());
     }
