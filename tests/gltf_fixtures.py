@@ -231,6 +231,56 @@ def _textured(dirpath, *, with_uvs=True, missing_image=False, huge_image=False, 
     return _write_json(d / "textured.gltf", root)
 
 
+# The emissive GLB's material: L_e = factor × strength × texel (texel decoded from sRGB).
+EMISSIVE_FACTOR = (1.0, 0.5, 0.25)
+EMISSIVE_STRENGTH = 40.0
+EMISSIVE_TEXEL_SRGB = (255, 128, 64)
+
+
+def srgb_to_linear(c8: int) -> float:
+    """An 8-bit sRGB code as linear [0, 1] (IEC 61966-2-1)."""
+    c = c8 / 255.0
+    return c / 12.92 if c <= 0.04045 else ((c + 0.055) / 1.055) ** 2.4
+
+
+def emissive_radiance() -> tuple[float, float, float]:
+    """The emitted radiance the emissive GLB's quad must show in every pixel it covers."""
+    return tuple(f * EMISSIVE_STRENGTH * srgb_to_linear(t) for f, t in zip(EMISSIVE_FACTOR, EMISSIVE_TEXEL_SRGB))
+
+
+def write_emissive_glb(dirpath) -> pathlib.Path:
+    """A .glb unit quad (z = 0, facing +z, UVs) whose material emits: emissiveFactor ×
+    KHR_materials_emissive_strength × an emissive texture (an embedded one-colour sRGB PNG).
+    Base colour black, so any light it reflected would not change what it shows."""
+    b = _Bin()
+    pos = b.floats(QUAD_POS, "VEC3", 3)
+    uv = b.floats(QUAD_UV, "VEC2", 2)
+    idx = b.indices(QUAD_IDX)
+    image_view = b.view(_png(2, 2, (*EMISSIVE_TEXEL_SRGB, 255)))
+    root = _root(
+        b,
+        {"byteLength": 0},  # set below, once the buffer is complete
+        extensionsUsed=["KHR_materials_emissive_strength"],
+        images=[{"bufferView": image_view, "mimeType": "image/png"}],
+        textures=[{"source": 0}],
+        materials=[{
+            "name": "glow",
+            "pbrMetallicRoughness": {"baseColorFactor": [0.0, 0.0, 0.0, 1.0], "metallicFactor": 0.0},
+            "emissiveFactor": list(EMISSIVE_FACTOR),
+            "emissiveTexture": {"index": 0},
+            "extensions": {"KHR_materials_emissive_strength": {"emissiveStrength": EMISSIVE_STRENGTH}},
+        }],
+        meshes=[{"primitives": [{"attributes": {"POSITION": pos, "TEXCOORD_0": uv}, "indices": idx, "material": 0}]}],
+        nodes=[{"mesh": 0, "name": "glow"}],
+        scenes=[{"nodes": [0]}],
+        scene=0,
+    )
+    root["buffers"][0]["byteLength"] = len(b.data)
+    path = pathlib.Path(dirpath) / "emissive.glb"
+    path.write_bytes(_glb(root, bytes(b.data)))
+    return path
+
+
 def write_png_of_zeros(path, side: int, channels: int = 1) -> pathlib.Path:
     """A valid 8-bit PNG of ``side`` x ``side`` black pixels (1 channel: grey, 3: RGB, 4: RGBA).
     Zeros compress about 200:1 at zlib level 1, so a 16384² grey image is a file of about a
@@ -475,6 +525,7 @@ VALID = {
     "textured": (write_textured, 2),
     "hierarchy": (write_hierarchy, 2),
     "spot_light_camera": (write_spot_light_camera, 2),
+    "emissive_glb": (write_emissive_glb, 2),
 }
 
 WARNING_CASES = {

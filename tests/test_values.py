@@ -82,3 +82,47 @@ def test_a_frame_with_non_finite_values_is_refused_naming_the_aovs(renderer, met
     scene, camera = _scaled_box(1e-3, 1e32)
     f = renderer.render(scene, camera, method=method, rsm_size=64, aovs=["image"])
     assert np.isfinite(f.image).all() and f.image.max() > 1e30
+
+
+# Python ints of any size reach the range checks (crates/vsgl-py/src/args.rs): never a bare
+# OverflowError, always an ArgumentError naming the argument and what it allows.
+@pytest.mark.parametrize("kw, message", [
+    (dict(width=2**64), r"width: must be in 1\.\.=16384, got 18446744073709551616"),
+    (dict(height=2**64), r"height: must be in 1\.\.=16384, got 18446744073709551616"),
+    (dict(width=-2**70), r"width: must be in 1\.\.=16384, got -1180591620717411303424"),
+    (dict(height=10**5000), r"height: must be in 1\.\.=16384, got 2\*\*16609 or beyond \(16610 bits\)"),
+])
+def test_a_huge_renderer_size_names_the_argument_and_its_range(kw, message):
+    with pytest.raises(vsgl.ArgumentError, match=message):
+        vsgl.Renderer(**kw)
+
+
+@pytest.mark.parametrize("method, kw, message", [
+    ("pathtrace", dict(spp=2**70), r"spp: must be in 1\.\.=65536, got 1180591620717411303424"),
+    ("pathtrace", dict(spp=-2**70), r"spp: must be in 1\.\.=65536, got -1180591620717411303424"),
+    ("direct", dict(shadow_size=2**64), r"shadow_size: must be in 16\.\.=8192, got 18446744073709551616"),
+    ("pathtrace", dict(time_budget_s=10**400), r"time_budget_s: must be finite and >= 0, got 2\*\*1328 or beyond"),
+])
+def test_a_huge_render_option_names_the_option_and_its_range(renderer, method, kw, message):
+    with pytest.raises(vsgl.ArgumentError, match=message):
+        renderer.render(vsgl.scenes.cornell_box(), method=method, **kw)
+
+
+def test_a_huge_texture_budget_names_its_range(tmp_path):
+    with pytest.raises(vsgl.ArgumentError, match=r"max_texture_bytes: must be in 1\.\.=18446744073709551615, got 1208925819614629174706176"):
+        vsgl.Scene.load(gltf_fixtures.write_glb(tmp_path), max_texture_bytes=2**80)
+    # 2**64 - 1 is the largest budget and loads.
+    assert vsgl.Scene.load(gltf_fixtures.write_glb(tmp_path), max_texture_bytes=2**64 - 1).stats["triangles"] == 2
+
+
+@pytest.mark.parametrize("make, message", [
+    (lambda: vsgl.SpotLight(position=(0, 1, 0), direction=(0, -1, 0), intensity=10**400), r"intensity: must be finite, got inf"),
+    (lambda: vsgl.PointLight(position=(10**400, 0, 0), intensity=1.0), r"position: every component must be finite"),
+    (lambda: vsgl.Camera.look_at(eye=(0, 1, 3), target=(0, 1, 0), fov_y_deg=-10**400), r"fov_y_deg: must be finite, got -inf"),
+])
+def test_a_float_argument_given_a_huge_int_names_the_argument(make, message):
+    # An int past f64's range is the float it rounds to (±inf), which the checks refuse by name.
+    with pytest.raises(vsgl.ArgumentError, match=message):
+        make()
+    # Ints within range are floats as before (2**200 is a finite float).
+    assert vsgl.SpotLight(position=(0, 1, 0), direction=(0, -1, 0), intensity=2**100).intensity == pytest.approx(2.0**100)

@@ -156,6 +156,13 @@ def _scene_cases(name: str):
     mid = tuple((np.array(lo) + np.array(hi)) / 2)
     scene.lights = [vsgl.SpotLight(position=(lo[0], mid[1], mid[2]), direction=(0.0, 0.0, -1.0), intensity=5.0, outer_cone_deg=60.0, inner_cone_deg=30.0)]
     yield "light grazing a wall", scene, cam, None
+    # Every material at roughness 1e-4 (α = 1e-8), the stiff end of the GGX grids: near-mirror
+    # lobes in the direct light, the RSM's specular lobes, the VSGL lobe fits (sharpness near
+    # its clamp) and the path tracer's visible-normal sampling; no NaN or Inf.
+    scene, cam = transformed_scene(name)
+    for material in {m["name"] for m in scene.materials}:
+        scene.set_material(material, roughness=1e-4)
+    yield "roughness 1e-4", scene, cam, None
     # The camera inside the scene's geometry bounds at its centre, looking down: whatever it
     # sees (possibly the inside of an object), no NaN or Inf.
     scene, _ = transformed_scene(name)
@@ -229,7 +236,7 @@ def main(argv: Sequence[str] | None = None) -> int:
     parser.add_argument("--verbose", action="store_true", help="print the worst case of every failing row")
     parser.add_argument("--scenes", action="store_true",
                         help="also run the scene-level suite: every method on built-in scenes moved 1e5 m, scaled 1e-3 and 1e3, "
-                             "with intensities 1e-8 and 1e30, a grazing light and the camera inside geometry")
+                             "with intensities 1e-8 and 1e30, a grazing light, roughness 1e-4 and the camera inside geometry")
     args = parser.parse_args(argv)
     if not args.bound_scale > 0.0:
         print(f"error: --bound-scale must be positive, got {args.bound_scale}", file=sys.stderr)

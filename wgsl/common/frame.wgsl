@@ -145,7 +145,11 @@ struct MaterialRaw {
     base_color_layer: i32,
     metallic_roughness_layer: i32,
     normal_layer: i32,
-    _pad1: i32,
+    // Layer of the emissive texture in the colour (sRGB) array, −1 when absent.
+    emissive_layer: i32,
+    // Emitted radiance L_e (linear RGB): emissiveFactor × KHR_materials_emissive_strength.
+    emissive: vec3f,
+    _pad1: f32,
 }
 
 fn view_ndc(frame: FrameUniforms, pixel: vec2f) -> vec2f {

@@ -3,6 +3,9 @@
 // uint8 — so the readback copies exactly the bytes it returns and the CPU does no per-pixel
 // work. Sums are formed in the order the CPU formed them before (indirect = diffuse +
 // specular, image = direct + indirect), so every value is bit-identical to that path.
+// Emitted radiance (the camera's G-buffer emission channel, where a material emits) is part of
+// what reaches the camera without a bounce: it is added to `direct`, so image = direct +
+// indirect still holds, and never to `indirect`.
 #include "common/gbuffer.wgsl"
 
 const WORKGROUP: u32 = 8u;
@@ -24,7 +27,8 @@ struct PackParams {
     height: u32,
     count: u32,
     // bit 0: the method makes indirect light; bit 1: the specular target exists (else it is a
-    // placeholder and reads as zero).
+    // placeholder and reads as zero); bit 2: the emission channel exists (else a placeholder,
+    // and nothing is added: frames of scenes without emission keep every bit).
     flags: u32,
     // (kind, first word in `packed`, 0, 0) per packed AOV.
     entries: array<vec4u, MAX_ENTRIES>,
@@ -38,6 +42,7 @@ struct PackParams {
 @group(0) @binding(5) var<storage, read> gbuf_normal: array<vec4f>;
 @group(0) @binding(6) var<storage, read> gbuf_base_color: array<vec4f>;
 @group(0) @binding(7) var<storage, read> stderr_in: array<vec4f>;
+@group(0) @binding(10) var<storage, read> gbuf_emission: array<vec4f>;
 // Words: float AOVs as their bit patterns, `ldr` as one RGBA8 word a pixel.
 @group(0) @binding(8) var<storage, read_write> packed: array<u32>;
 // Words 0 … MAX_ENTRIES − 1: per packed AOV, how many of its values are NaN or ±Inf (the
@@ -61,15 +66,23 @@ fn specular_or_zero(i: u32) -> vec3f {
     return s;
 }
 
+// What reaches the camera without a bounce: direct light plus emitted radiance.
+fn direct_radiance(i: u32) -> vec3f {
+    if ((params.flags & 4u) == 0u) {
+        return direct[i].rgb;
+    }
+    return direct[i].rgb + gbuf_emission[i].rgb;
+}
+
 fn indirect_sum(i: u32) -> vec3f {
     return indirect_diffuse[i].rgb + specular_or_zero(i);
 }
 
 fn image(i: u32) -> vec3f {
     if ((params.flags & 1u) == 0u) {
-        return direct[i].rgb;
+        return direct_radiance(i);
     }
-    return direct[i].rgb + indirect_sum(i);
+    return direct_radiance(i) + indirect_sum(i);
 }
 
 fn is_finite(x: f32) -> bool {
@@ -145,7 +158,7 @@ fn pack_pixel(i: u32) {
             case AOV_INDIRECT: { put3(e, base, i, indirect_sum(i)); }
             case AOV_INDIRECT_DIFFUSE: { put3(e, base, i, indirect_diffuse[i].rgb); }
             case AOV_INDIRECT_SPECULAR: { put3(e, base, i, specular_or_zero(i)); }
-            case AOV_DIRECT: { put3(e, base, i, direct[i].rgb); }
+            case AOV_DIRECT: { put3(e, base, i, direct_radiance(i)); }
             case AOV_ALBEDO: { put3(e, base, i, gbuf_base_color[i].rgb); }
             case AOV_NORMAL: { put3(e, base, i, gbuf_normal[i].xyz); }
             case AOV_DEPTH: {

@@ -25,6 +25,13 @@ const WORKGROUP: u32 = 8u;
 @group(1) @binding(9) var<storage, read_write> gbuf_normal: array<vec4f>;
 @group(1) @binding(10) var<storage, read_write> gbuf_geo_normal: array<vec4f>;
 @group(1) @binding(11) var<storage, read_write> gbuf_base_color: array<vec4f>;
+// Emitted radiance (rgb, w = 0) for the compositing pass (aov_pack); written only by the
+// camera's variant of a scene with an emissive material (HAS_EMISSION), else a placeholder.
+@group(1) @binding(12) var<storage, read_write> gbuf_emission: array<vec4f>;
+
+// Leave-out: false where no material emits (and always for a light's view: emissive surfaces
+// do not light the scene, so the RSM never needs them).
+override HAS_EMISSION: bool = true;
 
 struct Hit {
     t: f32,
@@ -68,6 +75,9 @@ fn main(@builtin(global_invocation_id) gid: vec3u) {
         gbuf_normal[index] = vec4f(0.0);
         gbuf_geo_normal[index] = vec4f(0.0);
         gbuf_base_color[index] = vec4f(0.0);
+        if (HAS_EMISSION) {
+            gbuf_emission[index] = vec4f(0.0);
+        }
         return;
     }
     let tri = id - 1u;
@@ -137,4 +147,7 @@ fn main(@builtin(global_invocation_id) gid: vec3u) {
     gbuf_normal[index] = vec4f(ns, surface.roughness);
     gbuf_geo_normal[index] = vec4f(ng, surface.metallic);
     gbuf_base_color[index] = vec4f(surface.base, material.specular_factor);
+    if (HAS_EMISSION) {
+        gbuf_emission[index] = vec4f(material_emission(material, uv, lod), 0.0);
+    }
 }

@@ -29,6 +29,11 @@ pub enum Error {
     /// A bad argument value, naming the argument and what was expected.
     #[error("{argument}: {message}")]
     InvalidArgument { argument: String, message: String },
+    /// The scene and settings need more of a device resource than the adapter has (shadow-map
+    /// layers or memory, the light list): the message names the limit, the numbers and how to
+    /// stay within it. Raised at the start of a render, before any GPU work.
+    #[error("{0}")]
+    ResourceLimit(String),
 }
 
 pub type Result<T, E = Error> = std::result::Result<T, E>;

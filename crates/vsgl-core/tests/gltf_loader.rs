@@ -404,6 +404,66 @@ fn textured_normal_mapped_material_generates_tangents() {
     }
 }
 
+/// A quad with UVs whose one material has `material` (JSON) and may name texture 0, an sRGB
+/// PNG of one colour.
+fn emissive_quad(dir: &Path, material: Value) -> PathBuf {
+    write_png(&dir.join("glow.png"), 2, 2, [255, 128, 0, 255]);
+    let mut bin = Bin::default();
+    let pos = bin.floats(&QUAD_POS, "VEC3", 3);
+    let uv = bin.floats(&QUAD_UV, "VEC2", 2);
+    let idx = bin.indices(&QUAD_IDX);
+    std::fs::write(dir.join("glow.bin"), &bin.data).unwrap();
+    let r = root(
+        &bin,
+        json!({"uri": "glow.bin", "byteLength": bin.data.len()}),
+        json!({
+            "extensionsUsed": ["KHR_materials_emissive_strength"],
+            "images": [{"uri": "glow.png"}],
+            "textures": [{"source": 0}],
+            "materials": [material],
+            "meshes": [{"primitives": [{"attributes": {"POSITION": pos, "TEXCOORD_0": uv}, "indices": idx, "material": 0}]}],
+            "nodes": [{"mesh": 0}],
+            "scenes": [{"nodes": [0]}],
+        }),
+    );
+    let path = dir.join("glow.gltf");
+    write_json(&path, &r);
+    path
+}
+
+#[test]
+fn emission_is_factor_times_strength_with_an_srgb_texture() {
+    let dir = tmpdir("gltf", "emissive");
+    let path = emissive_quad(&dir, json!({
+        "emissiveFactor": [1.0, 0.5, 0.25],
+        "emissiveTexture": {"index": 0},
+        "extensions": {"KHR_materials_emissive_strength": {"emissiveStrength": 40.0}},
+    }));
+    let scene = load(&path).unwrap();
+    assert!(scene.warnings.is_empty(), "emission loads without warnings: {:?}", scene.warnings);
+    let mat = &scene.materials[scene.meshes[0].primitives[0].material];
+    assert_eq!(mat.emissive, [40.0, 20.0, 10.0]);
+    let tex = &scene.textures[mat.emissive_texture.expect("emissive texture kept")];
+    assert_eq!((tex.usage, &tex.rgba8[..4]), (TextureUsage::Color, &[255u8, 128, 0, 255][..]));
+    let stats = scene.stats();
+    assert!(stats.has_emission && stats.has_textures);
+
+    // Without the extension the strength is 1; a zero factor emits nothing, so its texture is
+    // not even decoded.
+    let plain = load(&emissive_quad(&tmpdir("gltf", "emissive_plain"), json!({"emissiveFactor": [0.25, 0.5, 1.0]}))).unwrap();
+    assert_eq!(plain.materials[0].emissive, [0.25, 0.5, 1.0]);
+    let dark = load(&emissive_quad(&tmpdir("gltf", "emissive_dark"), json!({"emissiveTexture": {"index": 0}}))).unwrap();
+    assert!(dark.materials[0].emissive_texture.is_none() && dark.textures.is_empty() && !dark.stats().has_emission);
+
+    for (what, strength) in [("negative", json!(-1.0)), ("too_large", json!(1e33))] {
+        let path = emissive_quad(&tmpdir("gltf", &format!("emissive_{what}")), json!({
+            "emissiveFactor": [1.0, 1.0, 1.0],
+            "extensions": {"KHR_materials_emissive_strength": {"emissiveStrength": strength}},
+        }));
+        expect_scene_error(&path, &["materials[0].extensions.KHR_materials_emissive_strength.emissiveStrength"]);
+    }
+}
+
 #[test]
 fn normal_map_without_uvs_is_dropped_with_a_warning() {
     let dir = tmpdir("gltf", "no_uvs");

@@ -74,6 +74,18 @@ fn every_pass_binds_the_variant_its_plan_asks_for() {
                 let features = Plan::new(&scene, plan == "full").features;
                 let wanted = [("HAS_SPECULAR", features.specular), ("HAS_TEXTURES", features.textures), ("HAS_NORMAL_MAPS", features.normal_maps)];
                 assert!(!frame.variants.is_empty(), "{scene_name}/{method}/{plan}: no variant logged");
+                // HAS_EMISSION follows the G-buffer, not the plan's features: the built-ins emit
+                // nothing, so every material pass of an automatic plan compiles emission out,
+                // and plan="full" writes it for the camera (a light's view never needs it).
+                let emission: Vec<bool> = frame.variants.iter()
+                    .filter(|(shader, _, _)| shader_lib::compose(shader).expect("shader composes").contains("override HAS_EMISSION"))
+                    .map(|(shader, entry, flags)| {
+                        flags.iter().find(|(n, _)| *n == "HAS_EMISSION").map(|(_, v)| *v)
+                            .unwrap_or_else(|| panic!("{scene_name}/{method}/plan={plan}: {shader}:{entry} ran without setting HAS_EMISSION: {flags:?}"))
+                    })
+                    .collect();
+                assert!(!emission.is_empty(), "{scene_name}/{method}/plan={plan}: no material pass logged");
+                assert_eq!(emission.contains(&true), plan == "full", "{scene_name}/{method}/plan={plan}: HAS_EMISSION {emission:?}");
                 for (shader, entry, flags) in &frame.variants {
                     let src = shader_lib::compose(shader).expect("shader composes");
                     for (name, value) in wanted {

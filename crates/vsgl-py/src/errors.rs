@@ -32,6 +32,31 @@ pub fn argument_error_type(py: Python<'_>) -> PyResult<Bound<'_, PyType>> {
     Ok(ty.bind(py).clone())
 }
 
+/// `vsgl.ResourceLimitError(ArgumentError)`: the scene and settings need more of a device
+/// resource than the adapter has (shadow-map layers or memory, the light list); the message
+/// names the limit, the numbers and how to stay within it. An `ArgumentError` (so also a
+/// `ValueError`): fewer lights or a smaller `shadow_size` fix it.
+static RESOURCE_LIMIT_ERROR: PyOnceLock<Py<PyType>> = PyOnceLock::new();
+
+pub fn resource_limit_error_type(py: Python<'_>) -> PyResult<Bound<'_, PyType>> {
+    let ty = RESOURCE_LIMIT_ERROR.get_or_try_init(py, || -> PyResult<Py<PyType>> {
+        let bases = PyTuple::new(py, [argument_error_type(py)?])?;
+        let namespace = PyDict::new(py);
+        namespace.set_item("__doc__", "The scene needs more of a device resource than the adapter has; the message names the limit and how to stay within it.")?;
+        namespace.set_item("__module__", "vsgl")?;
+        let made = py.import("builtins")?.getattr("type")?.call1(("ResourceLimitError", bases, namespace))?;
+        Ok(made.cast_into::<PyType>()?.unbind())
+    })?;
+    Ok(ty.bind(py).clone())
+}
+
+fn resource_limit_error(message: String) -> PyErr {
+    Python::attach(|py| match resource_limit_error_type(py) {
+        Ok(ty) => PyErr::from_type(ty, message),
+        Err(_) => argument_error(message),
+    })
+}
+
 /// A `vsgl.ArgumentError` with `message` (which names the argument).
 pub fn argument_error(message: impl Into<String>) -> PyErr {
     let message = message.into();
@@ -52,5 +77,6 @@ pub fn to_py(e: Error) -> PyErr {
         Error::NonFinite { .. } => NumericsError::new_err(msg),
         Error::Interrupted(_) => pyo3::exceptions::PyKeyboardInterrupt::new_err(msg),
         Error::InvalidArgument { .. } => argument_error(msg),
+        Error::ResourceLimit(_) => resource_limit_error(msg),
     }
 }

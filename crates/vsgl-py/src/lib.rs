@@ -1,16 +1,18 @@
 //! PyO3 bindings of vsgl-core: argument checking, error mapping and NumPy conversion only.
 //! The Python package `vsgl` (python/vsgl) re-exports these as its public API.
 
+mod args;
 mod errors;
 mod lights;
 mod stability;
 
+use args::{int_in_range, py_int, IntArg};
 use errors::{argument_error, to_py};
 use glam::{DMat4, DVec3};
 use numpy::{PyArray1, PyArrayMethods};
 use pyo3::exceptions::PyTypeError;
 use pyo3::prelude::*;
-use pyo3::types::{PyBool, PyBytes, PyDict, PyFloat, PyInt, PyIterator, PyString, PyTuple};
+use pyo3::types::{PyBool, PyBytes, PyDict, PyFloat, PyIterator, PyString, PyTuple};
 use std::sync::Arc;
 use vsgl_core::methods::{self, OptionValue};
 use vsgl_core::passes::vsgl_gen::{VSGL_FIELDS, VSGL_FLOATS};
@@ -45,7 +47,14 @@ struct PySpotLight {
 impl PySpotLight {
     #[new]
     #[pyo3(signature = (position, direction, intensity, color=vec![1.0, 1.0, 1.0], inner_cone_deg=30.0, outer_cone_deg=40.0))]
-    fn new(position: Vec<f64>, direction: Vec<f64>, intensity: f64, color: Vec<f64>, inner_cone_deg: f64, outer_cone_deg: f64) -> PyResult<Self> {
+    fn new(
+        #[pyo3(from_py_with = crate::args::floats)] position: Vec<f64>,
+        #[pyo3(from_py_with = crate::args::floats)] direction: Vec<f64>,
+        #[pyo3(from_py_with = crate::args::float)] intensity: f64,
+        #[pyo3(from_py_with = crate::args::floats)] color: Vec<f64>,
+        #[pyo3(from_py_with = crate::args::float)] inner_cone_deg: f64,
+        #[pyo3(from_py_with = crate::args::float)] outer_cone_deg: f64,
+    ) -> PyResult<Self> {
         let position = limits::position("position", vec3("position", position)?).map_err(to_py)?;
         let direction = limits::unit_direction("direction", vec3("direction", direction)?).map_err(to_py)?;
         let intensity = limits::intensity("intensity", "candela", finite("intensity", intensity)?).map_err(to_py)?;
@@ -118,7 +127,12 @@ impl PyCamera {
     /// A camera at `eye` looking at `target`, with vertical field of view `fov_y_deg`.
     #[staticmethod]
     #[pyo3(signature = (eye, target, up=vec![0.0, 1.0, 0.0], fov_y_deg=45.0))]
-    fn look_at(eye: Vec<f64>, target: Vec<f64>, up: Vec<f64>, fov_y_deg: f64) -> PyResult<Self> {
+    fn look_at(
+        #[pyo3(from_py_with = crate::args::floats)] eye: Vec<f64>,
+        #[pyo3(from_py_with = crate::args::floats)] target: Vec<f64>,
+        #[pyo3(from_py_with = crate::args::floats)] up: Vec<f64>,
+        #[pyo3(from_py_with = crate::args::float)] fov_y_deg: f64,
+    ) -> PyResult<Self> {
         let fov = finite("fov_y_deg", fov_y_deg)?;
         if !(fov > 0.0 && fov < 180.0) {
             return Err(argument_error(format!("fov_y_deg: must be in (0, 180), got {fov}")));
@@ -174,7 +188,8 @@ impl PyScene {
         let scene = py.detach(|| vsgl_core::scene::gltf::load_with(&path, &options)).map_err(to_py)?;
         Ok(Self { inner: Arc::new(scene) })
     }
-    /// Triangle, mesh, material, texture and light counts and the features the scene uses.
+    /// Triangle, mesh, material, texture and light counts and the features the scene uses;
+    /// `emission`, when a material emits, says what emission does (shown, lights nothing).
     #[getter]
     fn stats<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyDict>> {
         let s = self.inner.stats();
@@ -196,8 +211,89 @@ impl PyScene {
         if s.has_metallic { features.push("metallic"); }
         if s.has_specular { features.push("specular"); }
         if s.has_diffuse { features.push("diffuse"); }
+        if s.has_emission { features.push("emissive"); }
         d.set_item("features", features)?;
+        if s.has_emission {
+            // The one place a user reads that emission is not a light (no warning per frame).
+            d.set_item("emission", "emissive surfaces show in the image with their emitted radiance but light no other surface; add lights to light the scene")?;
+        }
         Ok(d)
+    }
+    /// The materials as dicts: name, base_color (RGBA, linear), metallic, roughness, specular
+    /// (the KHR_materials_specular factor), emissive (the emitted radiance L_e, linear RGB; 0 for
+    /// a material that does not emit) and which textures it has.
+    #[getter]
+    fn materials<'py>(&self, py: Python<'py>) -> PyResult<Vec<Bound<'py, PyDict>>> {
+        self.inner.materials.iter().map(|m| {
+            let d = PyDict::new(py);
+            d.set_item("name", &m.name)?;
+            d.set_item("base_color", m.base_color_factor.to_vec())?;
+            d.set_item("metallic", m.metallic_factor)?;
+            d.set_item("roughness", m.roughness_factor)?;
+            d.set_item("specular", m.specular_factor)?;
+            d.set_item("emissive", m.emissive.to_vec())?;
+            let textures: Vec<&str> = [
+                ("base_color", m.base_color_texture),
+                ("metallic_roughness", m.metallic_roughness_texture),
+                ("normal", m.normal_texture),
+                ("emissive", m.emissive_texture),
+            ].into_iter().filter(|(_, t)| t.is_some()).map(|(n, _)| n).collect();
+            d.set_item("textures", textures)?;
+            Ok(d)
+        }).collect()
+    }
+    /// Edits every material called `name`: the factors given replace the material's own
+    /// (`base_color`: 3 or 4 numbers in [0, 1]; `metallic`, `roughness` in [0, 1]; `emissive`:
+    /// the emitted radiance L_e, 3 numbers >= 0, shown where the camera sees the surface but
+    /// lighting nothing). Raises ArgumentError naming a bad value, or `name` when no material
+    /// has it; nothing is changed then.
+    #[pyo3(signature = (name, *, base_color=None, metallic=None, roughness=None, emissive=None))]
+    fn set_material(
+        &mut self,
+        name: &str,
+        #[pyo3(from_py_with = optional_floats)] base_color: Option<Vec<f64>>,
+        #[pyo3(from_py_with = optional_float)] metallic: Option<f64>,
+        #[pyo3(from_py_with = optional_float)] roughness: Option<f64>,
+        #[pyo3(from_py_with = optional_floats)] emissive: Option<Vec<f64>>,
+    ) -> PyResult<()> {
+        let unit = |arg: &str, v: f64| -> PyResult<f32> {
+            if (0.0..=1.0).contains(&v) { Ok(v as f32) } else { Err(argument_error(format!("{arg}: must be in [0, 1], got {v}"))) }
+        };
+        let base_color = match base_color {
+            Some(c) if c.len() == 3 || c.len() == 4 => {
+                let mut rgba = [1.0f32; 4];
+                for (i, v) in c.iter().enumerate() {
+                    rgba[i] = unit("base_color", *v)?;
+                }
+                Some(rgba)
+            }
+            Some(c) => return Err(argument_error(format!("base_color: expected 3 or 4 numbers, got {}", c.len()))),
+            None => None,
+        };
+        let metallic = metallic.map(|v| unit("metallic", v)).transpose()?;
+        let roughness = roughness.map(|v| unit("roughness", v)).transpose()?;
+        let emissive = match emissive {
+            Some(e) => {
+                let e = vec3("emissive", e)?;
+                let mut out = [0.0f32; 3];
+                for (o, v) in out.iter_mut().zip(e.to_array()) {
+                    *o = limits::emitted_radiance("emissive", v).map_err(to_py)?;
+                }
+                Some(out)
+            }
+            None => None,
+        };
+        if !self.inner.materials.iter().any(|m| m.name == name) {
+            let names: Vec<&str> = self.inner.materials.iter().map(|m| m.name.as_str()).collect();
+            return Err(argument_error(format!("name: no material named {name:?}; materials: {names:?}")));
+        }
+        Arc::make_mut(&mut self.inner).edit_materials(name, |m| {
+            if let Some(c) = base_color { m.base_color_factor = c; }
+            if let Some(v) = metallic { m.metallic_factor = v; }
+            if let Some(v) = roughness { m.roughness_factor = v; }
+            if let Some(e) = emissive { m.emissive = e; }
+        });
+        Ok(())
     }
     /// Adds a light: a SpotLight, PointLight or DirectionalLight.
     fn add_light(&mut self, light: AnyLight) {
@@ -245,6 +341,16 @@ impl PyScene {
     }
 }
 
+/// An optional float keyword (`None` allowed), as `args::float` takes it.
+fn optional_float(value: &Bound<'_, PyAny>) -> PyResult<Option<f64>> {
+    if value.is_none() { Ok(None) } else { crate::args::float(value).map(Some) }
+}
+
+/// An optional list of floats (`None` allowed), as `args::floats` takes it.
+fn optional_floats(value: &Bound<'_, PyAny>) -> PyResult<Option<Vec<f64>>> {
+    if value.is_none() { Ok(None) } else { crate::args::floats(value).map(Some) }
+}
+
 /// The `OSError` that Python's own `open()` would raise for `e` on `path`: the subclass of its
 /// kind (`PermissionError`, `FileNotFoundError`, `IsADirectoryError`, ...) with `errno`,
 /// `strerror` and `filename` set, so the message names the path.
@@ -262,15 +368,13 @@ fn os_error(py: Python<'_>, path: &std::path::Path, e: std::io::Error) -> PyErr 
     }
 }
 
-/// A byte count given as a positive Python int (not a bool, not a float).
+/// A byte count given as a positive Python int (not a bool, not a float), below 2**64.
 fn positive_bytes(name: &str, value: &Bound<'_, PyAny>) -> PyResult<u64> {
-    if value.is_instance_of::<PyBool>() || !value.is_instance_of::<PyInt>() {
+    if py_int(value).is_none() {
         return Err(argument_error(format!("{name}: expected a positive int (bytes), got {}", value.get_type().name()?)));
     }
-    match value.extract::<u64>() {
-        Ok(v) if v > 0 => Ok(v),
-        _ => Err(argument_error(format!("{name}: expected a positive int (bytes) below 2**64, got {value}"))),
-    }
+    // In range by the check, so the conversion cannot fail.
+    Ok(int_in_range(name, value, 1, u64::MAX as i128)? as u64)
 }
 
 /// Sets the local transform of every node called `node_name` (the checks of
@@ -591,10 +695,12 @@ impl PyFrame {
     /// Writes the image: `.png` (tone-mapped sRGB, `exposure` multiplies first), `.exr` or
     /// `.npy` (both linear float32, the latter of shape (H, W, 3)).
     #[pyo3(signature = (path, exposure=1.0))]
-    fn save(&self, py: Python<'_>, path: std::path::PathBuf, exposure: f32) -> PyResult<()> {
-        if !exposure.is_finite() || exposure <= 0.0 {
-            return Err(argument_error(format!("exposure: must be positive and finite, got {exposure}")));
+    fn save(&self, py: Python<'_>, path: std::path::PathBuf, #[pyo3(from_py_with = crate::args::float)] exposure: f64) -> PyResult<()> {
+        // Checked in f64: a value past f32's range would be Inf once converted.
+        if !(exposure.is_finite() && exposure > 0.0 && exposure <= f32::MAX as f64) {
+            return Err(argument_error(format!("exposure: must be positive and finite in f32, got {exposure}")));
         }
+        let exposure = exposure as f32;
         let ext = path.extension().and_then(|e| e.to_str()).unwrap_or("").to_ascii_lowercase();
         let rgb = self.image_floats(py)?;
         let (w, h) = (self.inner.width, self.inner.height);
@@ -630,17 +736,16 @@ impl PyRenderer {
     /// `adapter=None` picks the best adapter (or the `VSGL_ADAPTER` substring); a string picks
     /// the first adapter whose name contains it.
     #[new]
-    #[pyo3(signature = (width=640, height=360, adapter=None))]
-    fn new(py: Python<'_>, width: i64, height: i64, adapter: Option<String>) -> PyResult<Self> {
-        for (n, v) in [("width", width), ("height", height)] {
-            if v < 1 || v > 16384 {
-                return Err(argument_error(format!("{n}: must be in 1..=16384, got {v}")));
-            }
-        }
+    // The sizes are `IntArg`s (any Python int, range-checked here by name); the text signature
+    // shows their defaults, which PyO3 cannot print for a non-literal default.
+    #[pyo3(signature = (width=IntArg::new(640), height=IntArg::new(360), adapter=None), text_signature = "(width=640, height=360, adapter=None)")]
+    fn new(py: Python<'_>, width: IntArg, height: IntArg, adapter: Option<String>) -> PyResult<Self> {
+        let width = width.in_range("width", 1, 16384)?;
+        let height = height.in_range("height", 1, 16384)?;
         let r = py
             .detach(|| {
                 let gpu = vsgl_core::gpu::Gpu::new(adapter.as_deref())?;
-                Renderer::new(gpu, width as u32, height as u32)
+                Renderer::new(gpu, width, height)
             })
             .map_err(to_py)?;
         Ok(Self { inner: Arc::new(r) })
@@ -662,7 +767,13 @@ impl PyRenderer {
     /// The adapter in use: name, backend, device type, driver, timestamp support.
     #[getter]
     fn adapter<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyDict>> {
-        adapter_dict(py, &self.inner.gpu.adapter)
+        let d = adapter_dict(py, &self.inner.gpu.adapter)?;
+        // The device limits a scene's lights are checked against (ResourceLimitError).
+        let limits = &self.inner.gpu.limits;
+        d.set_item("max_texture_array_layers", limits.max_texture_array_layers)?;
+        d.set_item("max_buffer_size", limits.max_buffer_size)?;
+        d.set_item("max_storage_buffer_binding_size", limits.max_storage_buffer_binding_size)?;
+        Ok(d)
     }
     /// Renders `scene` seen by `camera` (default: the scene's first camera, else one framing
     /// the scene) with `method`, and returns a `Frame`. Releases the GIL while the GPU works.
@@ -804,14 +915,14 @@ fn render_options(method: &str, plan: &str, aovs: Option<Vec<String>>, options: 
         if value.is_none() {
             continue; // None: the method's default
         }
-        opts.options.push((name.clone(), option_value(&name, &value)?));
+        opts.options.push((name.clone(), option_value(method, &name, &value)?));
     }
     Ok(opts)
 }
 
 /// A keyword option as the core takes it. Names that no method takes are a `TypeError`, as
 /// for any unexpected keyword; values are checked by the method's option specs.
-fn option_value(name: &str, value: &Bound<'_, PyAny>) -> PyResult<OptionValue> {
+fn option_value(method: &str, name: &str, value: &Bound<'_, PyAny>) -> PyResult<OptionValue> {
     if !methods::every_option_name().contains(&name) {
         return Err(PyTypeError::new_err(format!(
             "render() got an unexpected keyword argument {name:?}; options of the methods: {}",
@@ -820,9 +931,17 @@ fn option_value(name: &str, value: &Bound<'_, PyAny>) -> PyResult<OptionValue> {
     }
     if value.is_instance_of::<PyBool>() {
         Ok(OptionValue::Bool(value.extract()?))
-    } else if value.is_instance_of::<PyInt>() {
-        let v: i64 = value.extract().map_err(|_| argument_error(format!("{name}: integer out of range: {value}")))?;
-        Ok(OptionValue::Int(v))
+    } else if let Some(v) = py_int(value) {
+        match v.as_ref().map(|v| i64::try_from(*v)) {
+            Ok(Ok(v)) => Ok(OptionValue::Int(v)),
+            // Beyond i64: no option allows it; say what the method's option does allow.
+            _ => {
+                let size = match v { Ok(v) => v.to_string(), Err(size) => size };
+                let spec = methods::info(method).ok().and_then(|info| info.options.iter().find(|o| o.name == name));
+                let allowed = spec.map(|s| s.allowed()).unwrap_or_else(|| format!("an option of method={method:?}"));
+                Err(argument_error(format!("{name}: must be {allowed}, got {size}")))
+            }
+        }
     } else if value.is_instance_of::<PyFloat>() {
         Ok(OptionValue::Float(value.extract()?))
     } else if value.is_instance_of::<PyString>() {
@@ -906,6 +1025,7 @@ fn _vsgl(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add("GpuError", py.get_type::<errors::GpuError>())?;
     m.add("NumericsError", py.get_type::<errors::NumericsError>())?;
     m.add("ArgumentError", errors::argument_error_type(py)?)?;
+    m.add("ResourceLimitError", errors::resource_limit_error_type(py)?)?;
     m.add("METHODS", method_names(py)?)?;
     m.add_class::<PyRenderer>()?;
     m.add_class::<PyScene>()?;

@@ -31,7 +31,11 @@ pub struct PyPointLight {
 impl PyPointLight {
     #[new]
     #[pyo3(signature = (position, intensity, color=vec![1.0, 1.0, 1.0]))]
-    fn new(position: Vec<f64>, intensity: f64, color: Vec<f64>) -> PyResult<Self> {
+    fn new(
+        #[pyo3(from_py_with = crate::args::floats)] position: Vec<f64>,
+        #[pyo3(from_py_with = crate::args::float)] intensity: f64,
+        #[pyo3(from_py_with = crate::args::floats)] color: Vec<f64>,
+    ) -> PyResult<Self> {
         let position = limits::position("position", vec3("position", position)?).map_err(to_py)?;
         let intensity = self::intensity(intensity, "candela")?;
         let color = self::color(color)?;
@@ -67,7 +71,11 @@ pub struct PyDirectionalLight {
 impl PyDirectionalLight {
     #[new]
     #[pyo3(signature = (direction, intensity, color=vec![1.0, 1.0, 1.0]))]
-    fn new(direction: Vec<f64>, intensity: f64, color: Vec<f64>) -> PyResult<Self> {
+    fn new(
+        #[pyo3(from_py_with = crate::args::floats)] direction: Vec<f64>,
+        #[pyo3(from_py_with = crate::args::float)] intensity: f64,
+        #[pyo3(from_py_with = crate::args::floats)] color: Vec<f64>,
+    ) -> PyResult<Self> {
         let direction = limits::unit_direction("direction", vec3("direction", direction)?).map_err(to_py)?;
         let intensity = self::intensity(intensity, "lux")?;
         let color = self::color(color)?;

@@ -12,7 +12,11 @@ use pyo3::types::PyDict;
 /// the real suite; a small value shows that the suite can fail). Releases the GIL while it runs.
 #[pyfunction]
 #[pyo3(signature = (adapter=None, bound_scale=1.0))]
-pub fn stability_suite(py: Python<'_>, adapter: Option<String>, bound_scale: f64) -> PyResult<Vec<Bound<'_, PyDict>>> {
+pub fn stability_suite(
+    py: Python<'_>,
+    adapter: Option<String>,
+    #[pyo3(from_py_with = crate::args::float)] bound_scale: f64,
+) -> PyResult<Vec<Bound<'_, PyDict>>> {
     if !(bound_scale.is_finite() && bound_scale > 0.0) {
         return Err(argument_error(format!("bound_scale: must be positive and finite, got {bound_scale}")));
     }

@@ -40,12 +40,17 @@ impl VisibilityTargets {
     }
 }
 
-/// The G-buffer: four vec4f storage buffers (layout in `wgsl/common/gbuffer.wgsl`).
+/// The G-buffer: four vec4f storage buffers (layout in `wgsl/common/gbuffer.wgsl`), and the
+/// emitted radiance the camera sees.
 pub struct GBuffer {
     pub position: wgpu::Buffer,
     pub normal: wgpu::Buffer,
     pub geo_normal: wgpu::Buffer,
     pub base_color: wgpu::Buffer,
+    /// Emitted radiance (rgb) per pixel when `has_emission`, else a 16-byte placeholder that
+    /// keeps the bind group layouts (the material pass then compiles the write out).
+    pub emission: wgpu::Buffer,
+    pub has_emission: bool,
 }
 
 impl GBuffer {
@@ -62,14 +67,24 @@ impl GBuffer {
 }
 
 impl GBuffer {
+    /// A G-buffer without emission: a light's view (emissive surfaces light nothing, so an RSM
+    /// never needs them) or a scene where nothing emits.
     pub fn new(rec: &mut Recorder<'_>, width: u32, height: u32) -> Self {
+        Self::with_emission(rec, width, height, false)
+    }
+
+    /// `emission`: whether the material pass writes the emitted radiance of every pixel.
+    pub fn with_emission(rec: &mut Recorder<'_>, width: u32, height: u32, emission: bool) -> Self {
+        let texels = width as u64 * height as u64 * 16;
         // The material pass writes every texel (background ones too): nothing to clear.
-        let mut make = |label| rec.storage_written(label, width as u64 * height as u64 * 16);
+        let mut make = |label, bytes| rec.storage_written(label, bytes);
         Self {
-            position: make("gbuffer_position_buffer"),
-            normal: make("gbuffer_normal_buffer"),
-            geo_normal: make("gbuffer_geo_normal_buffer"),
-            base_color: make("gbuffer_base_color_buffer"),
+            position: make("gbuffer_position_buffer", texels),
+            normal: make("gbuffer_normal_buffer", texels),
+            geo_normal: make("gbuffer_geo_normal_buffer", texels),
+            base_color: make("gbuffer_base_color_buffer", texels),
+            emission: make("gbuffer_emission_buffer", if emission { texels } else { 16 }),
+            has_emission: emission,
         }
     }
 }

@@ -64,7 +64,7 @@ impl AovPackPass {
             width: size.0,
             height: size.1,
             count: entries.len().min(MAX_ENTRIES) as u32,
-            flags: src.indirect_light as u32 | (src.specular as u32) << 1,
+            flags: src.indirect_light as u32 | (src.specular as u32) << 1 | (src.gbuffer.has_emission as u32) << 2,
             entries: [[0; 4]; MAX_ENTRIES],
         };
         for (slot, e) in raw.entries.iter_mut().zip(entries) {
@@ -86,6 +86,7 @@ impl AovPackPass {
                 stderr.as_entire_binding(),
                 out.as_entire_binding(),
                 counts.as_entire_binding(),
+                src.gbuffer.emission.as_entire_binding(),
             ]],
             (groups(size.0, WORKGROUP), groups(size.1, WORKGROUP), 1),
         );

@@ -1,6 +1,8 @@
 //! Material pass (compute): visibility buffer → G-buffer. Variants by the frame's plan:
 //! untextured with every texture fetch compiled out (`HAS_TEXTURES = false`), and without
-//! normal maps with the tangent frame compiled out (`HAS_NORMAL_MAPS = false`).
+//! normal maps with the tangent frame compiled out (`HAS_NORMAL_MAPS = false`); and by the
+//! G-buffer: emitted radiance is written only into one that has an emission channel
+//! (`HAS_EMISSION`).
 
 use crate::frame::GBuffer;
 use crate::error::Result;
@@ -43,7 +45,10 @@ impl MaterialPass {
         size: (u32, u32),
     ) {
         let gpu = rec.gpu;
-        let pipeline = &self.pipelines.get(gpu, &[("HAS_TEXTURES", features.textures), ("HAS_NORMAL_MAPS", features.normal_maps)]);
+        // Emission follows the target, not the plan: only a G-buffer made with an emission
+        // channel (the camera's, when some material emits) has one to write.
+        let flags = [("HAS_TEXTURES", features.textures), ("HAS_NORMAL_MAPS", features.normal_maps), ("HAS_EMISSION", gbuffer.has_emission)];
+        let pipeline = &self.pipelines.get(gpu, &flags);
         let frame_bind = rec.bind_group("material_frame_bind_group", PipelineRef::Compute(pipeline), 0, &[frame_uniforms.as_entire_binding()]);
         // Every variant binds the same resources: the auto layout is derived before override
         // constants are applied, so the untextured one still declares bindings 5–7.
@@ -60,6 +65,7 @@ impl MaterialPass {
             gbuffer.normal.as_entire_binding(),
             gbuffer.geo_normal.as_entire_binding(),
             gbuffer.base_color.as_entire_binding(),
+            gbuffer.emission.as_entire_binding(),
         ];
         let pass_bind = rec.bind_group("material_pass_bind_group", PipelineRef::Compute(pipeline), 1, &resources);
         rec.in_debug_group(label, |rec| {

@@ -3,6 +3,7 @@
 //! what differs between methods is in `crate::methods`, what a frame reads back in
 //! [`readback`], its settings in [`options`]. Layers and data flow: docs/architecture.md.
 
+pub mod device_limits;
 mod frame;
 mod options;
 mod readback;
@@ -279,23 +280,21 @@ impl Renderer {
         let feat = plan.features;
         let mut skipped: Vec<(String, String)> = plan.skipped.clone();
 
+        // What the lights need from the device, before any GPU work (the upload included): a
+        // scene too large for the adapter is refused with the limit and how to stay within it.
+        let shadow_size = if info.takes("shadow_size") { job.options.u32("shadow_size")? } else { default_shadow_size() };
+        let shadow_mapped = info.direct_light == DirectLight::ShadowMapped;
+        device_limits::check_lights(&scene.lights, shadow_mapped.then_some(shadow_size), &gpu.limits)?;
+
         // Frame space: positions relative to the eye (rays start at 0). Uploaded vertices are
         // relative to the scene's anchor; the passes that read them shift them to the eye.
         let origin = camera.eye;
         let (gscene, scene_reused) = self.uploaded_scene(scene)?;
         let (extent, anchor) = (gscene.extent, gscene.anchor);
         // Methods without shadow maps still fill the lights' shadow fields (with the default).
-        let shadow_size = if info.takes("shadow_size") { job.options.u32("shadow_size")? } else { default_shadow_size() };
         let lights = light_raws(&scene.lights, origin, anchor, extent, shadow_size);
         // Shadow layers: one per spot or directional light, a cube of six per point light.
         let shadow_layers: u32 = scene.lights.iter().map(shadow_layer_count).sum();
-        let max_layers = gpu.limits.max_texture_array_layers;
-        if shadow_layers > max_layers {
-            return Err(crate::error::Error::invalid(
-                format!("scene.lights[{}]", scene.lights.len() - 1),
-                format!("the lights need {shadow_layers} shadow map layers (6 per point light, 1 per spot or directional light); this adapter holds {max_layers}"),
-            ));
-        }
         let uniforms = frame_uniforms(camera, anchor, w, h, lights.len() as u32, gscene.texture_layer_size, extent, shadow_size);
 
         // What the renderer keeps from frame to frame: targets, buffers, the timer's queries.
@@ -311,10 +310,10 @@ impl Renderer {
         let vis = VisibilityTargets::new(&mut rec, w, h);
         self.passes.get::<VisibilityPass>()?.record(&mut rec, "visibility", &frame_buf, &gscene.raster_vertices, gscene.raster_vertex_count, &vis);
 
-        let shadow_mapped = info.direct_light == DirectLight::ShadowMapped;
         let shadow_needed = !lights.is_empty() && shadow_mapped;
-        // Unneeded: the smallest placeholder layer, so the binding exists.
-        let shadow_tex = ShadowMapPass::target(&mut rec, if shadow_needed { shadow_size } else { 16 }, shadow_layers);
+        // Unneeded: one placeholder layer of the smallest size, so the binding exists (and a
+        // method without shadow maps is not bound by the layer limit).
+        let shadow_tex = if shadow_needed { ShadowMapPass::target(&mut rec, shadow_size, shadow_layers) } else { ShadowMapPass::target(&mut rec, 16, 1) };
         let shadow_map = self.passes.get::<ShadowMapPass>()?;
         if shadow_needed {
             // The shadow maps rasterise anchor-relative vertices; the direct pass looks them
@@ -341,7 +340,16 @@ impl Renderer {
             skipped.push(("shadow_map".into(), why));
         }
 
-        let gbuffer = GBuffer::new(&mut rec, w, h);
+        // Emission is seen by the camera only, so only the camera's G-buffer gets the channel,
+        // and only when some material emits (`plan="full"`: always). The rule lives here
+        // rather than in the plan's shader features because no pass but the camera's material
+        // pass and the compositing (aov_pack) reads it.
+        let scene_emits = scene.stats().has_emission;
+        let emission = scene_emits || job.opts.plan == "full";
+        if !emission {
+            skipped.push(("emission".into(), "no material in the scene is emissive: no emission channel, nothing added to the image".into()));
+        }
+        let gbuffer = GBuffer::with_emission(&mut rec, w, h, emission);
         self.passes.get::<MaterialPass>()?.record(&mut rec, "material", &frame_buf, &vis.ids, &gscene, feat, &gbuffer, (w, h));
 
         // Written for every pixel by the direct pass (or the path tracer's direct entry point).
@@ -432,7 +440,10 @@ impl Renderer {
             passes: Vec::new(),
             skipped,
             settings,
-            warnings: if scene.lights.is_empty() {
+            warnings: if scene.lights.is_empty() && scene_emits {
+                // Not black: emissive surfaces show, but they light nothing else.
+                vec!["the scene has no light: only its emissive surfaces show, and they light no other surface (add a light with scene.add_light, or load a file with KHR_lights_punctual lights)".to_string()]
+            } else if scene.lights.is_empty() {
                 vec!["the scene has no light: the image is black (add one with scene.add_light, or load a file with KHR_lights_punctual lights)".to_string()]
             } else {
                 Vec::new()

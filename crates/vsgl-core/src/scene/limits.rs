@@ -18,6 +18,11 @@ pub const MAX_COORDINATE: f64 = 1e18;
 /// Largest light intensity (candela, or lux for a directional light).
 pub const MAX_INTENSITY: f64 = 1e32;
 
+/// Largest emitted radiance of a material (glTF emissiveFactor × emissiveStrength): the image
+/// adds it to reflected light, so it keeps the same headroom below f32's maximum as
+/// [`MAX_INTENSITY`].
+pub const MAX_EMITTED_RADIANCE: f64 = 1e32;
+
 /// `p` if every coordinate is finite and within ±[`MAX_COORDINATE`].
 pub fn position(arg: &str, p: DVec3) -> Result<DVec3> {
     if !p.is_finite() || p.abs().max_element() > MAX_COORDINATE {
@@ -46,6 +51,17 @@ pub fn intensity(arg: &str, unit: &str, v: f64) -> Result<f32> {
     if !(v.is_finite() && v > 0.0 && v <= MAX_INTENSITY) {
         return Err(Error::invalid(arg, format!(
             "must be positive and at most {MAX_INTENSITY:e} ({unit}; larger values overflow f32 radiance), got {v}"
+        )));
+    }
+    Ok(v as f32)
+}
+
+/// An emitted radiance (`KHR_materials_emissive_strength` × factor) if finite, >= 0 and at
+/// most [`MAX_EMITTED_RADIANCE`].
+pub fn emitted_radiance(arg: &str, v: f64) -> Result<f32> {
+    if !(v.is_finite() && v >= 0.0 && v <= MAX_EMITTED_RADIANCE) {
+        return Err(Error::invalid(arg, format!(
+            "must be finite, >= 0 and at most {MAX_EMITTED_RADIANCE:e} (emitted radiance; larger values overflow f32 images), got {v}"
         )));
     }
     Ok(v as f32)

@@ -71,6 +71,13 @@ pub struct Material {
     /// `specularFactor`, 0…1): R_s = mix(0.04·specular_factor, base, metallic). 0 with
     /// metallic 0 is a purely Lambertian material.
     pub specular_factor: f32,
+    /// Emitted radiance L_e (linear RGB, the image's radiance units): glTF `emissiveFactor`
+    /// × `KHR_materials_emissive_strength`, times the emissive texture where there is one.
+    /// Seen by the camera only: an emissive surface lights no other surface (docs/rendering.md,
+    /// "Emission").
+    pub emissive: [f32; 3],
+    /// sRGB colour texture that multiplies `emissive` (index into [`Scene::textures`]).
+    pub emissive_texture: Option<usize>,
 }
 
 impl Default for Material {
@@ -86,6 +93,8 @@ impl Default for Material {
             normal_texture: None,
             normal_scale: 1.0,
             specular_factor: 1.0,
+            emissive: [0.0; 3],
+            emissive_texture: None,
         }
     }
 }
@@ -124,6 +133,11 @@ impl Material {
         self.base_color_texture.is_some()
             || self.metallic_roughness_texture.is_some()
             || self.normal_texture.is_some()
+            || self.emissive_texture.is_some()
+    }
+    /// Whether this material emits light anywhere (a texture cannot make a zero factor emit).
+    pub fn has_emission(&self) -> bool {
+        self.emissive.iter().any(|&e| e > 0.0)
     }
 }
 
@@ -276,6 +290,20 @@ impl Scene {
         n
     }
 
+    /// Applies `edit` to every material called `name`; returns how many matched. Materials
+    /// are part of the upload, so an edit re-uploads the scene at the next frame.
+    pub fn edit_materials(&mut self, name: &str, edit: impl Fn(&mut Material)) -> usize {
+        let mut n = 0;
+        for m in self.materials.iter_mut().filter(|m| m.name == name) {
+            edit(m);
+            n += 1;
+        }
+        if n > 0 {
+            self.geometry_version += 1;
+        }
+        n
+    }
+
     pub fn add_light(&mut self, light: impl Into<Light>) {
         self.lights.push(light.into());
     }
@@ -327,6 +355,7 @@ impl Scene {
             has_metallic: used.iter().any(|m| m.metallic_factor > 0.0),
             has_specular: used.iter().any(|m| m.has_specular()),
             has_diffuse: used.iter().any(|m| m.metallic_factor < 1.0 || m.metallic_roughness_texture.is_some()),
+            has_emission: used.iter().any(|m| m.has_emission()),
         }
     }
 }
@@ -345,6 +374,8 @@ pub struct SceneStats {
     /// Some used material has R_s > 0 (metallic > 0 or a non-zero dielectric specular).
     pub has_specular: bool,
     pub has_diffuse: bool,
+    /// Some used material emits light (L_e > 0): the camera's G-buffer gets an emission channel.
+    pub has_emission: bool,
 }
 
 #[cfg(test)]

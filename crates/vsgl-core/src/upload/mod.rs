@@ -39,7 +39,7 @@ pub struct RasterVertex {
 }
 const _: () = assert!(std::mem::size_of::<RasterVertex>() == 16);
 
-/// GPU twin of [`crate::scene::Material`] (48 bytes). Texture layers are −1 when absent.
+/// GPU twin of [`crate::scene::Material`] (64 bytes). Texture layers are −1 when absent.
 #[repr(C)]
 #[derive(Clone, Copy, bytemuck::Pod, bytemuck::Zeroable)]
 pub struct MaterialRaw {
@@ -51,9 +51,13 @@ pub struct MaterialRaw {
     pub base_color_layer: i32,
     pub metallic_roughness_layer: i32,
     pub normal_layer: i32,
-    pub _pad1: i32,
+    /// Layer of the emissive texture in the colour (sRGB) array.
+    pub emissive_layer: i32,
+    /// Emitted radiance L_e (linear RGB); the vec3 is paired with a scalar (WGSL alignment).
+    pub emissive: [f32; 3],
+    pub _pad1: f32,
 }
-const _: () = assert!(std::mem::size_of::<MaterialRaw>() == 48);
+const _: () = assert!(std::mem::size_of::<MaterialRaw>() == 64);
 
 /// Largest texture layer side. Textures are resampled into one array per colour space so the
 /// material pass needs no bindless feature; 1024² keeps FlightHelmet/BoomBox detail at the
@@ -219,7 +223,9 @@ impl GpuScene {
                 base_color_layer: layer(m.base_color_texture, TextureUsage::Color),
                 metallic_roughness_layer: layer(m.metallic_roughness_texture, TextureUsage::Data),
                 normal_layer: layer(m.normal_texture, TextureUsage::Data),
-                _pad1: 0,
+                emissive_layer: layer(m.emissive_texture, TextureUsage::Color),
+                emissive: m.emissive,
+                _pad1: 0.0,
             });
         }
         let max_side = color_layers

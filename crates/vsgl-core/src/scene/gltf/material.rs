@@ -1,5 +1,6 @@
-//! Materials: glTF metallic-roughness materials (and the KHR_materials_specular factor)
-//! become scene materials, one per (glTF material, normal map kept) pair; unsupported
+//! Materials: glTF metallic-roughness materials (with the KHR_materials_specular factor and
+//! emission: emissiveFactor, emissiveTexture, KHR_materials_emissive_strength) become scene
+//! materials, one per (glTF material, normal map kept) pair; unsupported
 //! features are skipped with a warning.
 
 use gltf::json;
@@ -8,13 +9,37 @@ use json::validation::Checked;
 use super::image::texture_index;
 use super::{finite_all, Builder, Ctx};
 use crate::error::Result;
-use crate::scene::{Material, TextureUsage};
+use crate::scene::{limits, Material, TextureUsage};
 
 fn unit_factor(ctx: &Ctx, v: f32, element: String) -> Result<f32> {
     if !v.is_finite() {
         return Err(ctx.err(element, "non-finite value"));
     }
     Ok(v.clamp(0.0, 1.0))
+}
+
+/// The material's emitted radiance L_e = emissiveFactor × emissiveStrength (linear RGB, the
+/// image's radiance units; docs/rendering.md, "Emission"). The factor is clamped to 0…1 like
+/// the other factors; the strength (KHR_materials_emissive_strength, default 1) must be finite
+/// and >= 0, and the product at most `limits::MAX_EMITTED_RADIANCE`.
+fn emitted_radiance(ctx: &Ctx, m: &json::Material, el: &str) -> Result<[f32; 3]> {
+    let factor = m.emissive_factor.0;
+    if !finite_all(&factor) {
+        return Err(ctx.err(format!("{el}.emissiveFactor"), "non-finite value"));
+    }
+    let strength = m.extensions.as_ref().and_then(|e| e.emissive_strength.as_ref()).map_or(1.0, |s| s.emissive_strength.0);
+    let strength_el = format!("{el}.extensions.KHR_materials_emissive_strength.emissiveStrength");
+    if !(strength.is_finite() && strength >= 0.0) {
+        return Err(ctx.err(strength_el, format!("must be finite and >= 0, got {strength}")));
+    }
+    let mut out = [0.0f32; 3];
+    for (o, f) in out.iter_mut().zip(factor) {
+        // In f64: the product of two f32 values in range cannot overflow before it is checked.
+        let radiance = f.clamp(0.0, 1.0) as f64 * strength as f64;
+        *o = limits::emitted_radiance("emissiveFactor × emissiveStrength", radiance)
+            .map_err(|e| ctx.err(strength_el.clone(), e.to_string()))?;
+    }
+    Ok(out)
 }
 
 pub(super) fn material_index(
@@ -116,10 +141,19 @@ pub(super) fn material_index(
                     b.warn(format!("{sel}.specularColorFactor: coloured specular is not supported; treated as white"));
                 }
             }
-            let emissive = m.emissive_factor.0;
-            if m.emissive_texture.is_some() || emissive.iter().any(|&e| e != 0.0) {
-                b.warn(format!("{el}: emission is not supported; ignored"));
-            }
+            let emissive = emitted_radiance(ctx, m, &el)?;
+            // A texture cannot make a zero factor emit: decode it only when it can show.
+            let emissive_texture = match &m.emissive_texture {
+                Some(info) if emissive.iter().any(|&e| e > 0.0) => texture_index(
+                    ctx,
+                    b,
+                    info.index.value(),
+                    info.tex_coord,
+                    TextureUsage::Color,
+                    format!("{el}.emissiveTexture"),
+                )?,
+                _ => None,
+            };
             if !matches!(
                 m.alpha_mode,
                 Checked::Valid(json::material::AlphaMode::Opaque)
@@ -138,6 +172,8 @@ pub(super) fn material_index(
                 normal_texture,
                 normal_scale,
                 specular_factor,
+                emissive,
+                emissive_texture,
             }
         }
     };
