@@ -786,11 +786,11 @@ impl PyRenderer {
     /// method's options with their ranges and defaults:
     ///
     /// - "direct": direct light only. shadow_size.
-    /// - "vpl": num_lights VPLs per light importance-sampled from an rsm_size² reflective
-    ///   shadow map. shadow_size, num_lights, rsm_size, sampling ("stratified" | "random"),
+    /// - "vpl": num_lights VPLs (in all, split over lights by reflected power)
+    ///   importance-sampled from rsm_size² reflective shadow maps. shadow_size, num_lights, rsm_size, sampling ("stratified" | "random"),
     ///   seed, vpl_clamp (minimum VPL distance as a fraction of the scene size; 0 = unbiased),
-    ///   interleave (default 1), denoise, visibility, capture_rsm.
-    /// - "vsgl": num_lights VSGLs per light by filtered importance sampling. shadow_size,
+    ///   interleave (default 1), denoise, visibility ("none" | "raytrace"), capture_rsm.
+    /// - "vsgl": num_lights VSGLs (in all) by filtered importance sampling. shadow_size,
     ///   num_lights, rsm_size, sampling, seed, kernel ("integral" | "density"), K,
     ///   bisection_steps, interleave, denoise, diffuse ("papers" | "accurate" | "sg_product"),
     ///   visibility, capture_rsm.
@@ -800,7 +800,9 @@ impl PyRenderer {
     /// - "reference": every texel of an rsm_size² RSM (default 1024²) as a VPL. shadow_size,
     ///   rsm_size, vpl_clamp, visibility, capture_rsm.
     /// - "pathtrace": path-traced one-bounce ground truth with a stderr AOV. spp, seed,
-    ///   time_budget_s (stop sampling after this many seconds; Ctrl-C stops any long render).
+    ///   time_budget_s (stop sampling after this many seconds; Ctrl-C stops any long render),
+    ///   strategy ("camera": pixel centres | "bidirectional": light tracing + camera paths by
+    ///   MIS over pixel areas, for caustics | "light": light tracing alone).
     ///
     /// `capture_rsm=True` keeps the first light's RSM for `Frame.rsm(name)`.
     ///
