@@ -35,7 +35,7 @@ def _render(args: argparse.Namespace) -> int:
     t1 = time.perf_counter()
     # Pass each flag only to a method that takes it (the registry says which).
     flags = dict(shadow_size=args.shadow_size, num_lights=args.lights, seed=args.seed, rsm_size=args.rsm_size,
-                 kernel=args.kernel, interleave=args.interleave, spp=args.spp)
+                 kernel=args.kernel, interleave=args.interleave, spp=args.spp, visibility=args.visibility, strategy=args.strategy)
     takes = vsgl.method_options(args.method)
     options = {k: v for k, v in flags.items() if k in takes and v is not None}
     progress = _progress_line(args.method)
@@ -70,7 +70,9 @@ def _render(args: argparse.Namespace) -> int:
         t3 = time.perf_counter()
         # The reference can take a minute on a CPU adapter: show how far it is (on a terminal).
         ref_progress = _progress_line("reference (for the error; --no-error skips it)")
-        ref = renderer.render(scene, method="reference", rsm_size=args.reference_rsm, shadow_size=args.shadow_size, progress=ref_progress)
+        # With the method's visibility, so the error is the method's and not the shadows'.
+        visibility = args.visibility or "none"
+        ref = renderer.render(scene, method="reference", rsm_size=args.reference_rsm, shadow_size=args.shadow_size, visibility=visibility, progress=ref_progress)
         if ref_progress is not None and ref_progress.shown:  # type: ignore[attr-defined]
             print(file=sys.stderr)
         t4 = time.perf_counter()
@@ -78,7 +80,7 @@ def _render(args: argparse.Namespace) -> int:
             a, b = frame.aov(aov).astype(np.float64), ref.aov(aov).astype(np.float64)
             rmse = float(np.sqrt(np.mean((a - b) ** 2)))
             rel = rmse / max(float(np.sqrt(np.mean(b**2))), 1e-30)
-            print(f"error     {aov:<9} RMSE {rmse:.6g} (relative {rel:.4f}) vs reference ({args.reference_rsm}² RSM, {1e3 * (t4 - t3):.0f} ms)")
+            print(f"error     {aov:<9} RMSE {rmse:.6g} (relative {rel:.4f}) vs reference ({args.reference_rsm}² RSM, visibility {visibility}, {1e3 * (t4 - t3):.0f} ms)")
     elif args.no_error:
         print("error     not measured (--no-error)")
     else:
@@ -161,6 +163,10 @@ def main(argv: list[str] | None = None) -> int:
                         help="interleaving tile side of vsgl and vpl (default: the method's, 8 for vsgl, 1 for vpl)")
     render.add_argument("--seed", type=int, default=0, help="sampling seed (default: 0)")
     render.add_argument("--spp", type=int, default=64, help="samples per pixel of pathtrace (default: 64)")
+    render.add_argument("--strategy", default=None, choices=["camera", "bidirectional", "light"],
+                        help="paths of pathtrace: camera (pixel centres; default), bidirectional (light tracing + camera paths by MIS, per pixel area: caustics) or light")
+    render.add_argument("--visibility", default=None, choices=["none", "raytrace"],
+                        help="visibility of virtual lights in vpl, vsgl, vsgl2 and reference: none (unshadowed; default) or raytrace (shadow rays through the BVH)")
     render.add_argument("--reference-rsm", type=int, default=128, help="RSM side of the reference the error is measured against (default: 128; the library default 1024 takes minutes on a CPU adapter)")
     render.add_argument("--no-error", action="store_true", help="skip rendering the reference and the error report")
     render.add_argument("--shadow-size", type=int, default=1024, help="shadow map side (default: 1024)")
