@@ -4,9 +4,12 @@
 //  2. kernel level l_i:
 //     "density"  [Tok15 §4.2]: l = l_top − ½ log2(N p(x_i)),
 //     "integral" [Tok16 Eq. 3, Algorithm 1]: solve (4^l/M) p̄(x_i, l) = K/N by bisection;
+//     "node" (issue 18, item 1): the coarsest quadtree node on x_i's texel path whose mass
+//     P_v = W_v/W is at most K/N — the 2016 rule applied to whole nodes;
 //  3. cluster totals of every moment f from the mips read trilinearly at (x_i, l_i):
 //     "density"  [Tok16 Eq. 4]: ∫f g ≈ f̄(x_i, l_i) / max(N p(x_i), 1),
 //     "integral" [Tok16 Eq. 5]: ∫f g ≈ f̄(x_i, l_i) / (N p̄(x_i, l_i)),
+//     "node": the node's exact totals F_v/(N P_v) (moments read at the node, no filtering);
 //     with f̄, p̄ in density units on the unit square (M × the texel average);
 //  4. the VSGL from the moments [Tok15 §3.1; Tok16s §3]: Toksvig-merged lobes and the
 //     positional Gaussian (vsgl.wgsl).
@@ -23,7 +26,7 @@ struct GenParams {
     rsm_size: u32,
     stratified: u32,
     seed: u32,
-    // 0 = density (2015), 1 = integral (2016 bisection).
+    // 0 = density (2015), 1 = integral (2016 bisection), 2 = quadtree node.
     kernel: u32,
     bisection_steps: u32,
     chain_len: u32,
@@ -98,7 +101,24 @@ fn main(@builtin(global_invocation_id) gid: vec3u) {
     let p = m * w_texel / total;
 
     var level: f32;
-    if (params.kernel == 0u) {
+    // "node": whether to stop at a node depends on the node and its ancestors only (its mass
+    // ≤ K/N, its parent's > K/N), so the stop nodes partition the RSM, the warp draws node v
+    // with probability P_v, and Σ_i F_v(i)/(N P_v(i)) has expectation ΣF: unbiased, unlike
+    // filtered reads, which blend neighbouring clusters. As N grows the nodes shrink to
+    // single texels (VPLs with SG lobes).
+    var node = warped.texel;
+    if (params.kernel == 2u) {
+        let target_mass = params.k / n;
+        var l = params.levels - 1u;
+        loop {
+            node = warped.texel >> vec2u(l);
+            if (l == 0u || warp_weight(l, params.rsm_size, node) <= target_mass * total) {
+                break;
+            }
+            l -= 1u;
+        }
+        level = f32(l);
+    } else if (params.kernel == 0u) {
         level = clamp(top - 0.5 * log2(max(n * p, FLT_MIN)), 0.0, top);
     } else {
         // [Tok16 Algorithm 1]: the mass grows with l, so bisect on it.
@@ -116,11 +136,26 @@ fn main(@builtin(global_invocation_id) gid: vec3u) {
         level = 0.5 * (lo + hi);
     }
 
-    let a = moment_trilinear(0u, s, level);
-    let b = moment_trilinear(1u, s, level);
-    let c = moment_trilinear(2u, s, level);
-    let d = moment_trilinear(3u, s, level);
-    let e = moment_trilinear(4u, s, level);
+    var a: vec4f;
+    var b: vec4f;
+    var c: vec4f;
+    var d: vec4f;
+    var e: vec4f;
+    if (params.kernel == 2u) {
+        let l = u32(level);
+        let at = vec2i(node);
+        a = moment_texel(0u, l, at);
+        b = moment_texel(1u, l, at);
+        c = moment_texel(2u, l, at);
+        d = moment_texel(3u, l, at);
+        e = moment_texel(4u, l, at);
+    } else {
+        a = moment_trilinear(0u, s, level);
+        b = moment_trilinear(1u, s, level);
+        c = moment_trilinear(2u, s, level);
+        d = moment_trilinear(3u, s, level);
+        e = moment_trilinear(4u, s, level);
+    }
     // Cluster total of a texel-averaged moment f̄_texel: Eq. 5 gives W·f̄/(N·w̄); Eq. 4 gives
     // M·f̄/max(N p, 1).
     var scale: f32;
@@ -143,6 +178,10 @@ fn main(@builtin(global_invocation_id) gid: vec3u) {
     out.specular_power = min(b.rgb * scale, vec3f(FLT_MAX));
     out.pdf = p;
     out.center = s;
-    out.mass = kernel_mass(s, level, total);
+    if (params.kernel == 2u) {
+        out.mass = warp_weight(u32(level), params.rsm_size, node) / total;
+    } else {
+        out.mass = kernel_mass(s, level, total);
+    }
     vsgls[i] = out;
 }

@@ -11,6 +11,7 @@
 #include "common/constants.wgsl"
 #include "common/math.wgsl"
 #include "common/sg.wgsl"
+#include "common/ggx.wgsl"
 #include "common/vsgl.wgsl"
 #include "common/vsgl_record.wgsl"
 #include "common/frame.wgsl"
@@ -29,6 +30,13 @@ struct ShadeParams {
     // 2 = SG product integral with the Lambert SG (the 2015 two-VSGL poster).
     diffuse_mode: u32,
     first: u32,
+    // 1 (kernel="node"): a VSGL of one RSM texel (level 0) is shaded as that texel exactly —
+    // its diffuse lobe as a Lambertian point emitter, I(ω) = P_d·max(ω·n_t, 0)/π — so VSGLs
+    // become VPLs as N reaches the texel count and converge with them (issue 18, item 3).
+    exact_texels: u32,
+    _pad0: u32,
+    _pad1: u32,
+    _pad2: u32,
 }
 
 const WORKGROUP: u32 = 8u;
@@ -110,7 +118,18 @@ fn main(@builtin(workgroup_id) wg: vec3u, @builtin(local_invocation_id) lid: vec
                 // Each lobe: radiance SG per unit power (amplitude 1/A(λ)), times its rgb
                 // power. A lobe without power (vsgl2's records carry one lobe each; metal
                 // clusters have no diffuse lobe) is skipped: it would add exactly 0.
-                if (any(light.diffuse_power > vec3f(0.0))) {
+                if (params.exact_texels == 1u && light.level == 0.0 && any(light.diffuse_power > vec3f(0.0))) {
+                    // Radiant intensity towards p over power, max(−ω·n_t, 0)/π, at distance d:
+                    // irradiance per unit power facing p is that times max(n·ω, 0)/d².
+                    let to_light = light.mean - p;
+                    let dist2 = max(dot(to_light, to_light), FLT_MIN);
+                    let l = to_light * inverseSqrt(dist2);
+                    let e = max(dot(-l, light.diffuse_axis), 0.0) * INV_PI * max(dot(n, l), 0.0) / dist2;
+                    diffuse += light.diffuse_power * (e * INV_PI);
+                    if (HAS_SPECULAR) {
+                        specular += light.diffuse_power * (e * ggx_brdf_over_rs(n, l, v, alpha));
+                    }
+                } else if (any(light.diffuse_power > vec3f(0.0))) {
                     let lobe_d = Sg(light.diffuse_axis, light.diffuse_sharpness, 1.0 / sg_integral(light.diffuse_sharpness));
                     let in_d = vsgl_incoming_radiance(lobe_d, position, p);
                     diffuse += light.diffuse_power * diffuse_over_rd(in_d, n);

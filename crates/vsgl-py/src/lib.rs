@@ -791,7 +791,7 @@ impl PyRenderer {
     ///   seed, vpl_clamp (minimum VPL distance as a fraction of the scene size; 0 = unbiased),
     ///   interleave (default 1), denoise, visibility ("none" | "raytrace"), capture_rsm.
     /// - "vsgl": num_lights VSGLs (in all) by filtered importance sampling. shadow_size,
-    ///   num_lights, rsm_size, sampling, seed, kernel ("integral" | "density"), K,
+    ///   num_lights, rsm_size, sampling, seed, kernel ("integral" | "density" | "node"), K,
     ///   bisection_steps, interleave, denoise, diffuse ("papers" | "accurate" | "sg_product"),
     ///   visibility, capture_rsm.
     /// - "vsgl2": two VSGLs per light by a parallel sum. shadow_size, rsm_size (any side

@@ -35,9 +35,9 @@ const OPTIONS: &[OptionSpec] = &[
     common::SEED,
     OptionSpec {
         name: "kernel",
-        kind: OptionKind::Choice(&["integral", "density"]),
+        kind: OptionKind::Choice(&["integral", "density", "node"]),
         default: OptionValue::Str(Cow::Borrowed("integral")),
-        help: "kernel size rule: \"integral\" (2016, bisection to mass K/N) or \"density\" (2015)",
+        help: "kernel size rule: \"integral\" (2016, bisection to mass K/N), \"density\" (2015) or \"node\" (quadtree nodes of mass <= K/N read exactly: unbiased cluster totals, VPL-like as N reaches the texel count)",
         note: "",
     },
     OptionSpec {
@@ -95,7 +95,11 @@ impl Vsgl {
             rsm_size: o.u32("rsm_size")?,
             sampling: super::vpl::sampling(o)?,
             seed: o.u32("seed")?,
-            kernel: if o.str("kernel")? == "density" { Kernel::Density } else { Kernel::Integral },
+            kernel: match o.str("kernel")? {
+                "density" => Kernel::Density,
+                "node" => Kernel::Node,
+                _ => Kernel::Integral,
+            },
             k: o.f32("K")?,
             bisection_steps: o.u32("bisection_steps")?,
             interleave: o.u32("interleave")?,
@@ -147,7 +151,7 @@ impl Method for Vsgl {
             };
             gen.record(&mut ctx.rec, light.rsm, chains, &settings, &buf);
             let target = shading_out.target(ctx.indirect);
-            shading.record(&mut ctx.rec, ctx.frame_uniforms, &buf, light.budget, self.interleave, self.diffuse, ctx.gbuffer, target, feat, ctx.size, &vis);
+            shading.record(&mut ctx.rec, ctx.frame_uniforms, &buf, light.budget, self.interleave, self.diffuse, self.kernel == Kernel::Node, ctx.gbuffer, target, feat, ctx.size, &vis);
             if ctx.vsgls.is_none() {
                 ctx.vsgls = Some(buf);
             }

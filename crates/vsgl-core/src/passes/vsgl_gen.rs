@@ -44,6 +44,9 @@ pub enum Kernel {
     Density,
     /// 2016: (4^l/M) p̄(s, l) = K/N by bisection.
     Integral,
+    /// Quadtree nodes (issue 18, item 1): the coarsest node on the sampled texel's path whose
+    /// probability mass is at most K/N, its moments read exactly (no filtering): unbiased totals.
+    Node,
 }
 
 #[repr(C)]
@@ -91,7 +94,7 @@ impl VsglGenPass {
             rsm_size: rsm.size,
             stratified: s.stratified as u32,
             seed: s.seed,
-            kernel: match s.kernel { Kernel::Density => 0, Kernel::Integral => 1 },
+            kernel: match s.kernel { Kernel::Density => 0, Kernel::Integral => 1, Kernel::Node => 2 },
             bisection_steps: s.bisection_steps,
             chain_len: chains.chain_len,
             light_offset: s.light_offset,

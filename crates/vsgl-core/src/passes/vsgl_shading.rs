@@ -15,6 +15,8 @@ struct ShadeParamsRaw {
     interleave: u32,
     diffuse_mode: u32,
     first: u32,
+    exact_texels: u32,
+    _pad: [u32; 3],
 }
 
 /// Most loop iterations (VSGLs per pixel) one dispatch runs: lavapipe (Mesa 22.3) silently
@@ -74,6 +76,7 @@ impl VsglShadingPass {
         count: u32,
         interleave: u32,
         diffuse: DiffuseMode,
+        exact_texels: bool,
         gbuffer: &GBuffer,
         out: &IndirectTargets,
         features: ShaderFeatures,
@@ -89,7 +92,7 @@ impl VsglShadingPass {
         let per_dispatch = if visibility.traced { TRACED_VSGLS_PER_PIXEL_PER_DISPATCH } else { VSGLS_PER_PIXEL_PER_DISPATCH };
         let chunk = per_dispatch * interleave * interleave;
         for_each_chunk(count, chunk, |first, n| {
-            let params = ShadeParamsRaw { count: n, interleave, diffuse_mode: diffuse.shader_code(), first };
+            let params = ShadeParamsRaw { count: n, interleave, diffuse_mode: diffuse.shader_code(), first, exact_texels: u32::from(exact_texels), _pad: [0; 3] };
             let uniform = rec.uniform("vsgl_shading_params_uniform_buffer", &params);
             rec.compute(
                 label,
