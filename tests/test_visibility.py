@@ -60,7 +60,7 @@ def test_raytraced_visibility_stops_the_leak_through_a_wall(tmp_path, make_rende
     assert leaky > 5 * truth_mean, f"the scene must show the leak first: {leaky} vs {truth_mean}"
     assert traced == pytest.approx(truth_mean, rel=tolerance)
     assert any(p.startswith(("vpl_shading[raytrace", "vsgl_shading[raytrace")) for p in traced_frame.passes), traced_frame.passes
-    assert "vpl_shadow_maps" not in traced_frame.skipped
+    assert "vpl_shadow_maps" not in traced_frame.skipped and "vpl_shadow_rays" not in traced_frame.skipped, "two rooms are not a convex shell"
     for name in traced_frame.aovs:
         assert np.isfinite(traced_frame.aov(name)).all()
 
@@ -87,9 +87,17 @@ def test_raytraced_visibility_changes_nothing_where_nothing_occludes(tmp_path, m
     r = make_renderer(24, 24)
     opts = OPTIONS[method]
     a = r.render(scene, camera=cam, method=method, visibility="none", **opts).aov("indirect").astype(np.float64)
-    b = r.render(scene, camera=cam, method=method, visibility="raytrace", **opts).aov("indirect").astype(np.float64)
+    # plan="full": the shadow rays are cast (the pass plan would leave them out here).
+    traced = r.render(scene, camera=cam, method=method, visibility="raytrace", plan="full", **opts)
+    assert any("[raytrace" in p for p in traced.passes), traced.passes
+    b = traced.aov("indirect").astype(np.float64)
     assert a.max() > 0
     np.testing.assert_allclose(b, a, rtol=0, atol=1e-5 * a.max())
+    # The plan proves it: every surface lies on the convex hull, so the rays are left out and
+    # the image is the unshadowed one exactly.
+    pruned = r.render(scene, camera=cam, method=method, visibility="raytrace", **opts)
+    assert "vpl_shadow_rays" in pruned.skipped and not any("[raytrace" in p for p in pruned.passes)
+    np.testing.assert_array_equal(pruned.aov("indirect"), a.astype(np.float32))
 
 
 def test_a_moved_occluder_changes_the_shadows_on_the_next_frame(tmp_path, make_renderer):

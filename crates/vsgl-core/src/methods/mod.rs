@@ -191,6 +191,8 @@ pub struct FrameContext<'a> {
     /// Kept from frame to frame (in the frame's readback slot) for the RSM powers that split
     /// the virtual-light budget over several lights or cube faces (`rsm_lights`).
     pub power_staging: &'a mut Option<wgpu::Buffer>,
+    /// `plan="full"`: leave nothing out, even where a rule proves it unneeded.
+    pub plan_full: bool,
 }
 
 impl FrameContext<'_> {

@@ -35,8 +35,17 @@ const PLACEHOLDER_BYTES: u64 = 64;
 impl VirtualLightVisibility {
     pub fn new(ctx: &mut FrameContext<'_>, mode: VisibilityMode) -> Result<Self> {
         let ids = ctx.visibility.ids.clone();
-        if mode == VisibilityMode::None {
-            ctx.skip("vpl_shadow_maps", "visibility=\"none\": virtual lights are unshadowed");
+        // Pass-plan rule: when every surface lies on the scene's convex hull no segment between
+        // a receiver and a virtual light (both on surfaces) can be blocked, so the shadow rays
+        // would all pass; `plan="full"` casts them anyway (tests/test_visibility.py compares).
+        let unblockable = mode == VisibilityMode::RayTraced && !ctx.plan_full && ctx.gpu_scene.convex_shell(ctx.scene);
+        if unblockable {
+            ctx.skip("vpl_shadow_rays", "every surface lies on the scene's convex hull: no segment between two surface points can be blocked");
+        }
+        if mode == VisibilityMode::None || unblockable {
+            if mode == VisibilityMode::None {
+                ctx.skip("vpl_shadow_maps", "visibility=\"none\": virtual lights are unshadowed");
+            }
             let nodes = ctx.rec.storage_written("visibility_placeholder_node_buffer", PLACEHOLDER_BYTES);
             let triangles = ctx.rec.storage_written("visibility_placeholder_triangle_buffer", PLACEHOLDER_BYTES);
             return Ok(Self { traced: false, nodes, triangles, ids });

@@ -394,6 +394,7 @@ impl Renderer {
             settings: Vec::new(),
             stop: job.opts.stop.as_ref(),
             power_staging: &mut slot.power_staging,
+            plan_full: job.opts.plan == "full",
         };
         job.method.record(&mut ctx)?;
         let FrameContext { mut rec, skipped: method_skipped, vsgls, captured_rsm, stderr, settings: method_settings, .. } = ctx;

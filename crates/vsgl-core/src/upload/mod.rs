@@ -9,6 +9,7 @@
 //! "Scene upload cache").
 
 pub mod bvh;
+pub mod convex;
 
 use crate::error::{Error, Result};
 use crate::gpu::Gpu;
@@ -85,6 +86,9 @@ pub struct GpuScene {
     /// The ray tracers' BVH over these very triangles, built on first use and kept with the
     /// upload (a changed geometry re-uploads, and so rebuilds it).
     bvh: std::sync::Mutex<Option<std::sync::Arc<GpuBvh>>>,
+    /// Whether the surfaces lie on their convex hull ([`convex::is_convex_shell`]), found on
+    /// first use and kept with the upload like the BVH.
+    convex_shell: std::sync::OnceLock<bool>,
 }
 
 /// A BVH on the GPU (layout in `wgsl/common/bvh.wgsl`).
@@ -114,6 +118,12 @@ fn storage(gpu: &Gpu, label: &str, bytes: &[u8], extra: wgpu::BufferUsages) -> w
 impl GpuScene {
     /// The BVH of the uploaded triangles, relative to [`Self::anchor`] like them (`scene` must
     /// be what the upload was made from), built now if no frame has needed it yet (then `true`).
+    /// Whether no segment between two surface points of this upload can be blocked (every
+    /// surface on the convex hull); computed once per upload.
+    pub fn convex_shell(&self, scene: &Scene) -> bool {
+        *self.convex_shell.get_or_init(|| convex::is_convex_shell(&bvh::scene_triangles(scene, self.anchor), self.extent))
+    }
+
     pub fn bvh(&self, gpu: &Gpu, scene: &Scene) -> Result<(std::sync::Arc<GpuBvh>, bool)> {
         let mut cached = self.bvh.lock().unwrap_or_else(|e| e.into_inner());
         if let Some(b) = cached.as_ref() {
@@ -265,6 +275,7 @@ impl GpuScene {
             triangle_count: tri_mat.len() as u32,
             extent: if extent.is_finite() && extent > 0.0 { extent } else { 1.0 },
             bvh: Default::default(),
+            convex_shell: Default::default(),
         })
     }
 }
