@@ -532,4 +532,21 @@ mod tests {
         assert_eq!(c.set_transform("no such node", DMat4::IDENTITY), 0);
         assert_eq!(c.geometry_version, v + 1);
     }
+
+    #[test]
+    fn a_pose_beyond_the_coordinate_bound_is_refused_and_changes_nothing() {
+        use animation::{AnimatedProperty, Channel, Interpolation, Keyframes};
+        let mut s = builtin::cornell_box();
+        let node = s.nodes.iter().position(|n| n.name == "short_block").unwrap();
+        let keys = Keyframes::new(vec![0.0, 1.0], vec![0.0, 0.0, 0.0, 1e19, 0.0, 0.0], 3, Interpolation::Linear).unwrap();
+        s.rest_poses.insert(node, Trs::default());
+        s.animations.push(Animation { name: "away".into(), channels: vec![Channel { node, property: AnimatedProperty::Translation, keys }] });
+        s.set_time(0.0).unwrap();
+        let (local, version) = (s.nodes[node].local, s.geometry_version);
+        let e = s.set_time(1.0).unwrap_err().to_string();
+        assert!(e.contains("beyond ±1e18"), "{e}");
+        assert_eq!((s.nodes[node].local, s.geometry_version), (local, version));
+        s.set_time(1e-19).unwrap(); // 1 m: fine
+        assert_eq!(s.geometry_version, version + 1, "a moved mesh must be uploaded again");
+    }
 }
