@@ -142,6 +142,12 @@ def animate(
             # GIF frame durations are in milliseconds (Pillow's plugin); loop=0 repeats forever.
             iio.imwrite(output, rgb, duration=1000.0 / fps, loop=0)
         else:
+            # H.264 in yuv420p needs even sides (chroma is halved in both directions), and tiles
+            # with 1-pixel separators are often odd: pad one black row/column rather than let
+            # the writer resize (blurring every frame).
+            pad_h, pad_w = rgb.shape[1] % 2, rgb.shape[2] % 2
+            if pad_h or pad_w:
+                rgb = np.pad(rgb, ((0, 0), (0, pad_h), (0, pad_w), (0, 0)))
             iio.imwrite(output, rgb, fps=fps, codec="libx264", macro_block_size=1)
         files.append(output)
     h, w = tiles[0].shape[:2]
