@@ -119,3 +119,14 @@ def test_video_round_trip(tiny, tmp_path, suffix, tolerance, methods):
     # GIF quantises to a palette (exact here: the dark tiny frames have few colours; measured 0)
     # and H.264 is lossy (measured mean 1.2 levels of 255, max 24).
     assert np.abs(decoded - expected).mean() < tolerance
+
+
+def test_a_clip_plays_in_jupyter(tiny):
+    c = video.clip(tiny, vsgl.scenes.cave_flashlight(), ["vsgl2"], frames=3, fps=5, options=OPTIONS)
+    html = c._repr_html_()
+    assert len(c.frames) == 3 and html.count("data:image/png;base64,") == 4  # first frame + the list of 3
+    assert "setInterval" in html and "200.000" in html  # 1000 ms / 5 fps
+    with pytest.raises(ValueError, match="frames: expected a non-empty list"):
+        video.Clip([np.zeros((4, 4, 3), np.float32)])
+    with pytest.raises(ValueError, match="fps: expected a finite number"):
+        video.Clip([np.zeros((4, 4, 4), np.uint8)], fps=0)

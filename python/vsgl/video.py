@@ -5,6 +5,9 @@ which poses the scene's animations) and read back as the GPU-tone-mapped ``ldr``
 uint8). Several methods (``--compare vpl,vsgl,reference``) are tiled left to right with a
 1-pixel white separator; their order is printed and stored in each PNG's ``Comment``.
 
+In a notebook, :func:`clip` returns a :class:`Clip` that plays the frames inline (PNG data
+URIs and a timer; no package needed).
+
 Writers: a folder of PNGs when the output ends with ``/`` (standard library only), ``.gif``
 and ``.mp4`` through ``imageio`` (+ ``imageio-ffmpeg`` for mp4), the optional extra
 ``pip install vsgl[video]``.
@@ -49,6 +52,11 @@ def tile(images: Sequence[np.ndarray]) -> np.ndarray:
 def write_png(path: str | pathlib.Path, rgba: np.ndarray, comment: str | None = None) -> None:
     """An 8-bit RGBA PNG (PNG spec, ISO/IEC 15948: IHDR, optional tEXt, one zlib IDAT with
     filter 0 on every row, IEND), so a PNG folder needs no optional package."""
+    with open(path, "wb") as fh:
+        _png_bytes(fh, rgba, comment)
+
+
+def _png_bytes(out, rgba: np.ndarray, comment: str | None = None) -> None:
     rgba = np.ascontiguousarray(rgba, np.uint8)
     h, w = rgba.shape[:2]
 
@@ -56,11 +64,11 @@ def write_png(path: str | pathlib.Path, rgba: np.ndarray, comment: str | None = 
         return struct.pack(">I", len(payload)) + kind + payload + struct.pack(">I", zlib.crc32(kind + payload) & 0xFFFFFFFF)
 
     rows = np.concatenate([np.zeros((h, 1), np.uint8), rgba.reshape(h, w * 4)], axis=1)
-    out = b"\x89PNG\r\n\x1a\n" + chunk(b"IHDR", struct.pack(">IIBBBBB", w, h, 8, 6, 0, 0, 0))
+    data = b"\x89PNG\r\n\x1a\n" + chunk(b"IHDR", struct.pack(">IIBBBBB", w, h, 8, 6, 0, 0, 0))
     if comment:
-        out += chunk(b"tEXt", b"Comment\x00" + comment.encode("latin-1", "replace"))
-    out += chunk(b"IDAT", zlib.compress(rows.tobytes(), 6)) + chunk(b"IEND", b"")
-    pathlib.Path(path).write_bytes(out)
+        data += chunk(b"tEXt", b"Comment\x00" + comment.encode("latin-1", "replace"))
+    data += chunk(b"IDAT", zlib.compress(rows.tobytes(), 6)) + chunk(b"IEND", b"")
+    out.write(data)
 
 
 def _imageio(kind: str):
@@ -86,27 +94,12 @@ def output_kind(output: str) -> str:
     raise ValueError(f"output: expected a folder ending with '/', a .gif or a .mp4, got {output!r}")
 
 
-def animate(
-    renderer,
-    scene,
-    methods: Sequence[str],
-    *,
-    frames: int,
-    fps: float,
-    output: str,
-    options: dict[str, Any] | None = None,
-    progress: Callable[[int, int], None] | None = None,
-) -> dict[str, Any]:
-    """Renders ``frames`` frames of ``scene`` at ``fps`` with each method of ``methods``, tiles
-    them left to right and writes ``output``. ``options`` are render options, each passed only
-    to the methods that take it. Checks the output kind (and the optional packages it needs)
-    before rendering. Returns {"files": [...], "frames", "size": (W, H), "methods"}.
-    """
+def render_tiles(renderer, scene, methods: Sequence[str], times: Sequence[float], options: dict[str, Any] | None = None,
+                 progress: Callable[[int, int], None] | None = None) -> list[np.ndarray]:
+    """The ``ldr`` frames of ``scene`` at ``times`` for each method, tiled left to right: one
+    (H, W·M + M − 1, 4) uint8 array per time. ``options`` go only to the methods that take them."""
     import vsgl
 
-    kind = output_kind(output)
-    iio = None if kind == "png-folder" else _imageio(kind)
-    times = frame_times(frames, fps)
     if not methods:
         raise ValueError("methods: expected at least one method")
     for m in methods:
@@ -126,7 +119,69 @@ def animate(
             if progress is not None:
                 progress(done, total)
         per_method.append(images)
-    tiles = [tile([per_method[i][k] for i in range(len(methods))]) for k in range(len(times))]
+    return [tile([per_method[i][k] for i in range(len(methods))]) for k in range(len(times))]
+
+
+class Clip:
+    """Frames shown as an animation in Jupyter (``_repr_html_``: the frames as PNG data URIs and
+    a few lines of script that step through them at ``fps``), so a notebook needs no video
+    package. ``vsgl.video.clip(renderer, scene, ["vpl", "vsgl"], frames=60)`` makes one."""
+
+    def __init__(self, frames: Sequence[np.ndarray], fps: float = 30.0) -> None:
+        arrays = [np.asarray(f) for f in frames]
+        if not arrays or any(a.dtype != np.uint8 or a.ndim != 3 or a.shape[2] not in (3, 4) or a.shape != arrays[0].shape for a in arrays):
+            raise ValueError("frames: expected a non-empty list of (H, W, 3 or 4) uint8 images of one shape (the ldr AOV)")
+        frame_times(len(arrays), fps)  # checks fps
+        self.frames = [a if a.shape[2] == 4 else np.concatenate([a, np.full(a.shape[:2] + (1,), 255, np.uint8)], axis=2) for a in arrays]
+        self.fps = float(fps)
+
+    def _repr_html_(self) -> str:
+        import base64
+        import io
+        import uuid
+
+        uris = []
+        for f in self.frames:
+            buf = io.BytesIO()
+            _png_bytes(buf, f)
+            uris.append("data:image/png;base64," + base64.b64encode(buf.getvalue()).decode())
+        element = f"vsgl-clip-{uuid.uuid4().hex}"
+        h, w = self.frames[0].shape[:2]
+        scale = max(1, 320 // max(w, 1))  # tiny test renders are hard to see at 1:1
+        return (
+            f'<img id="{element}" src="{uris[0]}" width="{w * scale}" height="{h * scale}" style="image-rendering: pixelated">'
+            f"<script>(function() {{ const f = {uris!r}; let k = 0; const img = document.getElementById('{element}');"
+            f" setInterval(function() {{ k = (k + 1) % f.length; img.src = f[k]; }}, {1000.0 / self.fps:.3f}); }})();</script>"
+        )
+
+
+def clip(renderer, scene, methods: Sequence[str] = ("vsgl",), *, frames: int = 60, fps: float = 30.0,
+         options: dict[str, Any] | None = None) -> Clip:
+    """Renders ``frames`` frames of the scene's animation (time k / fps) with ``methods`` tiled
+    left to right, as a :class:`Clip` for a Jupyter notebook."""
+    return Clip(render_tiles(renderer, scene, methods, frame_times(frames, fps), options), fps)
+
+
+def animate(
+    renderer,
+    scene,
+    methods: Sequence[str],
+    *,
+    frames: int,
+    fps: float,
+    output: str,
+    options: dict[str, Any] | None = None,
+    progress: Callable[[int, int], None] | None = None,
+) -> dict[str, Any]:
+    """Renders ``frames`` frames of ``scene`` at ``fps`` with each method of ``methods``, tiles
+    them left to right and writes ``output``. ``options`` are render options, each passed only
+    to the methods that take it. Checks the output kind (and the optional packages it needs)
+    before rendering. Returns {"files": [...], "frames", "size": (W, H), "methods"}.
+    """
+    kind = output_kind(output)
+    iio = None if kind == "png-folder" else _imageio(kind)
+    times = frame_times(frames, fps)
+    tiles = render_tiles(renderer, scene, methods, times, options, progress)
     label = "tiles left to right: " + " | ".join(methods)
     files: list[str] = []
     if kind == "png-folder":
