@@ -2,8 +2,8 @@
 that VSGLs flicker less than VPLs under a moving light, and less with a larger K.
 
 Images are 32×32 with a 64² RSM and 8 frames (lavapipe runs the shaders on the CPU). The
-moving-light sequences draw a new seed every frame (seed = frame index), as a real-time renderer
-would: with a fixed seed the frame-to-frame change of the random numbers is left out, and what
+moving-light sequences draw a new seed every frame (`{"seed": k}` in frame k of
+`render_sequence`), as a real-time renderer would: with a fixed seed the frame-to-frame change of the random numbers is left out, and what
 is measured is only how the sampling reacts to the moving light (docs/rendering.md, "Temporal
 coherence", has both). The methods run in their real-time configuration (interleave 8 and the
 denoiser for vpl and vsgl), and flicker is taken on the `indirect` AOV, where they differ.
@@ -88,19 +88,29 @@ def moving_light(small):
         scene, [{"lights": ls} for ls in lights], method="reference", aovs=["indirect"], rsm_size=RSM)])
 
     def sequence(method: str, **options) -> np.ndarray:
-        out = []
-        for k, ls in enumerate(lights):
-            scene.lights = ls
-            frame = small.render(scene, method=method, aovs=["indirect"], rsm_size=RSM,
-                                 num_lights=NUM_LIGHTS, seed=k, **options)
-            out.append(frame.aov("indirect"))
-        return np.stack(out)
+        changes = [{"lights": ls, "seed": k} for k, ls in enumerate(lights)]
+        return np.stack([f.aov("indirect") for f in small.render_sequence(
+            scene, changes, method=method, aovs=["indirect"], rsm_size=RSM, num_lights=NUM_LIGHTS, **options)])
 
-    return truth, sequence
+    return truth, sequence, scene, lights
+
+
+def test_a_seed_per_frame_in_a_sequence_equals_render_calls(small, moving_light):
+    _, sequence, scene, lights = moving_light
+    frames = sequence("vsgl")[:3]
+    for k in range(3):
+        scene.lights = lights[k]
+        one = small.render(scene, method="vsgl", aovs=["indirect"], rsm_size=RSM, num_lights=NUM_LIGHTS, seed=k)
+        np.testing.assert_array_equal(frames[k], one.aov("indirect"))
+    assert not np.array_equal(frames[0], frames[1])
+    with pytest.raises(vsgl.ArgumentError, match=r'frames\[0\]\["seed"\]'):
+        list(small.render_sequence(scene, [{"seed": 1}], method="reference", rsm_size=RSM))
+    with pytest.raises(vsgl.ArgumentError, match=r'frames\[0\]\["seed"\]'):
+        list(small.render_sequence(scene, [{"seed": -1}], method="vsgl", rsm_size=RSM))
 
 
 def test_vsgl_flickers_less_than_vpl_at_equal_n_and_less_with_larger_k(moving_light):
-    truth, sequence = moving_light
+    truth, sequence, _, _ = moving_light
     vpl = flicker(sequence("vpl", interleave=8), truth)
     vsgl_k1 = flicker(sequence("vsgl", K=1.0), truth)
     vsgl_k4 = flicker(sequence("vsgl", K=4.0), truth)

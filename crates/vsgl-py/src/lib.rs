@@ -468,6 +468,8 @@ struct SequenceState {
     /// The sequence's own copy of the scene, which the per-frame changes edit.
     scene: Scene,
     camera: Option<Camera>,
+    /// The seed set by a frame's `"seed"` (kept for later frames), replacing the sequence's.
+    seed: Option<OptionValue>,
     /// Index of the next item of `frames`.
     index: usize,
     /// The frame submitted ahead of the one being returned.
@@ -484,7 +486,7 @@ impl PyFrameSequence {
         let item = item?;
         let index = st.index;
         st.index += 1;
-        let changes = item.cast::<PyDict>().map_err(|_| argument_error(format!("frames[{index}]: expected a dict of \"camera\", \"lights\", \"transforms\", \"time\", got {}", item.get_type().name().map(|n| n.to_string()).unwrap_or_default())))?;
+        let changes = item.cast::<PyDict>().map_err(|_| argument_error(format!("frames[{index}]: expected a dict of \"camera\", \"lights\", \"transforms\", \"time\", \"seed\", got {}", item.get_type().name().map(|n| n.to_string()).unwrap_or_default())))?;
         for (key, value) in changes.iter() {
             let key: String = key.extract()?;
             match key.as_str() {
@@ -492,6 +494,17 @@ impl PyFrameSequence {
                 "lights" => {
                     let lights: Vec<AnyLight> = value.extract().map_err(|_| argument_error(format!("frames[{index}][\"lights\"]: expected a list of lights")))?;
                     st.scene.set_lights(lights.into_iter().map(Light::from).collect());
+                }
+                "seed" => {
+                    // A new seed per frame, as a real-time renderer draws fresh random numbers;
+                    // checked against the method's own range like the `seed=` of `render`.
+                    let what = format!("frames[{index}][\"seed\"]");
+                    let v = option_value(&self.opts.method, "seed", &value).map_err(|e| argument_error(format!("{what}: {e}")))?;
+                    let mut trial = self.opts.clone();
+                    trial.options.retain(|(n, _)| n != "seed");
+                    trial.options.push(("seed".into(), v.clone()));
+                    trial.resolve().map_err(|e| argument_error(format!("{what}: {e}")))?;
+                    st.seed = Some(v);
                 }
                 "time" => {
                     let t = crate::args::float(&value).map_err(|_| argument_error(format!("frames[{index}][\"time\"]: expected a number of seconds")))?;
@@ -506,10 +519,15 @@ impl PyFrameSequence {
                         set_node_transform(&mut st.scene, &node, matrix, &format!("{what}[{node:?}]"), &what)?;
                     }
                 }
-                other => return Err(argument_error(format!("frames[{index}]: unknown key {other:?}; a frame may set \"camera\", \"lights\", \"transforms\", \"time\""))),
+                other => return Err(argument_error(format!("frames[{index}]: unknown key {other:?}; a frame may set \"camera\", \"lights\", \"transforms\", \"time\", \"seed\""))),
             }
         }
-        let (r, scene, cam, opts) = (&self.renderer, &st.scene, st.camera, &self.opts);
+        let mut opts = self.opts.clone();
+        if let Some(seed) = &st.seed {
+            opts.options.retain(|(n, _)| n != "seed");
+            opts.options.push(("seed".into(), seed.clone()));
+        }
+        let (r, scene, cam, opts) = (&self.renderer, &st.scene, st.camera, &opts);
         // The submission reads nothing of the scene afterwards: the next item may edit it.
         let (opts, interrupt) = interruptible(opts.clone(), None);
         let submitted = py.detach(|| r.submit(scene, cam.as_ref(), &opts)).map_err(|e| interrupt.raise(e))?;
@@ -889,7 +907,9 @@ impl PyRenderer {
     /// Renders a sequence: `frames` is an iterable of dicts, each of which may set `"camera"`
     /// (a Camera, kept for later frames), `"lights"` (a list that replaces the lights) and
     /// `"transforms"` ({node name: 4×4 matrix}) and `"time"` (seconds: `Scene.set_time`, which
-    /// poses the animated nodes and the lights on them); `camera=` is the first frame's camera. Returns
+    /// poses the animated nodes and the lights on them) and `"seed"` (the method's seed from
+    /// this frame on, e.g. the frame index for fresh random numbers each frame); `camera=` is
+    /// the first frame's camera. Returns
     /// an iterator of Frames with the settings of `render` (validated once, here); frame k+1 is
     /// recorded and submitted before frame k is read back, so the GPU never waits for the copy.
     /// The sequence edits its own copy of `scene`, never `scene` itself. Each frame equals a
@@ -909,7 +929,7 @@ impl PyRenderer {
         let opts = render_options(method, plan, aovs, options)?;
         opts.resolve().map_err(to_py)?;
         let frames = frames.try_iter().map_err(|_| argument_error("frames: expected an iterable of dicts"))?;
-        let state = SequenceState { scene: (*scene.inner).clone(), camera: camera.map(|c| c.inner), index: 0, in_flight: None, deferred: None };
+        let state = SequenceState { scene: (*scene.inner).clone(), camera: camera.map(|c| c.inner), seed: None, index: 0, in_flight: None, deferred: None };
         Ok(PyFrameSequence { renderer: self.inner.clone(), frames: frames.unbind(), opts, state: std::sync::Mutex::new(state) })
     }
     fn __repr__(&self) -> String {
