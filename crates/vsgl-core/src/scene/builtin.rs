@@ -329,6 +329,19 @@ mod tests {
     }
 
     #[test]
+    fn the_glossy_sphere_rolls_and_is_uploaded_again() {
+        let mut s = by_name("glossy_cornell").unwrap();
+        let sphere = s.nodes.iter().position(|n| n.name == "gold_sphere").unwrap();
+        let v = s.geometry_version;
+        s.set_time(1.0).unwrap(); // half way to (−0.5, 0, 0.4)
+        let moved = s.world_transform(sphere).transform_point3(DVec3::ZERO);
+        assert!((moved - DVec3::new(-0.25, 0.0, 0.2)).length() < 1e-12, "{moved}");
+        assert_eq!(s.geometry_version, v + 1, "a moved mesh must be uploaded again");
+        s.set_time(4.0).unwrap();
+        assert!(s.world_transform(sphere).transform_point3(DVec3::ZERO).length() < 1e-12);
+    }
+
+    #[test]
     fn geometric_and_shading_normals_agree() {
         // Flat faces and spheres must be wound so the triangle normal points like the vertex
         // normals; the G-buffer pass relies on it to orient shading normals.
