@@ -371,6 +371,88 @@ def write_spot_light_camera(dirpath) -> pathlib.Path:
     return _write_json(path, root)
 
 
+# Keyframes of ``write_animated`` (hand-checked values in tests/test_animation.py).
+ANIM_TIMES = [0.0, 1.0, 3.0]
+ANIM_TRANSLATIONS = [0.0, 0.0, 0.0, 2.0, 0.0, 0.0, 2.0, 4.0, 0.0]
+# Rotation about +y: 0°, 90°, 180° (x, y, z, w).
+ANIM_ROTATIONS = [0.0, 0.0, 0.0, 1.0,
+                  0.0, math.sin(math.pi / 4), 0.0, math.cos(math.pi / 4),
+                  0.0, 1.0, 0.0, 0.0]
+ANIM_SCALES = [1.0, 1.0, 1.0, 3.0, 3.0, 3.0, 1.0, 1.0, 1.0]
+# CUBICSPLINE translation of the child over [0, 2]: (in-tangent, value, out-tangent) per key.
+ANIM_SPLINE_TIMES = [0.0, 2.0]
+ANIM_SPLINE_VALUES = [0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 1.0, 0.0, 0.0,
+                      0.0, 0.0, 0.0, 1.0, 0.0, 0.0, 0.0, 0.0, 0.0]
+
+
+def _animated(dirpath, *, times=None, translations=None, spline_times=None, sampler_count_off=False) -> pathlib.Path:
+    """A quad on node "mover" (rest translation (5, 0, 0), scale 2) with a spot light on a child
+    node "lamp" (rest: 1 m above its parent, pointing down -y), and two animations:
+    "move" drives the mover's translation (LINEAR), rotation (LINEAR, slerp) and scale (STEP)
+    at ``ANIM_TIMES``; "wiggle" drives the lamp's translation by CUBICSPLINE over [0, 2]."""
+    d = pathlib.Path(dirpath)
+    b = _Bin()
+    pos = b.floats(QUAD_POS, "VEC3", 3)
+    idx = b.indices(QUAD_IDX)
+    t = b.floats(ANIM_TIMES if times is None else times, "SCALAR", 1)
+    tr = b.floats(ANIM_TRANSLATIONS if translations is None else translations, "VEC3", 3)
+    rot = b.floats(ANIM_ROTATIONS, "VEC4", 4)
+    sc = b.floats(ANIM_SCALES, "VEC3", 3)
+    st = b.floats(ANIM_SPLINE_TIMES if spline_times is None else spline_times, "SCALAR", 1)
+    sv = b.floats(ANIM_SPLINE_VALUES, "VEC3", 3)
+    if sampler_count_off:
+        b.accessors[sv]["count"] = 4  # 4 outputs for 2 times: a spline needs 3 per time
+    (d / "animated.bin").write_bytes(bytes(b.data))
+    s = math.sqrt(0.5)
+    root = _root(
+        b,
+        {"uri": "animated.bin", "byteLength": len(b.data)},
+        meshes=[{"name": "quad", "primitives": [{"attributes": {"POSITION": pos}, "indices": idx}]}],
+        nodes=[
+            {"name": "mover", "mesh": 0, "translation": [5.0, 0.0, 0.0], "scale": [2.0, 2.0, 2.0], "children": [1]},
+            {"name": "lamp", "translation": [0.0, 1.0, 0.0], "rotation": [-s, 0.0, 0.0, s],
+             "extensions": {"KHR_lights_punctual": {"light": 0}}},
+        ],
+        scenes=[{"nodes": [0]}],
+        scene=0,
+        extensionsUsed=["KHR_lights_punctual"],
+        extensions={"KHR_lights_punctual": {"lights": [
+            {"type": "spot", "intensity": 10.0, "spot": {"innerConeAngle": 0.3, "outerConeAngle": 0.5}}]}},
+        animations=[
+            {"name": "move",
+             "samplers": [{"input": t, "output": tr},
+                          {"input": t, "output": rot, "interpolation": "LINEAR"},
+                          {"input": t, "output": sc, "interpolation": "STEP"}],
+             "channels": [{"sampler": 0, "target": {"node": 0, "path": "translation"}},
+                          {"sampler": 1, "target": {"node": 0, "path": "rotation"}},
+                          {"sampler": 2, "target": {"node": 0, "path": "scale"}}]},
+            {"name": "wiggle",
+             "samplers": [{"input": st, "output": sv, "interpolation": "CUBICSPLINE"}],
+             "channels": [{"sampler": 0, "target": {"node": 1, "path": "translation"}}]},
+        ],
+    )
+    return _write_json(d / "animated.gltf", root)
+
+
+def write_animated(dirpath) -> pathlib.Path:
+    return _animated(dirpath)
+
+
+def write_animation_counts_mismatch(dirpath) -> pathlib.Path:
+    """The CUBICSPLINE sampler has 4 outputs for 2 times (it needs 6)."""
+    return _animated(dirpath, sampler_count_off=True)
+
+
+def write_animation_times_not_increasing(dirpath) -> pathlib.Path:
+    """Keyframe times 0, 1, 1 of the "move" samplers."""
+    return _animated(dirpath, times=[0.0, 1.0, 1.0])
+
+
+def write_animation_nan_output(dirpath) -> pathlib.Path:
+    """A NaN in the translation keyframes."""
+    return _animated(dirpath, translations=[0.0, 0.0, 0.0, float("nan"), 0.0, 0.0, 2.0, 4.0, 0.0])
+
+
 # ------------------------------------------------------------------------------------------
 # Loads, with a warning
 # ------------------------------------------------------------------------------------------
@@ -526,6 +608,7 @@ VALID = {
     "hierarchy": (write_hierarchy, 2),
     "spot_light_camera": (write_spot_light_camera, 2),
     "emissive_glb": (write_emissive_glb, 2),
+    "animated": (write_animated, 2),
 }
 
 WARNING_CASES = {
@@ -552,6 +635,9 @@ HOSTILE = {
     "non_finite_position": (write_non_finite_position, "accessors[0]"),
     "bad_glb_header": (write_bad_glb_header, "GLB header"),
     "unsupported_required_extension": (write_unsupported_required_extension, "extensionsRequired[0]"),
+    "animation_counts_mismatch": (write_animation_counts_mismatch, "animations[1].samplers[0]"),
+    "animation_times_not_increasing": (write_animation_times_not_increasing, "animations[0].samplers[0].input"),
+    "animation_nan_output": (write_animation_nan_output, "animations[0].samplers[0].output"),
 }
 
 # A second word of each hostile case's message (compare lower-cased).
@@ -571,6 +657,9 @@ HOSTILE_KEYWORDS = {
     "non_finite_position": "non-finite",
     "bad_glb_header": "length",
     "unsupported_required_extension": "not supported",
+    "animation_counts_mismatch": "2 keyframe times but 4 output values",
+    "animation_times_not_increasing": "strictly increasing",
+    "animation_nan_output": "non-finite",
 }
 
 

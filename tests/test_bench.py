@@ -221,3 +221,29 @@ def test_bench_lights_scenes_from_the_shell(tmp_path, capsys):
     with pytest.raises(SystemExit) as e:
         bench.main(argv[:-4] + ["--light", "lamp"])
     assert e.value.code == 2 and "--light" in capsys.readouterr().err
+
+
+def test_sequence_reports_flicker_next_to_error_and_time(tmp_path, renderer):
+    """Issue 19, item 5: `--sequence N` renders N frames of a moving light per configuration
+    (cave_flashlight: its sweep) and reports metrics.flicker of indirect against the
+    reference's frames: 0 for the reference itself, > 0 for the approximations, and vsgl below
+    vpl at equal N; `--K` sweeps vsgl's kernel mass (lavapipe, 32×32, 8 frames: vpl 1.76,
+    vsgl K=1 1.50, K=2 1.25, K=4 1.11, vsgl2 1.01)."""
+    with pytest.raises(ValueError, match="sequence: expected 0"):
+        bench.run(sequence=1, size=(8, 8), out=None, progress=False)
+    with pytest.raises(ValueError, match="Ks: expected kernel masses"):
+        bench.run(Ks=(0.0,), size=(8, 8), out=None, progress=False)
+    report = bench.run(scenes=["cave_flashlight"], methods=["reference", "vpl", "vsgl", "vsgl2"], lights=[32], size=(32, 32),
+                       rsm_sizes=[64], reference_rsm=64, seeds=(0,), frames=1, warmup=0, sequence=4, Ks=(1.0, 4.0),
+                       out=tmp_path, progress=False)
+    flick = {(r.method, r.K): r.flicker_indirect for r in report.rows}
+    assert flick[("reference", None)] == 0.0
+    assert flick[("vsgl2", None)] > 0.0 and flick[("vsgl", 1.0)] < flick[("vpl", None)], flick
+    # --K sweeps vsgl's kernel mass: larger K, less flicker here (the sweep is smooth).
+    assert flick[("vsgl", 4.0)] < flick[("vsgl", 1.0)], flick
+    assert "integral K=4" in bench.table(report)
+    assert "animation over 4 s" in report.sequence_motion["cave_flashlight"]
+    assert "flicker" in bench.table(report)
+    rows = list(csv.DictReader(open(tmp_path / "bench.csv")))
+    assert float(rows[0]["flicker_indirect"]) == 0.0 and {r["K"] for r in rows} == {"", "1.0", "4.0"}
+    assert json.loads((tmp_path / "bench.json").read_text())["sequence"] == 4

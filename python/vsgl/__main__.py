@@ -1,4 +1,4 @@
-"""Command line: ``python -m vsgl render|methods|bench|stability|adapters``."""
+"""Command line: ``python -m vsgl render|animate|methods|bench|stability|adapters``."""
 
 from __future__ import annotations
 
@@ -89,6 +89,46 @@ def _render(args: argparse.Namespace) -> int:
     return 0 if finite else 1
 
 
+def _load_scene(name: str):
+    import vsgl
+
+    if name in vsgl.scenes.names():
+        return vsgl.scenes.load(name)
+    if os.path.exists(name):
+        return vsgl.Scene.load(name)
+    raise ValueError(f"scene {name!r} is neither a file nor a built-in scene ({', '.join(vsgl.scenes.names())})")
+
+
+def _animate(args: argparse.Namespace) -> int:
+    import vsgl
+    from vsgl import video
+
+    methods = [m.strip() for m in (args.compare or args.method).split(",") if m.strip()]
+    # Fail on the output kind and the optional packages before the scene or the GPU is touched.
+    video.output_kind(args.output)
+    scene = _load_scene(args.scene)
+    if not scene.animations:
+        print(f"warning: {args.scene} has no animations: every frame shows the same pose", file=sys.stderr)
+    width, height = args.size
+    renderer = vsgl.Renderer(width=width, height=height, adapter=args.adapter)
+    options = dict(num_lights=args.lights, rsm_size=args.rsm_size, seed=args.seed, K=args.K,
+                   interleave=args.interleave, spp=args.spp)
+    t0 = time.perf_counter()
+    result = video.animate(renderer, scene, methods, frames=args.frames, fps=args.fps, output=args.output,
+                           options=options, progress=video.main_progress)
+    seconds = time.perf_counter() - t0
+    w, h = result["size"]
+    print(f"scene     {scene!r}")
+    for a in scene.animations:
+        print(f"animation {a['name']}: {a['duration']:.3g} s, {a['channels']} channel(s)")
+    print(f"adapter   {renderer.adapter['name']} ({renderer.adapter['device_type']})")
+    print(f"frames    {result['frames']} at {args.fps:g} fps ({result['frames'] / args.fps:.3g} s), {w}x{h}, {result['label']}")
+    print(f"wall      {seconds:.2f} s ({1e3 * seconds / max(1, result['frames'] * len(methods)):.1f} ms a frame and method)")
+    where = args.output if len(result["files"]) == 1 else f"{args.output} ({len(result['files'])} PNG files)"
+    print(f"wrote     {where}")
+    return 0
+
+
 def _adapters(_: argparse.Namespace) -> int:
     import vsgl
 
@@ -175,6 +215,23 @@ def main(argv: list[str] | None = None) -> int:
     render.add_argument("--adapter", default=None, help="adapter name substring (default: best, or $VSGL_ADAPTER)")
     render.add_argument("--explain", action="store_true", help="print the pass plan and what was left out, with reasons")
     render.set_defaults(run=_render)
+
+    animate = sub.add_parser("animate", help="render a scene's animation to .mp4, .gif or a folder of PNGs")
+    animate.add_argument("scene", nargs="?", default="cave_flashlight", help="built-in scene name or .gltf/.glb path (default: cave_flashlight)")
+    animate.add_argument("-o", "--output", default="frames/", help="a folder ending with '/' (PNGs), .gif or .mp4 (the last two: pip install vsgl[video]) (default: frames/)")
+    animate.add_argument("--method", default="vsgl", choices=list(vsgl.METHODS), help="the method (default: vsgl)")
+    animate.add_argument("--compare", default=None, metavar="M1,M2,...", help="tile several methods left to right, e.g. vpl,vsgl,reference")
+    animate.add_argument("--frames", type=int, default=120, help="number of frames (default: 120)")
+    animate.add_argument("--fps", type=float, default=30.0, help="frames per second; frame k shows time k/fps (default: 30)")
+    animate.add_argument("--size", type=_size, default=(320, 180), help="WIDTHxHEIGHT of each tile (default: 320x180)")
+    animate.add_argument("--lights", type=int, default=256, help="VPLs or VSGLs in all (default: 256)")
+    animate.add_argument("--rsm-size", type=int, default=None, help="RSM side (default: the method's)")
+    animate.add_argument("--K", type=float, default=None, help="vsgl kernel mass K (default: 1)")
+    animate.add_argument("--interleave", type=int, default=None, help="interleaving tile side of vsgl and vpl (default: the method's)")
+    animate.add_argument("--seed", type=int, default=0, help="sampling seed, the same every frame (default: 0)")
+    animate.add_argument("--spp", type=int, default=None, help="samples per pixel of pathtrace (default: 64)")
+    animate.add_argument("--adapter", default=None, help="adapter name substring (default: best, or $VSGL_ADAPTER)")
+    animate.set_defaults(run=_animate)
 
     methods = sub.add_parser("methods", help="list the methods and the options each takes")
     methods.set_defaults(run=_methods)

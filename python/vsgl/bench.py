@@ -117,6 +117,12 @@ class Row:
     # relative RMS error of 8×8 block averages of the indirect AOV.
     ssim_image: float | None = None
     block_rmse_indirect: float | None = None
+    # vsgl's kernel mass K when --K sweeps it (None: the method's default, 1).
+    K: float | None = None
+    # With --sequence N: metrics.flicker of the indirect AOV over N frames of a moving light
+    # (the scene's animation, or its lights slid along x) against the every-texel reference of
+    # the same frames; stochastic methods draw seed k in frame k, as a real-time renderer would.
+    flicker_indirect: float | None = None
 
 
 @dataclass
@@ -148,6 +154,9 @@ class Report:
     equal_time: list[dict[str, Any]] = field(default_factory=list)
     # Settings a CPU adapter scaled down from GPU_DEFAULTS (name: value used), if any.
     scaled_for_cpu: dict[str, Any] = field(default_factory=dict)
+    # Frames of the flicker sequence per configuration (0: not measured) and how it moves.
+    sequence: int = 0
+    sequence_motion: dict[str, str] = field(default_factory=dict)
 
     def to_json(self) -> dict[str, Any]:
         d = asdict(self)
@@ -335,6 +344,8 @@ def run(
     out=None,
     cache_dir=None,
     progress=True,
+    sequence=0,
+    Ks=(None,),
 ) -> Report:
     """Runs the sweep and returns a :class:`Report`; with ``out`` also writes CSV, JSON and plots.
 
@@ -356,6 +367,10 @@ def run(
         raise ValueError(f"plans: expected a non-empty list of \"auto\" and \"full\", got {list(plans)}")
     if seeds is not None and len(seeds) < 1:
         raise ValueError("seeds: expected at least one seed")
+    if not Ks or any(K is not None and not (isinstance(K, (int, float)) and np.isfinite(K) and K > 0) for K in Ks):
+        raise ValueError(f"Ks: expected kernel masses K > 0 (or None for the default), got {list(Ks)}")
+    if isinstance(sequence, bool) or not isinstance(sequence, int) or sequence < 0 or sequence == 1:
+        raise ValueError(f"sequence: expected 0 (off) or a number of frames >= 2, got {sequence!r}")
     # The adapter decides the defaults; a tiny renderer finds it (~0.1 s) before the real one.
     probe = vsgl.Renderer(width=8, height=8, adapter=adapter) if size is None else None
     renderer = probe or vsgl.Renderer(width=size[0], height=size[1], adapter=adapter)
@@ -394,6 +409,7 @@ def run(
         warmup_seconds=0.0 if cpu else warmup_seconds,
         note=" ".join(notes),
         scaled_for_cpu=scaled,
+        sequence=sequence,
         reference_error_method=(
             "pathtrace: sqrt(mean(stderr²) / mean(ref²)) of the indirect AOV, the expected relative RMS error of its mean"
             if reference == "pathtrace" else
@@ -407,28 +423,29 @@ def run(
             for n in lights:
                 for r in rsm_sizes:
                     for k in (kernels if m == "vsgl" else (None,)):
-                        configs.append((m, n, r, k))
+                        for K in (Ks if m == "vsgl" else (None,)):
+                            configs.append((m, n, r, k, K))
         elif m in ("reference", "vsgl2"):
             # Deterministic and without a light count: one configuration per RSM size.
             for r in rsm_sizes:
-                configs.append((m, None, r, None))
+                configs.append((m, None, r, None, None))
         else:
-            configs.append((m, None, None, None))
+            configs.append((m, None, None, None, None))
     # Plans alternate inside one configuration so both see the same machine state.
     configs = [(*c, plan) for c in configs for plan in plans]
     # Per row (by its index in report.rows): its SeedErrors, for the equal-time comparisons.
     seed_stats: dict[int, metrics.SeedErrors] = {}
     for scene_name in scenes:
-        scene = _scene(scene_name)
-        if not scene_lights:
-            scene.lights = []
-        for light in add_lights:
-            scene.add_light(light)
+        scene = _lit_scene(scene_name, scene_lights, add_lights)
+        motion = None
+        if sequence:
+            motion, truth_frames = _sequence_truth(renderer, scene_name, scene_lights, add_lights, sequence, reference_rsm)
+            report.sequence_motion[scene_name] = motion
         ref = _scene_reference(renderer, scene, scene_name, (w, h), reference, ref_settings, cache_dir, progress, report)
         ref_error = report.reference_rel_error[scene_name]
         ref_has_light = bool(np.any(ref.indirect != 0))
         bar = _progress(len(configs), progress)
-        for method, n, rsm, kernel, plan in configs:
+        for method, n, rsm, kernel, K, plan in configs:
             settings: dict[str, Any] = {"plan": plan}
             if n is not None:
                 settings["num_lights"] = n
@@ -436,6 +453,8 @@ def run(
                 settings["rsm_size"] = rsm
             if kernel is not None:
                 settings.update(kernel=kernel, interleave=interleave)
+            if K is not None:
+                settings["K"] = float(K)
             if method == "vpl":
                 # 1: every VPL at every pixel (the baseline); 8: the papers' equal-footing
                 # comparison, interleaved and denoised like the VSGLs.
@@ -488,6 +507,7 @@ def run(
                 num_lights=n,
                 rsm_size=rsm,
                 kernel=kernel,
+                K=K,
                 seeds=len(run_seeds),
                 total_ms_median=statistics.median(totals),
                 total_ms_min=min(totals),
@@ -510,6 +530,9 @@ def run(
             )
             if ref_has_light:
                 _trust(row, indirects, ref, method in STOCHASTIC, seed_stats, len(report.rows))
+            if sequence:
+                seq = _sequence_frames(renderer, scene_name, scene_lights, add_lights, sequence, method, settings)
+                row.flicker_indirect = metrics.flicker(seq, truth_frames) if np.any(truth_frames != 0) else None
             if all(np.array_equal(x, ref.indirect) for x in indirects):
                 # Bit for bit the reference (same method and settings): it cannot judge itself,
                 # and it does not compete in equal_time.
@@ -522,6 +545,71 @@ def run(
     if out is not None:
         write(report, out)
     return report
+
+
+def _lit_scene(scene_name: str, scene_lights: bool, add_lights) -> vsgl.Scene:
+    """A fresh copy of the scene with the bench's light options applied."""
+    scene = _scene(scene_name)
+    if not scene_lights:
+        scene.lights = []
+    for light in add_lights:
+        scene.add_light(light)
+    return scene
+
+
+def _sequence_changes(scene: vsgl.Scene, frames: int) -> tuple[str, list[dict[str, Any]]]:
+    """Per frame: {"time": t} over the scene's animations when it has any, else {"lights": ...}
+    with every spot and point light slid along +x across 10% of the bounds diagonal (a
+    directional light has no position and stays). Returns (a description, the changes)."""
+    if scene.animations:
+        duration = max(a["duration"] for a in scene.animations)
+        times = [duration * k / (frames - 1) for k in range(frames)]
+        return f"animation over {duration:g} s", [{"time": t} for t in times]
+    lo, hi = (np.array(v) for v in scene.bounds)
+    span = 0.1 * float(np.linalg.norm(hi - lo))
+    changes = []
+    for k in range(frames):
+        dx = span * (k / (frames - 1) - 0.5)
+        moved = []
+        for light in scene.lights:
+            if isinstance(light, vsgl.SpotLight):
+                x, y, z = light.position
+                moved.append(vsgl.SpotLight(position=(x + dx, y, z), direction=light.direction, intensity=light.intensity,
+                                            color=light.color, inner_cone_deg=light.inner_cone_deg, outer_cone_deg=light.outer_cone_deg))
+            elif isinstance(light, vsgl.PointLight):
+                x, y, z = light.position
+                moved.append(vsgl.PointLight(position=(x + dx, y, z), intensity=light.intensity, color=light.color))
+            else:
+                moved.append(light)
+        changes.append({"lights": moved})
+    return f"lights slid {span:.3g} along +x", changes
+
+
+def _sequence_truth(renderer, scene_name, scene_lights, add_lights, frames, reference_rsm) -> tuple[str, np.ndarray]:
+    """The every-texel reference's indirect AOV for each frame of the flicker sequence."""
+    scene = _lit_scene(scene_name, scene_lights, add_lights)
+    motion, changes = _sequence_changes(scene, frames)
+    truth = np.stack([f.aov("indirect") for f in renderer.render_sequence(
+        scene, changes, method="reference", aovs=["indirect"], rsm_size=reference_rsm)])
+    return motion, truth
+
+
+def _sequence_frames(renderer, scene_name, scene_lights, add_lights, frames, method, settings) -> np.ndarray:
+    """The method's indirect AOV over the flicker sequence, seed k in frame k for a
+    stochastic method (fresh random numbers every frame, as a real-time renderer draws them)."""
+    scene = _lit_scene(scene_name, scene_lights, add_lights)
+    _, changes = _sequence_changes(scene, frames)
+    quiet = {k: v for k, v in settings.items() if k not in ("aovs", "seed")}
+    out = []
+    for k, change in enumerate(changes):
+        if "time" in change:
+            scene.set_time(change["time"])
+        else:
+            scene.lights = change["lights"]
+        seed = {"seed": k} if method in STOCHASTIC else {}
+        frame = renderer.render(scene, method=method, aovs=["indirect"] if method != "direct" else ["image"], **quiet, **seed)
+        out.append(frame.aov("indirect") if method != "direct" else np.zeros_like(frame.image))
+    return np.stack(out)
 
 
 def _shown(name: str, value: Any) -> str:
@@ -581,12 +669,20 @@ def _trust(row: Row, indirects: list[np.ndarray], ref: _ReferenceRender, stochas
         row.notes.append("reference too noisy")
 
 
+def _kernel_label(kernel: str | None, K: float | None) -> str | None:
+    """The kernel as tables and plots name it: with K when --K set it ("integral K=4")."""
+    if kernel is None:
+        return None
+    return kernel if K is None else f"{kernel} K={K:g}"
+
+
 def _label(r: Row) -> str:
-    return r.method + (f"[{r.kernel}]" if r.kernel else "")
+    k = _kernel_label(r.kernel, r.K)
+    return r.method + (f"[{k}]" if k else "")
 
 
 def _brief(r: Row) -> dict[str, Any]:
-    return {"method": r.method, "kernel": r.kernel, "num_lights": r.num_lights, "rsm_size": r.rsm_size, "total_ms": r.total_ms_median,
+    return {"method": r.method, "kernel": _kernel_label(r.kernel, r.K), "num_lights": r.num_lights, "rsm_size": r.rsm_size, "total_ms": r.total_ms_median,
             "relmse_indirect_debiased": r.relmse_indirect_debiased, "interval": r.relmse_indirect_debiased_interval,
             "reference_too_noisy": r.reference_too_noisy}
 
@@ -620,7 +716,7 @@ def _equal_time(rows: list[Row], seed_stats: dict[int, metrics.SeedErrors]) -> l
 
 def _plan_ratios(rows: list[Row]) -> list[dict[str, Any]]:
     """Pairs each "auto" row with the "full" row of the same configuration."""
-    key = lambda r: (r.scene, r.method, r.num_lights, r.rsm_size, r.kernel)  # noqa: E731
+    key = lambda r: (r.scene, r.method, r.num_lights, r.rsm_size, r.kernel, r.K)  # noqa: E731
     full = {key(r): r for r in rows if r.plan == "full"}
     out = []
     for r in rows:
@@ -657,15 +753,21 @@ def table(report: Report) -> str:
     ]
     if report.note:
         lines.append(f"note      {report.note}")
-    head = (f"{'scene':<16}{'plan':<6}{'method':<10}{'N':>6}{'rsm':>6}{'kernel':>10}{'total ms':>11}{'IQR':>20}{'RMSE ind.':>12}{'± seeds':>10}"
-            f"{'rel ind.':>10}{'bias':>9}{'noise':>9}{'debiased':>11}{'90%':>20}{'SSIM':>7}  flag")
+    if report.sequence:
+        moves = ", ".join(f"{k}: {v}" for k, v in report.sequence_motion.items())
+        lines.append(f"flicker   metrics.flicker of indirect over {report.sequence} frames against the reference's frames "
+                     f"(seed k in frame k for vpl and vsgl; {moves})")
+    flick = bool(report.sequence)
+    head = (f"{'scene':<16}{'plan':<6}{'method':<10}{'N':>6}{'rsm':>6}{'kernel':>14}{'total ms':>11}{'IQR':>20}{'RMSE ind.':>12}{'± seeds':>10}"
+            f"{'rel ind.':>10}{'bias':>9}{'noise':>9}{'debiased':>11}{'90%':>20}{'SSIM':>7}{format('flicker', '>9') if flick else ''}  flag")
     lines += [head, "-" * len(head)]
     for r in report.rows:
         lines.append(
-            f"{r.scene:<16}{r.plan:<6}{r.method:<10}{r.num_lights or '-':>6}{r.rsm_size or '-':>6}{r.kernel or '-':>10}"
+            f"{r.scene:<16}{r.plan:<6}{r.method:<10}{r.num_lights or '-':>6}{r.rsm_size or '-':>6}{_kernel_label(r.kernel, r.K) or '-':>14}"
             f"{r.total_ms_median:>11.3f}{f'[{r.total_ms_q1:.3f},{r.total_ms_q3:.3f}]':>20}"
             f"{r.rmse_indirect:>12.5g}{r.rmse_indirect_std:>10.2g}{_num(r.rel_rmse_indirect, '.4g'):>10}{_num(r.bias, '.3g'):>9}{_num(r.noise, '.3g'):>9}"
-            f"{_num(r.relmse_indirect_debiased, '.4g'):>11}{_interval(r.relmse_indirect_debiased_interval):>20}{_num(r.ssim_image, '.3f'):>7}  {'; '.join(r.notes)}"
+            f"{_num(r.relmse_indirect_debiased, '.4g'):>11}{_interval(r.relmse_indirect_debiased_interval):>20}{_num(r.ssim_image, '.3f'):>7}"
+            f"{format(_num(r.flicker_indirect, '.4g'), '>9') if flick else ''}  {'; '.join(r.notes)}"
         )
     for p in report.plan_ratios:
         lines.append(
@@ -705,10 +807,10 @@ def _equal_time_line(e: dict[str, Any], last_budget_ms: float | None = None) -> 
 
 
 CSV_COLUMNS = [
-    "scene", "plan", "method", "num_lights", "rsm_size", "kernel", "seeds", "total_ms_median", "total_ms_q1", "total_ms_q3", "total_ms_min", "total_ms_max",
+    "scene", "plan", "method", "num_lights", "rsm_size", "kernel", "K", "seeds", "total_ms_median", "total_ms_q1", "total_ms_q3", "total_ms_min", "total_ms_max",
     "rmse_indirect", "rmse_indirect_std", "rmse_image", "relmse_indirect", "relmse_image", "flip_image", "rel_rmse_indirect", "bias", "noise",
     "relmse_indirect_debiased", "relmse_indirect_debiased_lo", "relmse_indirect_debiased_hi", "reference_rel_error", "reference_too_noisy",
-    "ssim_image", "block_rmse_indirect", "notes", "passes_ms",
+    "ssim_image", "block_rmse_indirect", "flicker_indirect", "notes", "passes_ms",
 ]
 
 
@@ -738,7 +840,7 @@ def _plots(report: Report, out: pathlib.Path) -> None:
     title = f"{report.adapter['name']}, {report.size[0]}x{report.size[1]}"
     series: dict[tuple, list[Row]] = {}
     for r in report.rows:
-        series.setdefault((r.scene, r.method, r.rsm_size, r.kernel), []).append(r)
+        series.setdefault((r.scene, r.method, r.rsm_size, _kernel_label(r.kernel, r.K)), []).append(r)
     fig, ax = plt.subplots(figsize=(6, 4.5))
     for (scene, method, rsm, kernel), rows in series.items():
         rows = [r for r in rows if r.rel_rmse_indirect]
@@ -811,6 +913,8 @@ def main(argv: list[str] | None = None) -> int:
     p.add_argument("--lights", type=_ints, default=None, help="comma-separated VPL/VSGL counts (default: 16,64,256)")
     p.add_argument("--size", default=None, help="WIDTHxHEIGHT (default: 256x256; 80x80 on a CPU adapter)")
     p.add_argument("--rsm-sizes", type=_ints, default=None, help="comma-separated RSM sides (default: 256; 128 on a CPU adapter)")
+    p.add_argument("--K", type=lambda t: [float(x) for x in t.split(",")], default=None, metavar="K1,K2,...",
+                   help="vsgl kernel masses K to sweep, e.g. 1,2,4 (default: the method's, 1); larger K is smoother in space and time")
     p.add_argument("--kernels", type=_strs, default=["integral"], help="VSGL kernels: integral, density (default: integral)")
     p.add_argument("--interleave", type=int, default=8, help="VSGL interleaving (default: 8)")
     p.add_argument("--vpl-interleave", type=int, default=1,
@@ -832,6 +936,9 @@ def main(argv: list[str] | None = None) -> int:
     p.add_argument("--adapter", default=None, help="adapter name substring")
     p.add_argument("--out", default="bench-out", help="output folder for CSV, JSON, plots and the reference cache (default: bench-out)")
     p.add_argument("--no-progress", action="store_true", help="no progress bar")
+    p.add_argument("--sequence", type=int, default=0, metavar="N",
+                   help="also render N frames per configuration with a moving light (the scene's animation, else its lights slid "
+                        "along x) and report metrics.flicker of indirect against the reference's frames (default: 0, off)")
     a = p.parse_args(argv)
     size = None
     if a.size is not None:
@@ -852,6 +959,7 @@ def main(argv: list[str] | None = None) -> int:
         scenes=a.scene, methods=a.methods, lights=a.lights, size=size, rsm_sizes=a.rsm_sizes, kernels=a.kernels,
         seeds=None if a.seeds is None else tuple(range(a.seeds)), frames=a.frames, warmup=a.warmup, warmup_seconds=a.warmup_seconds, reference=a.reference, reference_rsm=a.reference_rsm,
         reference_spp=a.reference_spp, reference_strategy=a.reference_strategy, add_lights=add_lights, scene_lights=not a.no_scene_lights, interleave=a.interleave, vpl_interleave=a.vpl_interleave, plans=tuple(a.plans), adapter=a.adapter, out=a.out, progress=not a.no_progress,
+        sequence=a.sequence, Ks=tuple(a.K) if a.K else (None,),
     )
     print(table(report))
     print(f"wrote     {os.path.join(a.out, 'bench.csv')}, bench.json, bench.txt and plots (with matplotlib)")

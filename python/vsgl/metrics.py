@@ -16,6 +16,16 @@ Per image, against a reference ``ref`` of the same shape:
 - ``flip(x, ref)``: NVIDIA FLIP (LDR, on tone-mapped sRGB) when the ``flip-evaluator`` package is
   installed, else ``None``.
 
+Over a sequence of frames (temporal coherence, issue 19; docs/rendering.md, "Temporal coherence"):
+
+- ``flicker(frames, reference_frames)``: RMS over pixels, channels and consecutive frame pairs
+  of (Δmethod − Δreference), Δ the difference between consecutive frames, relative to the RMS
+  of the reference frames. 0 when a method changes from frame to frame exactly as the truth
+  does (even with a constant bias); it grows with frame-to-frame noise and with changes the
+  truth does not make.
+- ``temporal_std(frames)``: the per-pixel standard deviation over frames of a static view,
+  averaged over pixels and channels, relative to the mean image's mean: sampling noise alone.
+
 Over seeds of a stochastic method, against a reference with a per-pixel variance estimate:
 
 - ``seed_errors(images, ref, ref_var)`` → :class:`SeedErrors`: ``bias`` and ``noise`` apart and
@@ -344,3 +354,52 @@ def compare_debiased(best: SeedErrors, other: SeedErrors, *, resamples: int = RE
         "ratio": other.relmse_debiased / best.relmse_debiased if defined else None,
         "ratio_interval": (finite(lo), finite(hi)) if defined else (None, None),
     }
+
+
+def _sequence(frames, name: str) -> np.ndarray:
+    """``frames`` as a float64 array (F, H, W[, C]) of at least two finite images."""
+    try:
+        a = np.asarray(frames, np.float64)
+    except (TypeError, ValueError) as e:
+        raise ValueError(f"{name}: expected a sequence of images of one shape ({e})") from None
+    if a.ndim not in (3, 4) or a.shape[1] < 1 or a.shape[2] < 1:
+        raise ValueError(f"{name}: expected frames of shape (F, H, W) or (F, H, W, C), got {a.shape}")
+    if a.shape[0] < 2:
+        raise ValueError(f"{name}: needs at least 2 frames, got {a.shape[0]}")
+    _finite(a, name)
+    return a
+
+
+def flicker(frames, reference_frames) -> float:
+    """Temporal error of a sequence against the true sequence (issue 19's definition):
+
+        flicker = sqrt(mean_{k, pixels} ((x_{k+1} − x_k) − (r_{k+1} − r_k))²) / sqrt(mean r²)
+
+    over the F − 1 consecutive pairs of ``frames`` x and ``reference_frames`` r, both of shape
+    (F, H, W[, C]). A method whose error is the same in every frame scores 0; noise that is
+    drawn anew each frame scores about √2 × its relative RMS. Raises ValueError naming the
+    argument for shapes that differ, fewer than 2 frames, NaN/Inf or an all-zero reference.
+    """
+    x = _sequence(frames, "frames")
+    r = _sequence(reference_frames, "reference_frames")
+    if x.shape != r.shape:
+        raise ValueError(f"reference_frames: shape {r.shape} differs from frames' {x.shape}")
+    scale = float(np.sqrt(np.mean(r**2)))
+    if scale == 0.0:
+        raise ValueError("reference_frames: are zero everywhere, so a flicker relative to them is undefined")
+    change_error = np.diff(x, axis=0) - np.diff(r, axis=0)
+    return float(np.sqrt(np.mean(change_error**2))) / scale
+
+
+def temporal_std(frames) -> float:
+    """Per-pixel standard deviation over ``frames`` (F, H, W[, C]) of a static view with a
+    static light, averaged over pixels and channels, relative to the mean of the per-pixel mean
+    image: the frame-to-frame sampling noise alone (0 for a deterministic method). The standard
+    deviation is the sample one (divisor F − 1), an unbiased variance for any F ≥ 2. Raises
+    ValueError naming ``frames`` for a bad shape, fewer than 2 frames, NaN/Inf or a black mean.
+    """
+    x = _sequence(frames, "frames")
+    mean_level = float(np.mean(x))
+    if mean_level <= 0.0:
+        raise ValueError("frames: their mean is not positive, so a noise relative to it is undefined")
+    return float(np.mean(np.std(x, axis=0, ddof=1))) / mean_level

@@ -6,6 +6,11 @@
 - ``cave_flashlight``: an enclosed room lit only by a narrow spot light, glossy floor.
 - ``diffuse_cornell``: the Cornell box with purely Lambertian materials (no specular
   reflectance at all, ``KHR_materials_specular`` factor 0): a frame leaves out every specular lobe.
+
+Two are animated like glTF files (``scene.animations``, ``scene.set_time(t)``): in
+``cave_flashlight`` the flashlight sweeps 35° left and right over 4 s (``flashlight_sweep``), in
+``glossy_cornell`` the gold sphere rolls to the front and back over 4 s (``sphere_roll``). They
+show their rest pose until ``set_time`` is called.
 """
 
 from __future__ import annotations

@@ -4,7 +4,8 @@
 //! Seeds: the real scenes of `shared/scenes` (copied, with their buffers and images, into a
 //! temporary folder; skipped with a message when the folder is absent) and two small synthetic
 //! files that reach every part of the loader (a `.gltf` with data: URIs and an embedded PNG; a
-//! `.glb` with a BIN chunk, an image in a bufferView, a hierarchy, a camera and a spot light).
+//! `.glb` with a BIN chunk, an image in a bufferView, a hierarchy, a camera and a spot light;
+//! the `.gltf` also has an animation, and every scene that loads is posed at a few times).
 //! Mutations, from one seeded generator: bit flips and byte overwrites, truncation, JSON
 //! numbers replaced by boundary values, JSON fields deleted, retyped, duplicated or pointed at
 //! other indices, GLB header and chunk lengths corrupted, and bytes of a referenced `.bin`.
@@ -162,12 +163,34 @@ fn synthetic_seeds(work: &Path) -> Vec<Seed> {
     std::fs::create_dir_all(&dir).unwrap();
     let mut seeds = Vec::new();
 
-    // .gltf: buffer and image as data: URIs, a material using the texture, a child node.
-    let (data, views, accessors) = quad_binary(None);
+    // .gltf: buffer and image as data: URIs, a material using the texture, a child node, and
+    // an animation (LINEAR translation, STEP rotation) in a second buffer, so mutations reach
+    // the animation loader too.
+    let (data, mut views, mut accessors) = quad_binary(None);
+    let f32s = |v: &[f32]| v.iter().flat_map(|x| x.to_le_bytes()).collect::<Vec<u8>>();
+    let anim: Vec<u8> = [f32s(&[0.0, 1.0]), f32s(&[0., 0., 0., 1., 2., 3.]), f32s(&[0., 0., 0., 1., 0., 0.7071068, 0., 0.7071068])].concat();
+    let first_view = views.as_array().map_or(0, Vec::len);
+    for (offset, len) in [(0, 8), (8, 24), (32, 32)] {
+        views.as_array_mut().unwrap().push(json!({"buffer": 1, "byteOffset": offset, "byteLength": len}));
+    }
+    let first_accessor = accessors.as_array().map_or(0, Vec::len);
+    for (k, (count, ty)) in [(2, "SCALAR"), (2, "VEC3"), (2, "VEC4")].into_iter().enumerate() {
+        accessors.as_array_mut().unwrap().push(json!({"bufferView": first_view + k, "componentType": 5126, "count": count, "type": ty}));
+    }
     let gltf = json!({
         "asset": {"version": "2.0"},
-        "buffers": [{"uri": format!("data:application/octet-stream;base64,{}", base64(&data)), "byteLength": data.len()}],
+        "buffers": [
+            {"uri": format!("data:application/octet-stream;base64,{}", base64(&data)), "byteLength": data.len()},
+            {"uri": format!("data:application/octet-stream;base64,{}", base64(&anim)), "byteLength": anim.len()}
+        ],
         "bufferViews": views, "accessors": accessors,
+        "animations": [{"name": "move", "samplers": [
+            {"input": first_accessor, "output": first_accessor + 1},
+            {"input": first_accessor, "output": first_accessor + 2, "interpolation": "STEP"}
+        ], "channels": [
+            {"sampler": 0, "target": {"node": 1, "path": "translation"}},
+            {"sampler": 1, "target": {"node": 0, "path": "rotation"}}
+        ]}],
         "images": [{"uri": format!("data:image/png;base64,{}", base64(&png(4, 4)))}],
         "textures": [{"source": 0}],
         "materials": [{"pbrMetallicRoughness": {"baseColorTexture": {"index": 0}, "metallicFactor": 0.0}}],
@@ -440,7 +463,15 @@ fn load_bounded(path: &Path) -> Option<(Outcome, Duration)> {
     let p = path.to_path_buf();
     std::thread::spawn(move || {
         let t = Instant::now();
-        let result = catch_unwind(AssertUnwindSafe(|| load_with(&p, &LoadOptions { max_texture_bytes: TEXTURE_BUDGET })));
+        let result = catch_unwind(AssertUnwindSafe(|| {
+            let mut scene = load_with(&p, &LoadOptions { max_texture_bytes: TEXTURE_BUDGET })?;
+            // Play what loaded: sampling must not panic on any keyframes the loader accepted.
+            // A pose beyond the coordinate bound is refused by set_time, not by the loader.
+            for t in [0.0, 0.37, 1.0, 1e30] {
+                let _ = scene.set_time(t);
+            }
+            Ok(scene)
+        }));
         let outcome = match result {
             Ok(Ok(_)) => Outcome::Loaded,
             Ok(Err(Error::Scene { .. })) => Outcome::Refused,

@@ -304,6 +304,18 @@ impl PyScene {
     fn set_transform(&mut self, node_name: &str, matrix: Vec<Vec<f64>>) -> PyResult<()> {
         set_node_transform(Arc::make_mut(&mut self.inner), node_name, matrix, "matrix", "node_name")
     }
+    /// The transform of the first node called `node_name` as a 4×4 row-major list (as
+    /// `set_transform` takes it): its local transform, or with `world=True` its parents'
+    /// composed with it. Raises ArgumentError when no node has that name.
+    #[pyo3(signature = (node_name, *, world=false))]
+    fn transform(&self, node_name: &str, world: bool) -> PyResult<Vec<Vec<f64>>> {
+        let Some(i) = self.inner.nodes.iter().position(|n| n.name == node_name) else {
+            let names: Vec<&str> = self.inner.nodes.iter().map(|n| n.name.as_str()).collect();
+            return Err(argument_error(format!("node_name: no node named {node_name:?}; nodes: {names:?}")));
+        };
+        let m = if world { self.inner.world_transform(i) } else { self.inner.nodes[i].local };
+        Ok((0..4).map(|r| m.row(r).to_array().to_vec()).collect())
+    }
     #[getter]
     fn node_names(&self) -> Vec<String> {
         self.inner.nodes.iter().map(|n| n.name.clone()).collect()
@@ -315,7 +327,38 @@ impl PyScene {
     }
     #[setter]
     fn set_lights(&mut self, lights: Vec<AnyLight>) {
-        Arc::make_mut(&mut self.inner).lights = lights.into_iter().map(Light::from).collect();
+        Arc::make_mut(&mut self.inner).set_lights(lights.into_iter().map(Light::from).collect());
+    }
+    /// The node animations (glTF `animations`, or a built-in's) as dicts: name, duration (the
+    /// last keyframe time, seconds), channels (how many properties it drives), nodes (the names
+    /// of the nodes it moves) and interpolations (the samplers' modes).
+    #[getter]
+    fn animations<'py>(&self, py: Python<'py>) -> PyResult<Vec<Bound<'py, PyDict>>> {
+        self.inner.animations.iter().map(|a| {
+            let d = PyDict::new(py);
+            d.set_item("name", &a.name)?;
+            d.set_item("duration", a.duration())?;
+            d.set_item("channels", a.channels.len())?;
+            let mut nodes: Vec<&str> = Vec::new();
+            let mut modes: Vec<&str> = Vec::new();
+            for c in &a.channels {
+                let name = self.inner.nodes.get(c.node).map_or("", |n| n.name.as_str());
+                if !nodes.contains(&name) { nodes.push(name); }
+                let mode = c.keys.interpolation().name();
+                if !modes.contains(&mode) { modes.push(mode); }
+            }
+            d.set_item("nodes", nodes)?;
+            d.set_item("interpolations", modes)?;
+            Ok(d)
+        }).collect()
+    }
+    /// Poses every animated node at time `t` (seconds): each animation is sampled at `t`
+    /// clamped to its own [0, duration] (rotations by shortest-arc slerp), lights on animated
+    /// nodes follow, and moved geometry is uploaded again at the next render (as after
+    /// `set_transform`). Without animations nothing changes. Raises ArgumentError for a time
+    /// that is not finite, or a pose that moves geometry beyond ±1e18 m (nothing changes then).
+    fn set_time(&mut self, #[pyo3(from_py_with = crate::args::float)] t: f64) -> PyResult<()> {
+        Arc::make_mut(&mut self.inner).set_time(t).map_err(to_py)
     }
     #[getter]
     fn cameras(&self) -> Vec<PyCamera> {
@@ -425,6 +468,8 @@ struct SequenceState {
     /// The sequence's own copy of the scene, which the per-frame changes edit.
     scene: Scene,
     camera: Option<Camera>,
+    /// The seed set by a frame's `"seed"` (kept for later frames), replacing the sequence's.
+    seed: Option<OptionValue>,
     /// Index of the next item of `frames`.
     index: usize,
     /// The frame submitted ahead of the one being returned.
@@ -441,14 +486,29 @@ impl PyFrameSequence {
         let item = item?;
         let index = st.index;
         st.index += 1;
-        let changes = item.cast::<PyDict>().map_err(|_| argument_error(format!("frames[{index}]: expected a dict of \"camera\", \"lights\", \"transforms\", got {}", item.get_type().name().map(|n| n.to_string()).unwrap_or_default())))?;
+        let changes = item.cast::<PyDict>().map_err(|_| argument_error(format!("frames[{index}]: expected a dict of \"camera\", \"lights\", \"transforms\", \"time\", \"seed\", got {}", item.get_type().name().map(|n| n.to_string()).unwrap_or_default())))?;
         for (key, value) in changes.iter() {
             let key: String = key.extract()?;
             match key.as_str() {
                 "camera" => st.camera = Some(value.extract::<PyCamera>().map_err(|_| argument_error(format!("frames[{index}][\"camera\"]: expected a vsgl.Camera")))?.inner),
                 "lights" => {
                     let lights: Vec<AnyLight> = value.extract().map_err(|_| argument_error(format!("frames[{index}][\"lights\"]: expected a list of lights")))?;
-                    st.scene.lights = lights.into_iter().map(Light::from).collect();
+                    st.scene.set_lights(lights.into_iter().map(Light::from).collect());
+                }
+                "seed" => {
+                    // A new seed per frame, as a real-time renderer draws fresh random numbers;
+                    // checked against the method's own range like the `seed=` of `render`.
+                    let what = format!("frames[{index}][\"seed\"]");
+                    let v = option_value(&self.opts.method, "seed", &value).map_err(|e| argument_error(format!("{what}: {e}")))?;
+                    let mut trial = self.opts.clone();
+                    trial.options.retain(|(n, _)| n != "seed");
+                    trial.options.push(("seed".into(), v.clone()));
+                    trial.resolve().map_err(|e| argument_error(format!("{what}: {e}")))?;
+                    st.seed = Some(v);
+                }
+                "time" => {
+                    let t = crate::args::float(&value).map_err(|_| argument_error(format!("frames[{index}][\"time\"]: expected a number of seconds")))?;
+                    st.scene.set_time(t).map_err(|e| argument_error(format!("frames[{index}][\"time\"]: {e}")))?;
                 }
                 "transforms" => {
                     let d = value.cast::<PyDict>().map_err(|_| argument_error(format!("frames[{index}][\"transforms\"]: expected a dict of node name -> 4x4 matrix")))?;
@@ -459,10 +519,15 @@ impl PyFrameSequence {
                         set_node_transform(&mut st.scene, &node, matrix, &format!("{what}[{node:?}]"), &what)?;
                     }
                 }
-                other => return Err(argument_error(format!("frames[{index}]: unknown key {other:?}; a frame may set \"camera\", \"lights\", \"transforms\""))),
+                other => return Err(argument_error(format!("frames[{index}]: unknown key {other:?}; a frame may set \"camera\", \"lights\", \"transforms\", \"time\", \"seed\""))),
             }
         }
-        let (r, scene, cam, opts) = (&self.renderer, &st.scene, st.camera, &self.opts);
+        let mut opts = self.opts.clone();
+        if let Some(seed) = &st.seed {
+            opts.options.retain(|(n, _)| n != "seed");
+            opts.options.push(("seed".into(), seed.clone()));
+        }
+        let (r, scene, cam, opts) = (&self.renderer, &st.scene, st.camera, &opts);
         // The submission reads nothing of the scene afterwards: the next item may edit it.
         let (opts, interrupt) = interruptible(opts.clone(), None);
         let submitted = py.detach(|| r.submit(scene, cam.as_ref(), &opts)).map_err(|e| interrupt.raise(e))?;
@@ -841,7 +906,10 @@ impl PyRenderer {
     }
     /// Renders a sequence: `frames` is an iterable of dicts, each of which may set `"camera"`
     /// (a Camera, kept for later frames), `"lights"` (a list that replaces the lights) and
-    /// `"transforms"` ({node name: 4×4 matrix}); `camera=` is the first frame's camera. Returns
+    /// `"transforms"` ({node name: 4×4 matrix}) and `"time"` (seconds: `Scene.set_time`, which
+    /// poses the animated nodes and the lights on them) and `"seed"` (the method's seed from
+    /// this frame on, e.g. the frame index for fresh random numbers each frame); `camera=` is
+    /// the first frame's camera. Returns
     /// an iterator of Frames with the settings of `render` (validated once, here); frame k+1 is
     /// recorded and submitted before frame k is read back, so the GPU never waits for the copy.
     /// The sequence edits its own copy of `scene`, never `scene` itself. Each frame equals a
@@ -861,7 +929,7 @@ impl PyRenderer {
         let opts = render_options(method, plan, aovs, options)?;
         opts.resolve().map_err(to_py)?;
         let frames = frames.try_iter().map_err(|_| argument_error("frames: expected an iterable of dicts"))?;
-        let state = SequenceState { scene: (*scene.inner).clone(), camera: camera.map(|c| c.inner), index: 0, in_flight: None, deferred: None };
+        let state = SequenceState { scene: (*scene.inner).clone(), camera: camera.map(|c| c.inner), seed: None, index: 0, in_flight: None, deferred: None };
         Ok(PyFrameSequence { renderer: self.inner.clone(), frames: frames.unbind(), opts, state: std::sync::Mutex::new(state) })
     }
     fn __repr__(&self) -> String {

@@ -1,10 +1,14 @@
 //! Built-in procedural scenes (no files needed): `vsgl.scenes.names()`.
 //!
 //! Units are metres, +Y up. Every scene has a default camera and one spot light, so
-//! `r.render(vsgl.scenes.cornell_box())` just works.
+//! `r.render(vsgl.scenes.cornell_box())` just works. Two are animated (`scene.set_time(t)`,
+//! `scene.animations`), with the same machinery as glTF animations: `cave_flashlight`'s
+//! flashlight sweeps the cave (its light sits on an animated node), `glossy_cornell`'s gold
+//! sphere rolls to the front and back. Until `set_time` is called both show their rest pose.
 
-use super::{Camera, Material, Mesh, Primitive, Scene, SpotLight};
-use glam::{DMat4, DVec3, Vec3};
+use super::animation::{AnimatedProperty, Animation, Channel, Interpolation, Keyframes, Trs};
+use super::{Camera, Material, Mesh, Node, Primitive, Scene, SpotLight};
+use glam::{DMat4, DQuat, DVec3, Vec3};
 use std::f64::consts::PI;
 
 /// The names accepted by [`by_name`], in the order `vsgl.scenes.names()` lists them.
@@ -150,6 +154,13 @@ fn spot(position: DVec3, target: DVec3, intensity: f32, inner_deg: f32, outer_de
     }
 }
 
+/// Keyframes made here are valid by construction (increasing times, matching counts).
+fn builtin_keys(times: &[f64], values: &[f64], components: usize) -> Keyframes {
+    Keyframes::new(times.to_vec(), values.to_vec(), components, Interpolation::Linear)
+        .map_err(|(_, msg)| msg)
+        .expect("built-in keyframes are valid")
+}
+
 fn camera(eye: DVec3, target: DVec3, fov_y_deg: f32) -> Camera {
     Camera::look_at(eye, target, DVec3::Y, fov_y_deg.to_radians()).expect("built-in camera is valid")
 }
@@ -213,6 +224,18 @@ pub fn glossy_cornell() -> Scene {
     add(&mut s, "glossy_block", Material::metal("steel", [0.8, 0.8, 0.85], 0.15), |b| {
         b.cuboid(DVec3::new(-0.7, 0.0, -0.6), DVec3::new(-0.1, 1.2, -0.1), false, Some(2))
     });
+    // The sphere rolls to the front left (0.5 m left, 0.4 m forward, clear of the block) and
+    // back over 4 s: a moving glossy object, which re-uploads the geometry every frame.
+    let sphere = s.nodes.iter().position(|n| n.name == "gold_sphere").expect("the sphere was just added");
+    s.rest_poses.insert(sphere, Trs::default());
+    s.animations.push(Animation {
+        name: "sphere_roll".into(),
+        channels: vec![Channel {
+            node: sphere,
+            property: AnimatedProperty::Translation,
+            keys: builtin_keys(&[0.0, 2.0, 4.0], &[0.0, 0.0, 0.0, -0.5, 0.0, 0.4, 0.0, 0.0, 0.0], 3),
+        }],
+    });
     s
 }
 
@@ -244,8 +267,30 @@ pub fn cave_flashlight() -> Scene {
     add(&mut s, "boulder", Material::dielectric("boulder", [0.6, 0.45, 0.3], 0.5), |b| {
         b.sphere(DVec3::new(0.8, 0.5, -1.2), 0.5, 24, 48)
     });
-    s.add_light(spot(DVec3::new(-0.3, 1.5, 2.2), DVec3::new(0.3, 0.0, -1.5), 40.0, 8.0, 12.0));
+    let light = spot(DVec3::new(-0.3, 1.5, 2.2), DVec3::new(0.3, 0.0, -1.5), 40.0, 8.0, 12.0);
+    s.add_light(light);
     s.cameras.push(camera(DVec3::new(0.0, 1.6, 2.6), DVec3::new(0.0, 0.6, -1.0), 60.0));
+    // The flashlight sits on a node whose rotation sweeps it left and right about the vertical
+    // (yaw 0 → +35° → −35° → 0 over 4 s): the light slides across floor, boulder and walls.
+    let aim = DQuat::from_rotation_arc(DVec3::NEG_Z, light.direction);
+    let rest = Trs { translation: light.position, rotation: aim, scale: DVec3::ONE };
+    s.nodes.push(Node { name: "flashlight".into(), local: rest.matrix(), parent: None, mesh: None });
+    let node = s.nodes.len() - 1;
+    s.attach_light(0, node);
+    s.rest_poses.insert(node, rest);
+    let yaws_deg = [0.0, 35.0, -35.0, 0.0];
+    let rotations: Vec<f64> = yaws_deg
+        .iter()
+        .flat_map(|&y: &f64| (DQuat::from_rotation_y(y.to_radians()) * aim).to_array())
+        .collect();
+    s.animations.push(Animation {
+        name: "flashlight_sweep".into(),
+        channels: vec![Channel {
+            node,
+            property: AnimatedProperty::Rotation,
+            keys: builtin_keys(&[0.0, 1.0, 3.0, 4.0], &rotations, 4),
+        }],
+    });
     s
 }
 
@@ -261,6 +306,39 @@ mod tests {
             assert!(s.stats().triangles > 0, "{name}");
         }
         assert!(by_name("nope").is_none());
+    }
+
+    #[test]
+    fn the_flashlight_sweeps_and_comes_back() {
+        let mut s = by_name("cave_flashlight").unwrap();
+        let rest = *s.lights[0].as_spot().unwrap();
+        let v = s.geometry_version;
+        s.set_time(1.0).unwrap();
+        let swept = *s.lights[0].as_spot().unwrap();
+        // +35° about +Y turns the beam; its position stays.
+        let cos = swept.direction.dot(rest.direction);
+        let horizontal = |d: DVec3| DVec3::new(d.x, 0.0, d.z).normalize();
+        let yaw = horizontal(swept.direction).dot(horizontal(rest.direction)).acos().to_degrees();
+        assert!((yaw - 35.0).abs() < 1e-6, "yaw {yaw}");
+        assert!(cos < 0.9 && (swept.position - rest.position).length() < 1e-12);
+        assert_eq!(s.geometry_version, v, "a light-only animation must keep the uploaded geometry");
+        s.set_time(4.0).unwrap();
+        let back = *s.lights[0].as_spot().unwrap();
+        assert!((back.direction - rest.direction).length() < 1e-12);
+        assert_eq!(s.animations[0].duration(), 4.0);
+    }
+
+    #[test]
+    fn the_glossy_sphere_rolls_and_is_uploaded_again() {
+        let mut s = by_name("glossy_cornell").unwrap();
+        let sphere = s.nodes.iter().position(|n| n.name == "gold_sphere").unwrap();
+        let v = s.geometry_version;
+        s.set_time(1.0).unwrap(); // half way to (−0.5, 0, 0.4)
+        let moved = s.world_transform(sphere).transform_point3(DVec3::ZERO);
+        assert!((moved - DVec3::new(-0.25, 0.0, 0.2)).length() < 1e-12, "{moved}");
+        assert_eq!(s.geometry_version, v + 1, "a moved mesh must be uploaded again");
+        s.set_time(4.0).unwrap();
+        assert!(s.world_transform(sphere).transform_point3(DVec3::ZERO).length() < 1e-12);
     }
 
     #[test]

@@ -4,6 +4,7 @@
 //! `crate::upload`), so moving a node with [`Scene::set_transform`] invalidates nothing that
 //! was precomputed: the papers' scenes are fully dynamic.
 
+pub mod animation;
 pub mod builtin;
 pub mod gltf;
 mod light;
@@ -11,6 +12,9 @@ pub mod limits;
 
 pub use light::{DirectionalLight, Light, PointLight, SpotLight};
 
+use std::collections::BTreeMap;
+
+use animation::{Animation, LightAttachment, Trs};
 use glam::{DMat4, DVec3};
 
 /// One triangle list with one material. Attributes are in the mesh's local space.
@@ -231,6 +235,16 @@ pub struct Scene {
     /// cameras are read anew every frame and do not bump it. Code that edits those fields
     /// directly, not through the methods below, must bump it too.
     pub geometry_version: u64,
+    /// Keyframed node animations (glTF `animations`, or a built-in's), played by
+    /// [`Scene::set_time`].
+    pub animations: Vec<Animation>,
+    /// The rest pose of every node an animation targets: [`Scene::set_time`] starts each from
+    /// here, so a channel that drives only the rotation keeps the file's translation and scale.
+    pub rest_poses: BTreeMap<usize, Trs>,
+    /// Lights that sit on nodes (KHR_lights_punctual): they follow their node when
+    /// [`Scene::set_transform`] or [`Scene::set_time`] moves it, until the lights are replaced
+    /// ([`Scene::set_lights`]).
+    pub light_attachments: Vec<LightAttachment>,
 }
 
 /// Identity of one [`Scene`] value: unique in the process, and a clone gets a fresh one, so
@@ -286,8 +300,129 @@ impl Scene {
         }
         if n > 0 {
             self.geometry_version += 1;
+            self.update_attached_lights();
         }
         n
+    }
+
+    /// Poses every animated node at time `t` seconds: each animation is sampled at `t`
+    /// clamped to its own [0, duration], starting from the nodes' rest poses. Bumps the
+    /// geometry version only when an animated node carries a mesh below it (a light-only
+    /// animation keeps the uploaded scene, like a moved light), and moves the lights attached
+    /// to nodes. A pose that would take geometry beyond ±[`limits::MAX_COORDINATE`] is
+    /// refused and nothing changes.
+    pub fn set_time(&mut self, t: f64) -> crate::error::Result<()> {
+        if !t.is_finite() {
+            return Err(crate::error::Error::invalid("t", format!("time must be a finite number of seconds, got {t}")));
+        }
+        if self.animations.is_empty() {
+            return Ok(());
+        }
+        let mut pose = self.rest_poses.clone();
+        for a in &self.animations {
+            let ta = t.clamp(0.0, a.duration());
+            for c in &a.channels {
+                let trs = pose.entry(c.node).or_default();
+                trs.set(c.property, c.sample(ta));
+            }
+        }
+        let before: Vec<(usize, DMat4)> =
+            pose.keys().filter_map(|&i| self.nodes.get(i).map(|n| (i, n.local))).collect();
+        for (&i, trs) in &pose {
+            if let Some(n) = self.nodes.get_mut(i) {
+                n.local = trs.matrix();
+            }
+        }
+        let moves_geometry = self.any_mesh_below(pose.keys().copied());
+        if moves_geometry {
+            let b = self.bounds();
+            let max = limits::MAX_COORDINATE;
+            if !b.is_empty() && (!b.min.is_finite() || !b.max.is_finite() || b.min.abs().max(b.max.abs()).max_element() > max) {
+                for (i, local) in before {
+                    self.nodes[i].local = local;
+                }
+                return Err(crate::error::Error::invalid("t", format!(
+                    "at time {t} the animation moves the geometry to {:?} .. {:?}, beyond ±{max:e} m \
+                     (squared distances are formed in f32); the pose was not applied",
+                    b.min.to_array(), b.max.to_array()
+                )));
+            }
+            self.geometry_version += 1;
+        }
+        self.update_attached_lights();
+        Ok(())
+    }
+
+    /// Whether a node with a mesh has one of `moved` as itself or an ancestor.
+    fn any_mesh_below(&self, moved: impl Iterator<Item = usize>) -> bool {
+        let mut is_moved = vec![false; self.nodes.len()];
+        for i in moved {
+            if let Some(m) = is_moved.get_mut(i) {
+                *m = true;
+            }
+        }
+        self.nodes.iter().enumerate().any(|(i, node)| {
+            if node.mesh.is_none() {
+                return false;
+            }
+            let (mut cur, mut guard) = (Some(i), 0);
+            while let Some(c) = cur {
+                if is_moved[c] {
+                    return true;
+                }
+                cur = self.nodes[c].parent;
+                guard += 1;
+                if guard > self.nodes.len() {
+                    break; // cycles are rejected by the loader; never loop forever anyway
+                }
+            }
+            false
+        })
+    }
+
+    /// Puts light `light` on node `node`: from now on it sits at the node's world origin and
+    /// points along its world −Z whenever the node moves.
+    pub fn attach_light(&mut self, light: usize, node: usize) {
+        self.light_attachments.push(LightAttachment { light, node });
+    }
+
+    /// Replaces every light; the new lights sit on no node.
+    pub fn set_lights(&mut self, lights: Vec<Light>) {
+        self.lights = lights;
+        self.light_attachments.clear();
+    }
+
+    /// Moves every attached light to its node's world transform. A transform that has no
+    /// direction (a zero scale) or lies beyond the coordinate bound leaves the light where it
+    /// was: a light cannot be placed there, and hiding it would change the scene's light count.
+    pub fn update_attached_lights(&mut self) {
+        for k in 0..self.light_attachments.len() {
+            let LightAttachment { light, node } = self.light_attachments[k];
+            if node >= self.nodes.len() {
+                continue;
+            }
+            let world = self.world_transform(node);
+            let position = world.transform_point3(DVec3::ZERO);
+            let direction = world.transform_vector3(DVec3::NEG_Z);
+            let len = direction.length();
+            let placeable = position.is_finite()
+                && position.abs().max_element() <= limits::MAX_COORDINATE
+                && len.is_finite()
+                && len > 1e-12;
+            if !placeable {
+                continue;
+            }
+            let direction = direction / len;
+            match self.lights.get_mut(light) {
+                Some(Light::Spot(s)) => {
+                    s.position = position;
+                    s.direction = direction;
+                }
+                Some(Light::Point(p)) => p.position = position,
+                Some(Light::Directional(d)) => d.direction = direction,
+                None => {}
+            }
+        }
     }
 
     /// Applies `edit` to every material called `name`; returns how many matched. Materials
@@ -396,5 +531,22 @@ mod tests {
         assert_eq!(c.geometry_version, v + 1);
         assert_eq!(c.set_transform("no such node", DMat4::IDENTITY), 0);
         assert_eq!(c.geometry_version, v + 1);
+    }
+
+    #[test]
+    fn a_pose_beyond_the_coordinate_bound_is_refused_and_changes_nothing() {
+        use animation::{AnimatedProperty, Channel, Interpolation, Keyframes};
+        let mut s = builtin::cornell_box();
+        let node = s.nodes.iter().position(|n| n.name == "short_block").unwrap();
+        let keys = Keyframes::new(vec![0.0, 1.0], vec![0.0, 0.0, 0.0, 1e19, 0.0, 0.0], 3, Interpolation::Linear).unwrap();
+        s.rest_poses.insert(node, Trs::default());
+        s.animations.push(Animation { name: "away".into(), channels: vec![Channel { node, property: AnimatedProperty::Translation, keys }] });
+        s.set_time(0.0).unwrap();
+        let (local, version) = (s.nodes[node].local, s.geometry_version);
+        let e = s.set_time(1.0).unwrap_err().to_string();
+        assert!(e.contains("beyond ±1e18"), "{e}");
+        assert_eq!((s.nodes[node].local, s.geometry_version), (local, version));
+        s.set_time(1e-19).unwrap(); // 1 m: fine
+        assert_eq!(s.geometry_version, version + 1, "a moved mesh must be uploaded again");
     }
 }

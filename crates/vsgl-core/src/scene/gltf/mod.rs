@@ -15,10 +15,11 @@
 //! (`Ctx`: the JSON plus checked binary data) and the scene `Builder`. The work is done in
 //! `container` (GLB chunks), `uri` (data: URIs and files inside the scene folder), `buffer`
 //! (buffers and bufferViews), `accessor`, `image` (images and textures), `mesh` (primitives,
-//! generated normals and tangents), `material`, `nodes` (hierarchy, transforms, cameras) and
-//! `lights` (KHR_lights_punctual).
+//! generated normals and tangents), `material`, `nodes` (hierarchy, transforms, cameras),
+//! `lights` (KHR_lights_punctual) and `animation` (node animations).
 
 mod accessor;
+mod animation;
 mod buffer;
 mod container;
 mod image;

@@ -6,6 +6,7 @@ use glam::{DMat4, DQuat, DVec3};
 use gltf::json;
 use json::validation::Checked;
 
+use super::animation::load_animations;
 use super::lights::add_light;
 use super::mesh::load_mesh;
 use super::{finite_all, Builder, Ctx};
@@ -201,6 +202,8 @@ pub(super) fn build_scene(ctx: &Ctx, b: &mut Builder) -> Result<()> {
         });
     }
 
+    load_animations(ctx, b)?;
+
     // Lights and cameras of reachable nodes, in node order.
     let lights: &[json::extensions::scene::khr_lights_punctual::Light] = ctx
         .root
@@ -233,7 +236,12 @@ pub(super) fn build_scene(ctx: &Ctx, b: &mut Builder) -> Result<()> {
                     format!("KHR_lights_punctual.lights[{li}] does not exist"),
                 )
             })?;
+            let before = b.scene.lights.len();
             add_light(ctx, b, i, li, light, world)?;
+            if b.scene.lights.len() > before {
+                // The light follows its node when an animation or set_transform moves it.
+                b.scene.attach_light(before, i);
+            }
         }
         if let Some(c) = node.camera {
             let ci = c.value();
