@@ -172,11 +172,6 @@ impl VirtualLightVisibility {
         }
     }
 
-    /// The most lights one batch may shade (`u32::MAX` unless imperfect shadow maps hold them).
-    pub fn max_batch(&self) -> u32 {
-        self.ism.as_ref().map_or(u32::MAX, |m| m.capacity)
-    }
-
     /// With `visibility="ism"`, builds the maps of lights 0 … count − 1 of `lights` (records
     /// of `record_words` words, position first) for the shading that follows; nothing otherwise.
     /// Every light's map is built, interleaved or not: each pixel class needs its own lights'.
