@@ -113,3 +113,96 @@ def test_a_moved_occluder_changes_the_shadows_on_the_next_frame(tmp_path, make_r
     unshadowed = _indirect(r.render(scene, camera=cam, visibility="none", **opts)).mean()
     assert opened > 5 * walled
     assert opened == pytest.approx(unshadowed, rel=1e-4)
+
+
+# --- visibility="ism": imperfect shadow maps (the papers' technique) -------------------------
+
+ISM_PASSES = ("ism_splat", "ism_pull", "ism_push")
+
+
+@pytest.mark.parametrize("method,tolerance", [("reference", 0.35), ("vpl", 0.35), ("vsgl", 0.35), ("vsgl2", 0.5)])
+def test_imperfect_shadow_maps_stop_the_leak_through_a_wall(tmp_path, make_renderer, truth, method, tolerance):
+    """The same leak as above, stopped by one imperfect shadow map per virtual light (issue 17:
+    within 35% of the path tracer; vsgl2's two all-or-nothing VSGLs get raytrace's looser bound)."""
+    scene, cam = _two_rooms(tmp_path)
+    r = make_renderer(SIZE, SIZE)
+    truth_mean, _ = truth
+    leaky = _indirect(r.render(scene, camera=cam, method=method, visibility="none", **OPTIONS[method])).mean()
+    frame = r.render(scene, camera=cam, method=method, visibility="ism", **OPTIONS[method])
+    shadowed = _indirect(frame).mean()
+    assert leaky > 5 * truth_mean, f"the scene must show the leak first: {leaky} vs {truth_mean}"
+    assert shadowed == pytest.approx(truth_mean, rel=tolerance), (shadowed / truth_mean, leaky / truth_mean)
+    for name in ISM_PASSES:
+        assert name in frame.passes, frame.passes
+    shading = [p for p in frame.passes if p.startswith(("vpl_shading", "vsgl_shading"))]
+    assert shading and all(p.endswith("[ism]") for p in shading), frame.passes
+    assert "vpl_shadow_maps" not in frame.skipped
+    assert frame.settings["visibility"] == "ism"
+    for name in frame.aovs:
+        assert np.isfinite(frame.aov(name)).all()
+
+
+def test_imperfect_shadow_maps_of_interleaved_lights_are_their_own(tmp_path, make_renderer):
+    """With interleave k each pixel evaluates only its class's lights, and each must be tested
+    against its own map (light j ↔ map j): the interleaved image's mean equals the
+    every-light one's (the classes together evaluate every light once)."""
+    scene, cam = _two_rooms(tmp_path)
+    r = make_renderer(SIZE, SIZE)
+    opts = dict(method="vpl", num_lights=1024, rsm_size=64, visibility="ism", denoise=False)
+    every = _indirect(r.render(scene, camera=cam, interleave=1, **opts)).mean()
+    interleaved = _indirect(r.render(scene, camera=cam, interleave=4, **opts)).mean()
+    assert interleaved == pytest.approx(every, rel=0.05)
+
+
+def _corner(tmp_path) -> tuple[vsgl.Scene, vsgl.Camera]:
+    floor = dict(corners=[(-2, 0, 1), (2, 0, 1), (2, 0, -2), (-2, 0, -2)], base_color=(0.8, 0.8, 0.8), roughness=0.5, name="floor")
+    wall = dict(corners=[(-2, 0, -2), (2, 0, -2), (2, 2.5, -2), (-2, 2.5, -2)], base_color=(0.9, 0.6, 0.3), roughness=0.6, name="wall")
+    scene = vsgl.Scene.load(write_quads(tmp_path, [floor, wall], name="corner.gltf"))
+    scene.add_light(vsgl.SpotLight(position=(0.3, 1.8, 0.3), direction=(-0.2, -1, -0.8), intensity=10.0, inner_cone_deg=30, outer_cone_deg=45))
+    return scene, vsgl.Camera.look_at(eye=(0, 1.0, 1.6), target=(0, 0.6, -2), fov_y_deg=60)
+
+
+@pytest.mark.parametrize("method", ["reference", "vpl", "vsgl"])
+def test_imperfect_shadow_maps_change_an_unoccluded_scene_by_a_few_percent(tmp_path, make_renderer, method):
+    """The concave corner of the raytrace test: nothing occludes, so only the maps' own errors
+    (splat gaps, the bias and the receiver's lift) can darken it; measured 1.9% in all."""
+    scene, cam = _corner(tmp_path)
+    r = make_renderer(24, 24)
+    a = r.render(scene, camera=cam, method=method, visibility="none", **OPTIONS[method]).aov("indirect").astype(np.float64)
+    b = r.render(scene, camera=cam, method=method, visibility="ism", **OPTIONS[method]).aov("indirect").astype(np.float64)
+    assert a.max() > 0
+    assert b.sum() / a.sum() == pytest.approx(1.0, abs=0.03)
+    assert np.isfinite(b).all()
+
+
+def test_imperfect_shadow_maps_follow_a_moved_occluder_on_the_next_frame(tmp_path, make_renderer):
+    """The point set is kept with the scene upload; moving the wall re-uploads the scene, so the
+    next frame's maps are splatted from the wall's new place."""
+    scene, cam = _two_rooms(tmp_path)
+    r = make_renderer(SIZE, SIZE)
+    opts = dict(method="reference", rsm_size=32)
+    walled_frame = r.render(scene, camera=cam, visibility="ism", **opts)
+    walled = _indirect(walled_frame).mean()
+    assert "ism_points" in walled_frame.passes
+    again = r.render(scene, camera=cam, visibility="ism", **opts)
+    assert "ism_points" in again.skipped, "an unchanged scene reuses its point set"
+    away = np.eye(4)
+    away[1, 3] = 10.0  # lift the wall 10 m out of the way
+    scene.set_transform("wall_a", away)
+    scene.set_transform("wall_b", away)
+    opened = _indirect(r.render(scene, camera=cam, visibility="ism", **opts)).mean()
+    unshadowed = _indirect(r.render(scene, camera=cam, visibility="none", **opts)).mean()
+    assert opened > 5 * walled
+    # Without the wall only the maps' own errors remain: measured 6.6% darker (the right room's
+    # floor is seen at grazing incidence from the back wall's VPLs; the corner test's 1.9% is
+    # the same error where incidence is steeper).
+    assert opened == pytest.approx(unshadowed, rel=0.1)
+
+
+def test_imperfect_shadow_map_settings_are_checked(make_renderer):
+    r = make_renderer(8, 8)
+    scene = vsgl.scenes.cornell_box()
+    with pytest.raises(vsgl.ArgumentError, match="ism_size"):
+        r.render(scene, method="vpl", visibility="ism", ism_size=48)
+    with pytest.raises(vsgl.ArgumentError, match="ism_bias"):
+        r.render(scene, method="vsgl", visibility="ism", ism_bias=-0.1)

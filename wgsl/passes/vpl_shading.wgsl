@@ -1,6 +1,7 @@
 // VPL shading (compute): every pixel sums the VPLs of the current batch, without visibility
 // (the papers' configuration for accuracy comparisons), or with `visibility="raytrace"`
-// (VISIBILITY_TRACED) only those a shadow ray through the scene's BVH reaches. With
+// (VISIBILITY_TRACED) only those a shadow ray through the scene's BVH reaches, or with
+// `visibility="ism"` (VISIBILITY_ISM) each weighted by its imperfect shadow map's lit fraction. With
 // interleave k, a pixel sums only the VPLs of its class (j ≡ c mod k², common/interleave.wgsl) scaled by k², as VSGL shading
 // does [Tok15 §5 compares both with 8×8 interleaving]; the denoise pass recombines them.
 // A workgroup shades pixels of one class, so the VPLs it needs are the same for all its threads
@@ -15,6 +16,7 @@
 #include "common/receiver.wgsl"
 #include "common/bvh.wgsl"
 #include "common/shadow_ray.wgsl"
+#include "common/ism_lookup.wgsl"
 
 struct ShadeParams {
     // This dispatch shades VPLs first … first + vpl_count − 1.
@@ -45,6 +47,11 @@ override VISIBILITY_TRACED: bool = false;
 @group(2) @binding(0) var<storage, read> bvh_nodes: array<BvhNode>;
 @group(2) @binding(1) var<storage, read> bvh_triangles: array<BvhTriangle>;
 @group(2) @binding(2) var visibility_ids: texture_2d<u32>;
+// visibility="ism": one imperfect shadow map per light of the buffer (passes/ism.wgsl built them
+// just before this pass; map j belongs to light j) and how to read them. Placeholders otherwise.
+override VISIBILITY_ISM: bool = false;
+@group(2) @binding(3) var<storage, read> ism_atlas: array<u32>;
+@group(2) @binding(4) var<uniform> ism_lookup: IsmLookup;
 
 var<workgroup> tile: array<Vpl, TILE>;
 
@@ -87,7 +94,13 @@ fn main(@builtin(workgroup_id) wg: vec3u, @builtin(local_invocation_id) lid: vec
         let n_tile = min(TILE, class_count - tile_start);
         if (has_surface) {
             for (var k = 0u; k < n_tile; k++) {
-                let r = vpl_radiance(tile[k], p, n, v, rd, rs, alpha, params.min_distance2);
+                var r = vpl_radiance(tile[k], p, n, v, rd, rs, alpha, params.min_distance2);
+                if (VISIBILITY_ISM && any((r.diffuse + r.specular) > vec3f(0.0))) {
+                    // The lit fraction of the receiver in this VPL's map (light index = map index).
+                    let lit = ism_visibility(class_first + (tile_start + k) * stride, p - tile[k].position, n);
+                    r.diffuse *= lit;
+                    r.specular *= lit;
+                }
                 if (VISIBILITY_TRACED && any((r.diffuse + r.specular) > vec3f(0.0))
                     && !virtual_light_visible(p, ng, own_triangle, tile[k].position, frame.view_origin.xyz, frame.scene_extent)) {
                     continue;

@@ -7,7 +7,8 @@
 // needs are the same for all its threads and are staged through workgroup memory in tiles of
 // TILE: one device-memory load serves WORKGROUP² pixels. Visibility is not evaluated
 // (visibility = "none"), or with `visibility="raytrace"` (VISIBILITY_TRACED) by one shadow ray
-// to each VSGL's mean position μ (issue 17: the VSGL's lobes count only where μ is visible).
+// to each VSGL's mean position μ (issue 17: the VSGL's lobes count only where μ is visible), or with `visibility="ism"`
+// (VISIBILITY_ISM) by a lookup in μ's imperfect shadow map.
 #include "common/constants.wgsl"
 #include "common/math.wgsl"
 #include "common/sg.wgsl"
@@ -21,6 +22,7 @@
 #include "common/receiver.wgsl"
 #include "common/bvh.wgsl"
 #include "common/shadow_ray.wgsl"
+#include "common/ism_lookup.wgsl"
 
 struct ShadeParams {
     // This dispatch shades VSGLs first … first + count − 1 (first is a multiple of k²).
@@ -58,6 +60,11 @@ override VISIBILITY_TRACED: bool = false;
 @group(2) @binding(0) var<storage, read> bvh_nodes: array<BvhNode>;
 @group(2) @binding(1) var<storage, read> bvh_triangles: array<BvhTriangle>;
 @group(2) @binding(2) var visibility_ids: texture_2d<u32>;
+// visibility="ism": one imperfect shadow map per light of the buffer (passes/ism.wgsl built them
+// just before this pass; map j belongs to light j) and how to read them. Placeholders otherwise.
+override VISIBILITY_ISM: bool = false;
+@group(2) @binding(3) var<storage, read> ism_atlas: array<u32>;
+@group(2) @binding(4) var<uniform> ism_lookup: IsmLookup;
 
 var<workgroup> tile: array<VsglRaw, TILE>;
 
@@ -110,9 +117,19 @@ fn main(@builtin(workgroup_id) wg: vec3u, @builtin(local_invocation_id) lid: vec
         let n_tile = min(TILE, class_count - tile_start);
         if (has_surface) {
             for (var t = 0u; t < n_tile; t++) {
-                let light = tile[t];
+                var light = tile[t];
                 if (VISIBILITY_TRACED && !virtual_light_visible(p, ng, own_triangle, light.mean, frame.view_origin.xyz, frame.scene_extent)) {
                     continue;
+                }
+                if (VISIBILITY_ISM) {
+                    // V(x_p, μ_v) of Tok15 Eq. 3 from the VSGL's imperfect shadow map, as a lit
+                    // fraction (PCF): it scales both lobes' powers (light index = map index).
+                    let lit = ism_visibility(class_first + (tile_start + t) * stride, p - light.mean, n);
+                    if (lit <= 0.0) {
+                        continue;
+                    }
+                    light.diffuse_power *= lit;
+                    light.specular_power *= lit;
                 }
                 let position = VsglPosition(light.mean, light.variance);
                 // Each lobe: radiance SG per unit power (amplitude 1/A(λ)), times its rgb

@@ -854,16 +854,19 @@ impl PyRenderer {
     /// - "vpl": num_lights VPLs (in all, split over lights by reflected power)
     ///   importance-sampled from rsm_size² reflective shadow maps. shadow_size, num_lights, rsm_size, sampling ("stratified" | "random"),
     ///   seed, vpl_clamp (minimum VPL distance as a fraction of the scene size; 0 = unbiased),
-    ///   interleave (default 1), denoise, visibility ("none" | "raytrace"), capture_rsm.
+    ///   interleave (default 1), denoise, visibility ("none" | "ism" | "raytrace"), ism_size,
+    ///   ism_points, ism_points_per_map, ism_bias, ism_pcf (imperfect shadow maps, with
+    ///   visibility="ism"), capture_rsm.
     /// - "vsgl": num_lights VSGLs (in all) by filtered importance sampling. shadow_size,
     ///   num_lights, rsm_size, sampling, seed, kernel ("integral" | "density" | "node"), K,
     ///   bisection_steps, interleave, denoise, diffuse ("papers" | "accurate" | "sg_product"),
-    ///   visibility, capture_rsm.
+    ///   visibility, ism_size, ism_points, ism_points_per_map, ism_bias, ism_pcf, capture_rsm.
     /// - "vsgl2": two VSGLs per light by a parallel sum. shadow_size, rsm_size (any side
     ///   32..4096), diffuse, vsgl2_reduction ("auto" | "subgroup" | "shared_memory"),
-    ///   visibility, capture_rsm.
+    ///   visibility, ism_size, ism_points, ism_points_per_map, ism_bias, ism_pcf, capture_rsm.
     /// - "reference": every texel of an rsm_size² RSM (default 1024²) as a VPL. shadow_size,
-    ///   rsm_size, vpl_clamp, visibility, capture_rsm.
+    ///   rsm_size, vpl_clamp, visibility, ism_size, ism_points, ism_points_per_map, ism_bias,
+    ///   ism_pcf, capture_rsm.
     /// - "pathtrace": path-traced one-bounce ground truth with a stderr AOV. spp, seed,
     ///   time_budget_s (stop sampling after this many seconds; Ctrl-C stops any long render),
     ///   strategy ("camera": pixel centres | "bidirectional": light tracing + camera paths by

@@ -249,11 +249,30 @@ pub mod common {
     };
     pub const VISIBILITY: OptionSpec = OptionSpec {
         name: "visibility",
-        kind: OptionKind::Choice(&["none", "raytrace"]),
+        kind: OptionKind::Choice(&["none", "ism", "raytrace"]),
         default: OptionValue::Str(Cow::Borrowed("none")),
-        help: "visibility of virtual lights: \"none\" (unshadowed, the papers' accuracy setting) or \"raytrace\" (a shadow ray per pixel and virtual light through the scene's BVH; to the mean position of a VSGL)",
+        help: "visibility of virtual lights: \"none\" (unshadowed, the papers' accuracy setting), \"ism\" (an imperfect shadow map per virtual light, splatted from the scene's point set, as the papers do) or \"raytrace\" (a shadow ray per pixel and virtual light through the scene's BVH; to the mean position of a VSGL)",
         note: "",
     };
+    /// Imperfect shadow maps (`visibility="ism"`; docs/rendering.md, "Visibility of virtual
+    /// lights"). The papers' 64² maps and 8192 points per map are the defaults.
+    pub const ISM_SIZE: OptionSpec = OptionSpec {
+        name: "ism_size",
+        kind: OptionKind::Int { min: 8, max: 256, power_of_two: true },
+        default: OptionValue::Int(64),
+        help: "side of each virtual light's imperfect shadow map (octahedral, the whole sphere) with visibility=\"ism\"",
+        note: "",
+    };
+    pub const ISM_POINTS: OptionSpec = int("ism_points", 1024, 1 << 22, 65536, "points of the scene's point set for imperfect shadow maps (spread over the triangles by area; each map splats a subset)");
+    pub const ISM_POINTS_PER_MAP: OptionSpec = int("ism_points_per_map", 64, 1 << 20, 8192, "points each imperfect shadow map splats (at most ism_points)");
+    pub const ISM_BIAS: OptionSpec = OptionSpec {
+        name: "ism_bias",
+        kind: OptionKind::Float { min: 0.0, min_exclusive: false },
+        default: OptionValue::Float(0.08),
+        help: "depth bias of the imperfect shadow map test as a fraction of the receiver's distance to the virtual light (the receiver is also lifted off its surface by 1.5 texels' width)",
+        note: "",
+    };
+    pub const ISM_PCF: OptionSpec = int("ism_pcf", 0, 2, 0, "percentage-closer filter radius of the imperfect shadow map lookup in texels (0: one texel; 1: 3×3, softer and a few % darker where nothing occludes)");
     pub const CAPTURE_RSM: OptionSpec = OptionSpec {
         name: "capture_rsm",
         kind: OptionKind::Bool,

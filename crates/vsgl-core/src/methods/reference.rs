@@ -3,7 +3,7 @@
 
 use super::rsm_lights::{check_rsm_size, for_each_light, RsmSettings};
 use super::{options::common, DirectLight, FrameContext, Method, MethodInfo, OptionSpec, OptionValue, Options};
-use super::visibility::{VirtualLightVisibility, VisibilityMode};
+use super::visibility::{VirtualLightVisibility, VisibilityMode, VPL_RECORD_WORDS};
 use crate::error::Result;
 use crate::gpu::Gpu;
 use crate::passes::vpl_sample::{VplSamplePass, VPL_BYTES};
@@ -25,6 +25,11 @@ const OPTIONS: &[OptionSpec] = &[
     OptionSpec { default: OptionValue::Int(1024), ..common::RSM_SIZE },
     common::VPL_CLAMP,
     common::VISIBILITY,
+    common::ISM_SIZE,
+    common::ISM_POINTS,
+    common::ISM_POINTS_PER_MAP,
+    common::ISM_BIAS,
+    common::ISM_PCF,
     common::CAPTURE_RSM,
 ];
 
@@ -36,6 +41,9 @@ const BATCH_EVALUATIONS: u64 = 1 << 31;
 /// The same on a CPU adapter (lavapipe evaluates ~10⁷–10⁸ per second, so 2³¹ would be one
 /// silent submission of minutes): ~0.2–2 s per batch, so progress and Ctrl-C come that often.
 const BATCH_EVALUATIONS_CPU: u64 = 1 << 24;
+/// Bytes of imperfect shadow maps one batch may hold (`visibility="ism"`): 4096 maps of 64²
+/// with their pull-push levels are ~85 MiB, under the 128 MiB storage binding most adapters have.
+const REFERENCE_ISM_BYTES: u64 = 96 << 20;
 
 struct Reference {
     options: Options,
@@ -64,16 +72,20 @@ impl Method for Reference {
         let vpls = ctx.rec.storage("vpl_buffer", capacity * VPL_BYTES);
         let min_distance2 = (self.vpl_clamp as f64 * ctx.extent).powi(2) as f32;
         let rsm = RsmSettings { size: n, sampling: false, capture: self.capture_rsm, budget: 0 };
-        let vis = VirtualLightVisibility::new(ctx, self.visibility)?;
+        // With imperfect shadow maps a batch's maps are held at once: batches of at most
+        // REFERENCE_ISM_BYTES of maps.
+        let max_batch = self.visibility.lights_within(REFERENCE_ISM_BYTES).map_or(capacity, |n| (n as u64).clamp(64, capacity));
+        let vis = VirtualLightVisibility::new(ctx, self.visibility, max_batch as u32)?;
         let lit = for_each_light(ctx, &rsm, |ctx, light| {
             let (gpu, feat) = (ctx.gpu, ctx.features);
             let pixels = ctx.size.0 as u64 * ctx.size.1 as u64;
             let batch_evaluations = if gpu.adapter.device_type == "Cpu" { BATCH_EVALUATIONS_CPU } else { BATCH_EVALUATIONS };
-            let per_batch = (batch_evaluations / pixels.max(1)).max(texels.div_ceil(MAX_BATCHES)).clamp(64, capacity);
+            let per_batch = (batch_evaluations / pixels.max(1)).max(texels.div_ceil(MAX_BATCHES)).clamp(64, capacity).min(max_batch);
             let mut first = 0u64;
             while first < texels {
                 let count = per_batch.min(texels - first);
                 sample.record_every_texel(&mut ctx.rec, light.light.as_entire_binding(), light.rsm, first as u32, count as u32, &vpls, feat);
+                vis.build_maps(ctx, &vpls, count as u32, VPL_RECORD_WORDS)?;
                 shading.record(&mut ctx.rec, ctx.frame_uniforms, &vpls, count as u32, 1, min_distance2, ctx.gbuffer, ctx.indirect, feat, ctx.size, &vis);
                 first += count;
                 if first < texels && count * pixels >= batch_evaluations / 2 {

@@ -1,71 +1,236 @@
 //! `visibility=` of the virtual-light methods (issue 17): what the shading passes bind in their
 //! group 2 and which variant they run. `"none"`: unshadowed virtual lights (the papers'
-//! accuracy configuration); placeholders are bound and the shadow-ray code is compiled out.
+//! accuracy configuration); placeholders are bound and the visibility code is compiled out.
 //! `"raytrace"`: one shadow ray per (pixel, virtual light) through the scene's BVH — the path
 //! tracer's, built once per scene upload — to the VPL, or to a VSGL's mean position.
+//! `"ism"`: imperfect shadow maps (the papers' choice): before the lights of a batch are shaded,
+//! [`VirtualLightVisibility::build_maps`] splats the scene's point set (kept with the upload)
+//! into one octahedral depth map per light (`passes/ism.rs`); shading looks them up.
 
 use super::{FrameContext, Options};
-use crate::error::Result;
+use crate::error::{Error, Result};
+use crate::passes::ism::{IsmLayout, IsmPass, IsmSources};
+use crate::upload::GpuPoints;
+use bytemuck::Zeroable;
+use std::sync::Arc;
+
+/// Settings of `visibility="ism"` (options.rs: ism_size, ism_points, ism_points_per_map,
+/// ism_bias, ism_pcf).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct IsmSettings {
+    pub size: u32,
+    pub points: u32,
+    pub points_per_map: u32,
+    pub bias: f32,
+    /// PCF window radius in texels (0: the receiver's texel alone).
+    pub pcf_radius: u32,
+}
+
+/// Coarser levels of the pull-push pyramid (64² → 32² → 16² → 8²): holes up to ~8 texels wide
+/// are filled; wider empty regions are directions in which no surface lies, and stay lit.
+const ISM_PULL_LEVELS: u32 = 3;
+
+/// The receiver's normal offset in texels' angular width at its distance (ism_lookup.wgsl):
+/// measured on the tests' scenes (docs/rendering.md), 1 texel leaves receivers shadowing
+/// themselves at grazing incidence and 2 or more darken receivers seen through a door by
+/// moving their direction off the opening; 1.5 does neither.
+const ISM_NORMAL_OFFSET_TEXELS: f64 = 1.5;
 
 /// The modes `visibility=` takes (options.rs lists the same).
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+#[derive(Clone, Copy, Debug, PartialEq)]
 pub enum VisibilityMode {
     None,
+    Ism(IsmSettings),
     RayTraced,
 }
 
 impl VisibilityMode {
     pub fn from_options(o: &Options) -> Result<Self> {
-        Ok(if o.str("visibility")? == "raytrace" { Self::RayTraced } else { Self::None })
+        Ok(match o.str("visibility")? {
+            "raytrace" => Self::RayTraced,
+            "ism" => Self::Ism(IsmSettings {
+                size: o.u32("ism_size")?,
+                points: o.u32("ism_points")?,
+                points_per_map: o.u32("ism_points_per_map")?,
+                bias: o.f32("ism_bias")?,
+                pcf_radius: o.u32("ism_pcf")?,
+            }),
+            _ => Self::None,
+        })
+    }
+
+    /// With imperfect shadow maps, how many lights' maps fit in `bytes`; `None` otherwise.
+    pub fn lights_within(&self, bytes: u64) -> Option<u32> {
+        match self {
+            Self::Ism(s) => Some((bytes / IsmLayout::new(s.size, ISM_PULL_LEVELS).bytes_per_map()).min(u32::MAX as u64) as u32),
+            _ => None,
+        }
     }
 }
 
-/// What a shading pass binds for visibility in its group 2: the BVH's nodes and triangles and
-/// the camera's triangle ids.
+/// GPU twin of `IsmLookup` in `wgsl/common/ism_lookup.wgsl`.
+#[repr(C)]
+#[derive(Clone, Copy, bytemuck::Pod, bytemuck::Zeroable)]
+struct IsmLookupRaw {
+    map_size: u32,
+    words_per_map: u32,
+    distance_bias: f32,
+    normal_offset: f32,
+    pcf_radius: i32,
+    _pad: [u32; 3],
+}
+const _: () = assert!(std::mem::size_of::<IsmLookupRaw>() == 32);
+
+/// The maps of one frame: an atlas for up to `capacity` lights, rebuilt for each batch.
+struct IsmMaps {
+    settings: IsmSettings,
+    layout: IsmLayout,
+    atlas: wgpu::Buffer,
+    capacity: u32,
+    points: Arc<GpuPoints>,
+}
+
+/// What a shading pass binds for visibility in its group 2: the BVH's nodes and triangles, the
+/// camera's triangle ids, the imperfect shadow maps and how to read them.
 pub struct VirtualLightVisibility {
     pub traced: bool,
+    ism: Option<IsmMaps>,
     nodes: wgpu::Buffer,
     triangles: wgpu::Buffer,
     ids: wgpu::TextureView,
+    ism_atlas: wgpu::Buffer,
+    ism_lookup: wgpu::Buffer,
 }
 
 /// Bytes of a placeholder array binding: at least one BVH node (32) or triangle (48).
 const PLACEHOLDER_BYTES: u64 = 64;
 
+/// Bytes of a Vpl (`wgsl/common/vpl.wgsl`) and a VsglRaw record in 32-bit words; both start with
+/// the light's position, which is all the maps need.
+pub const VPL_RECORD_WORDS: u32 = (crate::passes::vpl_sample::VPL_BYTES / 4) as u32;
+pub const VSGL_RECORD_WORDS: u32 = (crate::passes::vsgl_gen::VSGL_BYTES / 4) as u32;
+
 impl VirtualLightVisibility {
-    pub fn new(ctx: &mut FrameContext<'_>, mode: VisibilityMode) -> Result<Self> {
+    /// `max_lights`: the most lights one batch shades (the maps of a batch are held at once).
+    pub fn new(ctx: &mut FrameContext<'_>, mode: VisibilityMode, max_lights: u32) -> Result<Self> {
         let ids = ctx.visibility.ids.clone();
-        // Pass-plan rule: when every surface lies on the scene's convex hull no segment between
-        // a receiver and a virtual light (both on surfaces) can be blocked, so the shadow rays
-        // would all pass; `plan="full"` casts them anyway (tests/test_visibility.py compares).
-        let unblockable = mode == VisibilityMode::RayTraced && !ctx.plan_full && ctx.gpu_scene.convex_shell(ctx.scene);
-        if unblockable {
-            ctx.skip("vpl_shadow_rays", "every surface lies on the scene's convex hull: no segment between two surface points can be blocked");
-        }
-        if mode == VisibilityMode::None || unblockable {
-            if mode == VisibilityMode::None {
+        let placeholder = |ctx: &mut FrameContext<'_>, label: &str| ctx.rec.storage_written(label, PLACEHOLDER_BYTES);
+        match mode {
+            VisibilityMode::None => {
                 ctx.skip("vpl_shadow_maps", "visibility=\"none\": virtual lights are unshadowed");
+                let nodes = placeholder(ctx, "visibility_placeholder_node_buffer");
+                let triangles = placeholder(ctx, "visibility_placeholder_triangle_buffer");
+                let ism_atlas = placeholder(ctx, "visibility_placeholder_ism_atlas_buffer");
+                let ism_lookup = ctx.rec.uniform("visibility_placeholder_ism_lookup_uniform_buffer", &IsmLookupRaw::zeroed());
+                Ok(Self { traced: false, ism: None, nodes, triangles, ids, ism_atlas, ism_lookup })
             }
-            let nodes = ctx.rec.storage_written("visibility_placeholder_node_buffer", PLACEHOLDER_BYTES);
-            let triangles = ctx.rec.storage_written("visibility_placeholder_triangle_buffer", PLACEHOLDER_BYTES);
-            return Ok(Self { traced: false, nodes, triangles, ids });
+            // Pass-plan rule: when every surface lies on the scene's convex hull no segment
+            // between a receiver and a virtual light (both on surfaces) can be blocked, so the
+            // shadow rays would all pass; `plan="full"` casts them anyway (tests compare).
+            VisibilityMode::RayTraced if !ctx.plan_full && ctx.gpu_scene.convex_shell(ctx.scene) => {
+                ctx.skip("vpl_shadow_rays", "every surface lies on the scene's convex hull: no segment between two surface points can be blocked");
+                let nodes = placeholder(ctx, "visibility_placeholder_node_buffer");
+                let triangles = placeholder(ctx, "visibility_placeholder_triangle_buffer");
+                let ism_atlas = placeholder(ctx, "visibility_placeholder_ism_atlas_buffer");
+                let ism_lookup = ctx.rec.uniform("visibility_placeholder_ism_lookup_uniform_buffer", &IsmLookupRaw::zeroed());
+                Ok(Self { traced: false, ism: None, nodes, triangles, ids, ism_atlas, ism_lookup })
+            }
+            VisibilityMode::RayTraced => {
+                let (bvh, built) = ctx.gpu_scene.bvh(ctx.gpu, ctx.scene)?;
+                if built {
+                    crate::gpu::frame_log::note_pass("bvh_build");
+                } else {
+                    ctx.skip("bvh_build", "the BVH built for this scene upload is reused");
+                }
+                let ism_atlas = placeholder(ctx, "visibility_placeholder_ism_atlas_buffer");
+                let ism_lookup = ctx.rec.uniform("visibility_placeholder_ism_lookup_uniform_buffer", &IsmLookupRaw::zeroed());
+                Ok(Self { traced: true, ism: None, nodes: bvh.nodes.clone(), triangles: bvh.triangles.clone(), ids, ism_atlas, ism_lookup })
+            }
+            VisibilityMode::Ism(settings) => {
+                let (points, made) = ctx.gpu_scene.surface_points(ctx.gpu, ctx.scene, settings.points)?;
+                if made {
+                    crate::gpu::frame_log::note_pass("ism_points");
+                } else {
+                    ctx.skip("ism_points", "the point set made for this scene upload is reused");
+                }
+                let layout = IsmLayout::new(settings.size, ISM_PULL_LEVELS);
+                let capacity = max_lights.max(1);
+                let bytes = capacity as u64 * layout.bytes_per_map();
+                let limit = ctx.gpu.limits.max_storage_buffer_binding_size as u64;
+                if bytes > limit {
+                    return Err(Error::invalid("ism_size", format!(
+                        "{capacity} imperfect shadow maps of {0}² ({bytes} bytes with their pull-push levels) exceed this adapter's storage binding limit of {limit} bytes; use a smaller ism_size or fewer lights",
+                        settings.size
+                    )));
+                }
+                let atlas = ctx.rec.storage("ism_atlas_buffer", bytes);
+                // √(4π) / size: the mean angular side of an octahedral texel.
+                let texel_angle = (4.0 * std::f64::consts::PI).sqrt() / settings.size as f64;
+                let lookup = IsmLookupRaw {
+                    map_size: layout.size,
+                    words_per_map: layout.words_per_map(),
+                    distance_bias: settings.bias,
+                    normal_offset: (ISM_NORMAL_OFFSET_TEXELS * texel_angle) as f32,
+                    pcf_radius: settings.pcf_radius as i32,
+                    _pad: [0; 3],
+                };
+                let ism_lookup = ctx.rec.uniform("ism_lookup_uniform_buffer", &lookup);
+                let nodes = placeholder(ctx, "visibility_placeholder_node_buffer");
+                let triangles = placeholder(ctx, "visibility_placeholder_triangle_buffer");
+                let ism = IsmMaps { settings, layout, atlas: atlas.clone(), capacity, points };
+                Ok(Self { traced: false, ism: Some(ism), nodes, triangles, ids, ism_atlas: atlas, ism_lookup })
+            }
         }
-        let (bvh, built) = ctx.gpu_scene.bvh(ctx.gpu, ctx.scene)?;
-        if built {
-            crate::gpu::frame_log::note_pass("bvh_build");
-        } else {
-            ctx.skip("bvh_build", "the BVH built for this scene upload is reused");
-        }
-        Ok(Self { traced: true, nodes: bvh.nodes.clone(), triangles: bvh.triangles.clone(), ids })
     }
 
-    /// The override constant choosing the shading variant.
-    pub fn flag(&self) -> (&'static str, bool) {
-        ("VISIBILITY_TRACED", self.traced)
+    /// With `visibility="ism"`, builds the maps of lights 0 … count − 1 of `lights` (records
+    /// of `record_words` words, position first) for the shading that follows; nothing otherwise.
+    /// Every light's map is built, interleaved or not: each pixel class needs its own lights'.
+    pub fn build_maps(&self, ctx: &mut FrameContext<'_>, lights: &wgpu::Buffer, count: u32, record_words: u32) -> Result<()> {
+        let Some(maps) = &self.ism else { return Ok(()) };
+        if count > maps.capacity {
+            return Err(Error::invalid("num_lights", format!("{count} virtual lights in one batch exceed the {} imperfect shadow maps allocated", maps.capacity)));
+        }
+        let pass = ctx.passes.get::<IsmPass>()?;
+        // Empty texels are key 0: clear what the previous batch (or frame) left.
+        ctx.rec.enc.clear_buffer(&maps.atlas, 0, Some(count as u64 * maps.layout.bytes_per_map()));
+        let sources = IsmSources {
+            frame: ctx.frame_uniforms,
+            points: &maps.points.buffer,
+            point_count: maps.points.count,
+            points_per_map: maps.settings.points_per_map,
+            lights,
+            light_count: count,
+            record_words,
+        };
+        pass.record(&mut ctx.rec, &maps.atlas, maps.layout, &sources);
+        Ok(())
+    }
+
+    /// The override constants choosing the shading variant.
+    pub fn flags(&self) -> [(&'static str, bool); 2] {
+        [("VISIBILITY_TRACED", self.traced), ("VISIBILITY_ISM", self.ism.is_some())]
+    }
+
+    /// What `frame.passes` adds to a shading pass's name: its visibility variant.
+    pub fn label_suffix(&self) -> &'static str {
+        if self.traced {
+            "[raytrace]"
+        } else if self.ism.is_some() {
+            "[ism]"
+        } else {
+            ""
+        }
     }
 
     /// Group 2 of the shading passes.
-    pub fn bindings(&self) -> [wgpu::BindingResource<'_>; 3] {
-        [self.nodes.as_entire_binding(), self.triangles.as_entire_binding(), wgpu::BindingResource::TextureView(&self.ids)]
+    pub fn bindings(&self) -> [wgpu::BindingResource<'_>; 5] {
+        [
+            self.nodes.as_entire_binding(),
+            self.triangles.as_entire_binding(),
+            wgpu::BindingResource::TextureView(&self.ids),
+            self.ism_atlas.as_entire_binding(),
+            self.ism_lookup.as_entire_binding(),
+        ]
     }
 }

@@ -5,7 +5,7 @@
 use super::interleaved::InterleavedShading;
 use super::rsm_lights::{check_rsm_size, for_each_light, RsmSettings};
 use super::{options::common, DirectLight, FrameContext, Method, MethodInfo, OptionSpec, Options};
-use super::visibility::{VirtualLightVisibility, VisibilityMode};
+use super::visibility::{VirtualLightVisibility, VisibilityMode, VPL_RECORD_WORDS};
 use crate::error::Result;
 use crate::gpu::Gpu;
 use crate::passes::pdf_mips::PdfMipsPass;
@@ -32,6 +32,11 @@ const OPTIONS: &[OptionSpec] = &[
     common::interleave(1),
     common::DENOISE,
     common::VISIBILITY,
+    common::ISM_SIZE,
+    common::ISM_POINTS,
+    common::ISM_POINTS_PER_MAP,
+    common::ISM_BIAS,
+    common::ISM_PCF,
     common::CAPTURE_RSM,
 ];
 
@@ -82,13 +87,14 @@ impl Method for Vpl {
         let min_distance2 = (self.vpl_clamp as f64 * ctx.extent).powi(2) as f32;
         let shading_out = InterleavedShading::new(ctx, self.interleave, self.denoise);
         let rsm = RsmSettings { size: self.rsm_size, sampling: true, capture: self.capture_rsm, budget: self.num_lights };
-        let vis = VirtualLightVisibility::new(ctx, self.visibility)?;
+        let vis = VirtualLightVisibility::new(ctx, self.visibility, self.num_lights)?;
         let lit = for_each_light(ctx, &rsm, |ctx, light| {
             let feat = ctx.features;
             pdf_mips.record(&mut ctx.rec, light.rsm);
             // This RSM's share of num_lights (split over lights and cube faces by reflected
             // power, `power_budgets`); the buffer holds num_lights, the largest share.
             sample.record_importance(&mut ctx.rec, light.light.as_entire_binding(), light.rsm, light.budget, self.sampling, self.seed, &vpls, feat);
+            vis.build_maps(ctx, &vpls, light.budget, VPL_RECORD_WORDS)?;
             let target = shading_out.target(ctx.indirect);
             shading.record(&mut ctx.rec, ctx.frame_uniforms, &vpls, light.budget, self.interleave, min_distance2, ctx.gbuffer, target, feat, ctx.size, &vis);
             Ok(())

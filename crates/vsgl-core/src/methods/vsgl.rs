@@ -4,7 +4,7 @@
 
 use super::interleaved::InterleavedShading;
 use super::rsm_lights::{check_rsm_size, for_each_light, RsmSettings};
-use super::visibility::{VirtualLightVisibility, VisibilityMode};
+use super::visibility::{VirtualLightVisibility, VisibilityMode, VSGL_RECORD_WORDS};
 use super::{options::common, DirectLight, FrameContext, Method, MethodInfo, OptionKind, OptionSpec, OptionValue, Options};
 use crate::error::{Error, Result};
 use crate::frame::MomentChains;
@@ -58,6 +58,11 @@ const OPTIONS: &[OptionSpec] = &[
     common::DENOISE,
     common::DIFFUSE,
     common::VISIBILITY,
+    common::ISM_SIZE,
+    common::ISM_POINTS,
+    common::ISM_POINTS_PER_MAP,
+    common::ISM_BIAS,
+    common::ISM_PCF,
     common::CAPTURE_RSM,
 ];
 
@@ -130,7 +135,7 @@ impl Method for Vsgl {
         let shading_out = InterleavedShading::new(ctx, self.interleave, self.denoise);
         let mut chains: Option<MomentChains> = None;
         let rsm = RsmSettings { size: self.rsm_size, sampling: true, capture: self.capture_rsm, budget: self.num_lights };
-        let vis = VirtualLightVisibility::new(ctx, self.visibility)?;
+        let vis = VirtualLightVisibility::new(ctx, self.visibility, self.num_lights)?;
         let lit = for_each_light(ctx, &rsm, |ctx, light| {
             let feat = ctx.features;
             let chains = chains.get_or_insert_with(|| MomentChains::new(&mut ctx.rec, self.rsm_size));
@@ -150,6 +155,7 @@ impl Method for Vsgl {
                 light_offset: light.raw.position,
             };
             gen.record(&mut ctx.rec, light.rsm, chains, &settings, &buf);
+            vis.build_maps(ctx, &buf, light.budget, VSGL_RECORD_WORDS)?;
             let target = shading_out.target(ctx.indirect);
             shading.record(&mut ctx.rec, ctx.frame_uniforms, &buf, light.budget, self.interleave, self.diffuse, self.kernel == Kernel::Node, ctx.gbuffer, target, feat, ctx.size, &vis);
             if ctx.vsgls.is_none() {

@@ -3,7 +3,7 @@
 
 use super::rsm_lights::{check_rsm_size, for_each_light, RsmSettings};
 use super::{options::common, DirectLight, FrameContext, Method, MethodInfo, OptionKind, OptionSpec, OptionValue, Options};
-use super::visibility::{VirtualLightVisibility, VisibilityMode};
+use super::visibility::{VirtualLightVisibility, VisibilityMode, VSGL_RECORD_WORDS};
 use crate::error::Result;
 use crate::gpu::Gpu;
 use crate::passes::vsgl2_reduce::{Vsgl2Reduce, Vsgl2Reduction, VSGL2_COUNT};
@@ -34,6 +34,11 @@ const OPTIONS: &[OptionSpec] = &[
         note: "",
     },
     common::VISIBILITY,
+    common::ISM_SIZE,
+    common::ISM_POINTS,
+    common::ISM_POINTS_PER_MAP,
+    common::ISM_BIAS,
+    common::ISM_PCF,
     common::CAPTURE_RSM,
 ];
 
@@ -67,11 +72,12 @@ impl Method for Vsgl2 {
         let (reduce, shading) = (ctx.passes.get::<Vsgl2Reduce>()?, ctx.passes.get::<VsglShadingPass>()?);
         let reduction = Vsgl2Reduce::resolve(ctx.gpu, self.reduction)?;
         let rsm = RsmSettings { size: self.rsm_size, sampling: false, capture: self.capture_rsm, budget: 0 };
-        let vis = VirtualLightVisibility::new(ctx, self.visibility)?;
+        let vis = VirtualLightVisibility::new(ctx, self.visibility, VSGL2_COUNT)?;
         let lit = for_each_light(ctx, &rsm, |ctx, light| {
             let feat = ctx.features;
             let buf = ctx.rec.storage("vsgl2_buffer", VSGL2_COUNT as u64 * VSGL_BYTES);
             reduce.record(&mut ctx.rec, light.rsm, light.raw.position, light.raw.rsm_light_dir(), &buf, feat, reduction)?;
+            vis.build_maps(ctx, &buf, VSGL2_COUNT, VSGL_RECORD_WORDS)?;
             shading.record(&mut ctx.rec, ctx.frame_uniforms, &buf, VSGL2_COUNT, 1, self.diffuse, false, ctx.gbuffer, ctx.indirect, feat, ctx.size, &vis);
             if ctx.vsgls.is_none() {
                 ctx.vsgls = Some(buf);

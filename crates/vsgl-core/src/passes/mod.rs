@@ -5,6 +5,7 @@
 pub mod aov_pack;
 pub mod denoise;
 pub mod direct;
+pub mod ism;
 pub mod material;
 pub mod moment_mips;
 pub mod pathtrace;
@@ -34,6 +35,7 @@ passes_from_device!(
     aov_pack::AovPackPass,
     denoise::DenoisePass,
     direct::DirectPass,
+    ism::IsmPass,
     material::MaterialPass,
     moment_mips::MomentMipsPass,
     pathtrace::PathTracePass,

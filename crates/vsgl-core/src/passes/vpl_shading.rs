@@ -52,9 +52,10 @@ impl VplShadingPass {
     ) {
         let gpu = rec.gpu;
         let [specular] = features.specular_flags();
-        let pipeline = self.pipelines.get(gpu, &[specular, visibility.flag()]);
-        // `frame.passes` names the shadow-ray variant.
-        let label = if visibility.traced { "vpl_shading[raytrace]" } else { "vpl_shading" };
+        let [traced, ism] = visibility.flags();
+        let pipeline = self.pipelines.get(gpu, &[specular, traced, ism]);
+        // `frame.passes` names the visibility variant.
+        let label = format!("vpl_shading{}", visibility.label_suffix());
         // Chunks are multiples of k² so the interleaved classes stay j ≡ c (mod k²).
         // With shadow rays each VPL also loops over BVH nodes: fewer VPLs per dispatch keep
         // lavapipe under its loop-iteration cap (and a GPU dispatch short).
@@ -62,7 +63,7 @@ impl VplShadingPass {
         for_each_chunk(vpl_count, per_dispatch * interleave * interleave, |first, count| {
             let uniform = rec.uniform("vpl_shading_params_uniform_buffer", &ShadeParamsRaw { vpl_count: count, min_distance2, first, interleave });
             rec.compute(
-                label,
+                &label,
                 &pipeline,
                 &[&[frame.as_entire_binding()], &out.shading_bindings(&uniform, vpls, gbuffer), &visibility.bindings()],
                 interleaved_groups(size, interleave, WORKGROUP),

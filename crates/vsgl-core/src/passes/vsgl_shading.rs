@@ -85,9 +85,10 @@ impl VsglShadingPass {
     ) {
         let gpu = rec.gpu;
         let [specular] = features.specular_flags();
-        let pipeline = self.pipelines.get(gpu, &[specular, visibility.flag()]);
-        // `frame.passes` names the shadow-ray variant.
-        let label = if visibility.traced { "vsgl_shading[raytrace]" } else { "vsgl_shading" };
+        let [traced, ism] = visibility.flags();
+        let pipeline = self.pipelines.get(gpu, &[specular, traced, ism]);
+        // `frame.passes` names the visibility variant.
+        let label = format!("vsgl_shading{}", visibility.label_suffix());
         // Chunks are multiples of k² so the interleaved subsets stay j ≡ t (mod k²).
         let per_dispatch = if visibility.traced { TRACED_VSGLS_PER_PIXEL_PER_DISPATCH } else { VSGLS_PER_PIXEL_PER_DISPATCH };
         let chunk = per_dispatch * interleave * interleave;
@@ -95,7 +96,7 @@ impl VsglShadingPass {
             let params = ShadeParamsRaw { count: n, interleave, diffuse_mode: diffuse.shader_code(), first, exact_texels: u32::from(exact_texels), _pad: [0; 3] };
             let uniform = rec.uniform("vsgl_shading_params_uniform_buffer", &params);
             rec.compute(
-                label,
+                &label,
                 &pipeline,
                 &[&[frame.as_entire_binding()], &out.shading_bindings(&uniform, vsgls, gbuffer), &visibility.bindings()],
                 interleaved_groups(size, interleave, WORKGROUP),

@@ -10,6 +10,7 @@
 
 pub mod bvh;
 pub mod convex;
+pub mod points;
 
 use crate::error::{Error, Result};
 use crate::gpu::Gpu;
@@ -89,6 +90,18 @@ pub struct GpuScene {
     /// Whether the surfaces lie on their convex hull ([`convex::is_convex_shell`]), found on
     /// first use and kept with the upload like the BVH.
     convex_shell: std::sync::OnceLock<bool>,
+    /// The scene as a point set for imperfect shadow maps (`points.rs`), generated on first use
+    /// and kept with the upload like the BVH; regenerated only when another count is asked for.
+    surface_points: std::sync::Mutex<Option<std::sync::Arc<GpuPoints>>>,
+}
+
+/// The scene's point set on the GPU: `count` vec4f rows relative to [`GpuScene::anchor`]
+/// (a 16-byte placeholder when the scene has no area, then `count` is 0).
+pub struct GpuPoints {
+    pub buffer: wgpu::Buffer,
+    pub count: u32,
+    /// The count asked for (what the cache is keyed by).
+    pub asked: u32,
 }
 
 /// A BVH on the GPU (layout in `wgsl/common/bvh.wgsl`).
@@ -154,6 +167,31 @@ impl GpuScene {
         });
         *cached = Some(gpu_bvh.clone());
         Ok((gpu_bvh, true))
+    }
+
+    /// `count` points spread over the uploaded triangles by area (`points::surface_points`),
+    /// relative to [`Self::anchor`], generated now unless an earlier frame of this upload asked
+    /// for the same count (then `false`).
+    pub fn surface_points(&self, gpu: &Gpu, scene: &Scene, count: u32) -> Result<(std::sync::Arc<GpuPoints>, bool)> {
+        let mut cached = self.surface_points.lock().unwrap_or_else(|e| e.into_inner());
+        if let Some(p) = cached.as_ref().filter(|p| p.asked == count) {
+            return Ok((p.clone(), false));
+        }
+        let triangles = bvh::scene_triangles(scene, self.anchor);
+        let rows = points::surface_points(&triangles, count);
+        let bytes: &[u8] = bytemuck::cast_slice(&rows);
+        if bytes.len() as u64 > gpu.limits.max_storage_buffer_binding_size as u64 {
+            return Err(Error::invalid("ism_points", format!(
+                "{count} points ({} bytes) exceed this adapter's storage binding limit of {} bytes", bytes.len(), gpu.limits.max_storage_buffer_binding_size
+            )));
+        }
+        let points = std::sync::Arc::new(GpuPoints {
+            buffer: storage(gpu, "scene_surface_point_buffer", bytes, wgpu::BufferUsages::empty()),
+            count: rows.len() as u32,
+            asked: count,
+        });
+        *cached = Some(points.clone());
+        Ok((points, true))
     }
 
 
@@ -276,6 +314,7 @@ impl GpuScene {
             extent: if extent.is_finite() && extent > 0.0 { extent } else { 1.0 },
             bvh: Default::default(),
             convex_shell: Default::default(),
+            surface_points: Default::default(),
         })
     }
 }
