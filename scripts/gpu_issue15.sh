@@ -33,3 +33,8 @@ for name in ("glossy_cornell", "caustics_ring"):
             print(name, strategy, spp, f"{time.perf_counter() - t:.2f} s", "median rel stderr", float(np.median(se[lit] / ind[lit])),
                   "rel error of the mean", float(np.sqrt((se**2).sum()) / ind.sum()))
 PY
+# Issues 17 and 19 (same call if time allows; else a second call): visibility timings and leak,
+# then error, flicker and time on the animated built-ins.
+timeout 240 python3 scripts/gpu_visibility_temporal.py --size 1920x1080 --frames 20 --warm-seconds 3 2>&1 | tail -30
+timeout 200 python3 -m vsgl bench --scene cave_flashlight,glossy_cornell --methods vpl,vsgl,vsgl2 --K 1,2,4 --sequence 30 \
+  --size 960x540 --lights 1024 --rsm-sizes 256 --seeds 2 --frames 5 --no-progress --out "$OUT/bench_issue19" 2>&1 | tail -30
