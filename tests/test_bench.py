@@ -247,3 +247,18 @@ def test_sequence_reports_flicker_next_to_error_and_time(tmp_path, renderer):
     rows = list(csv.DictReader(open(tmp_path / "bench.csv")))
     assert float(rows[0]["flicker_indirect"]) == 0.0 and {r["K"] for r in rows} == {"", "1.0", "4.0"}
     assert json.loads((tmp_path / "bench.json").read_text())["sequence"] == 4
+
+
+def test_bench_shadows_every_virtual_light_and_the_reference_with_visibility(tmp_path):
+    """--visibility raytrace: the methods cast shadow rays and the every-texel reference too,
+    so a method agreeing with the reference has no visibility error to hide."""
+    report = bench.run(scenes=["cornell_box"], methods=["vpl", "reference"], lights=[64], size=(24, 16), rsm_sizes=[32], seeds=(0,),
+                       frames=1, warmup_seconds=0, reference_rsm=32, visibility="raytrace", out=tmp_path, progress=False)
+    assert report.visibility == "raytrace" and report.reference_settings["visibility"] == "raytrace"
+    by = {r.method: r for r in report.rows}
+    # The reference against itself with the same visibility: zero error.
+    assert by["reference"].rmse_indirect == 0.0
+    assert "visibility raytrace" in bench.table(report)
+    assert json.loads((tmp_path / "bench.json").read_text())["visibility"] == "raytrace"
+    with pytest.raises(ValueError, match="visibility"):
+        bench.run(scenes=["cornell_box"], methods=["vpl"], visibility="shadows", progress=False)

@@ -139,6 +139,8 @@ class Report:
     rows: list[Row] = field(default_factory=list)
     # Seconds of back-to-back rendering before each configuration's timed frames.
     warmup_seconds: float = 0.0
+    # Visibility of every virtual light in the sweep ("none", "raytrace", "ism").
+    visibility: str = "none"
     note: str = ""
     # Per configuration run with both plans: pruned ("auto") over "full" median total time.
     plan_ratios: list[dict[str, Any]] = field(default_factory=list)
@@ -339,6 +341,7 @@ def run(
     scene_lights=True,
     interleave=8,
     vpl_interleave=1,
+    visibility="none",
     plans=("auto",),
     adapter=None,
     out=None,
@@ -386,7 +389,13 @@ def run(
     # A pathtrace reference combines light tracing with camera paths by default (caustics
     # converge), and so averages each pixel's area where the methods shade its centre: at
     # geometric edges that difference is part of the error it reports (docs/error.md).
+    if visibility not in ("none", "raytrace", "ism"):
+        raise ValueError(f"visibility: must be \"none\", \"raytrace\" or \"ism\", got {visibility!r}")
     ref_settings: dict[str, Any] = {"rsm_size": reference_rsm} if reference == "reference" else {"spp": reference_spp, "strategy": reference_strategy}
+    if reference == "reference" and visibility != "none":
+        # The every-texel reference shadows its VPLs exactly (ray traced) whenever the methods
+        # shadow theirs, so their error is the method's and not the shadows'.
+        ref_settings["visibility"] = "raytrace"
     if out is not None and cache_dir is None:
         cache_dir = pathlib.Path(out) / "cache"
     sm_clock = None if cpu else _sm_clock_reader()
@@ -410,6 +419,7 @@ def run(
         note=" ".join(notes),
         scaled_for_cpu=scaled,
         sequence=sequence,
+        visibility=visibility,
         reference_error_method=(
             "pathtrace: sqrt(mean(stderr²) / mean(ref²)) of the indirect AOV, the expected relative RMS error of its mean"
             if reference == "pathtrace" else
@@ -459,6 +469,8 @@ def run(
                 # 1: every VPL at every pixel (the baseline); 8: the papers' equal-footing
                 # comparison, interleaved and denoised like the VSGLs.
                 settings["interleave"] = vpl_interleave
+            if method in ("vpl", "vsgl", "vsgl2", "reference") and visibility != "none":
+                settings["visibility"] = visibility
             run_seeds = seeds if method in STOCHASTIC else (0,)
             # Read back only what the errors need (readback is most of the wall time).
             settings["aovs"] = ["image"] if method == "direct" else ["image", "indirect"]
@@ -750,6 +762,7 @@ def table(report: Report) -> str:
         f"{report.frames} timed frames back to back after {report.warmup} warm-up frame(s) and {report.warmup_seconds:g} s of sustained rendering",
         f"reference {report.reference} {report.reference_settings}; its own error (relative RMS of indirect, estimated): {ref_error}",
         f"          rows whose error is under {TRUST_FACTOR:g}x that are flagged 'reference too noisy'; its cost: {cost}",
+        f"visibility {report.visibility} (of every virtual light in the sweep)",
     ]
     if report.note:
         lines.append(f"note      {report.note}")
@@ -917,6 +930,8 @@ def main(argv: list[str] | None = None) -> int:
                    help="vsgl kernel masses K to sweep, e.g. 1,2,4 (default: the method's, 1); larger K is smoother in space and time")
     p.add_argument("--kernels", type=_strs, default=["integral"], help="VSGL kernels: integral, density (default: integral)")
     p.add_argument("--interleave", type=int, default=8, help="VSGL interleaving (default: 8)")
+    p.add_argument("--visibility", default="none", choices=["none", "raytrace", "ism"],
+                   help="visibility of the virtual lights of vpl, vsgl, vsgl2 and reference (default: none, the papers' unshadowed setting); the every-texel reference then traces its shadow rays")
     p.add_argument("--vpl-interleave", type=int, default=1,
                    help="VPL interleaving, denoised like the VSGLs (default: 1, every VPL at every pixel; 8 compares as the papers do)")
     p.add_argument("--seeds", type=int, default=None, help="seeds per stochastic configuration (default: 3; bias and noise need 2 or more)")
@@ -958,7 +973,7 @@ def main(argv: list[str] | None = None) -> int:
     report = run(
         scenes=a.scene, methods=a.methods, lights=a.lights, size=size, rsm_sizes=a.rsm_sizes, kernels=a.kernels,
         seeds=None if a.seeds is None else tuple(range(a.seeds)), frames=a.frames, warmup=a.warmup, warmup_seconds=a.warmup_seconds, reference=a.reference, reference_rsm=a.reference_rsm,
-        reference_spp=a.reference_spp, reference_strategy=a.reference_strategy, add_lights=add_lights, scene_lights=not a.no_scene_lights, interleave=a.interleave, vpl_interleave=a.vpl_interleave, plans=tuple(a.plans), adapter=a.adapter, out=a.out, progress=not a.no_progress,
+        reference_spp=a.reference_spp, reference_strategy=a.reference_strategy, add_lights=add_lights, scene_lights=not a.no_scene_lights, interleave=a.interleave, vpl_interleave=a.vpl_interleave, visibility=a.visibility, plans=tuple(a.plans), adapter=a.adapter, out=a.out, progress=not a.no_progress,
         sequence=a.sequence, Ks=tuple(a.K) if a.K else (None,),
     )
     print(table(report))
