@@ -27,7 +27,7 @@ import numpy as np
 import vsgl
 
 sys.path.insert(0, str(pathlib.Path(__file__).resolve().parent.parent / "tests"))
-from scene_builders import write_quads  # noqa: E402
+from scene_builders import two_rooms  # noqa: E402  (the scene of tests/test_visibility.py)
 
 
 def timed(renderer, scene, frames, warm_seconds, **opts):
@@ -43,17 +43,6 @@ def timed(renderer, scene, frames, warm_seconds, **opts):
     q = statistics.quantiles(totals, n=4) if len(totals) > 1 else [totals[0]] * 3
     return {"total_ms_median": statistics.median(totals), "total_ms_iqr": [q[0], q[2]],
             "passes_ms_median": {k: statistics.median(v) for k, v in passes.items()}}
-
-
-def two_rooms(folder: pathlib.Path):
-    floor = dict(corners=[(-1.5, 0, -1), (-1.5, 0, 1), (1.5, 0, 1), (1.5, 0, -1)], base_color=(0.8, 0.8, 0.8), specular=0.0, name="floor")
-    wall_a = dict(corners=[(0, 0, -1), (0, 0, -0.15), (0, 1.5, -0.15), (0, 1.5, -1)], base_color=(0.7, 0.7, 0.7), specular=0.0, name="wall_a")
-    wall_b = dict(corners=[(0, 0, 0.15), (0, 0, 1), (0, 1.5, 1), (0, 1.5, 0.15)], base_color=(0.7, 0.7, 0.7), specular=0.0, name="wall_b")
-    back = dict(corners=[(-1.5, 0, -1), (-1.5, 1.5, -1), (-1.5, 1.5, 1), (-1.5, 0, 1)], base_color=(0.9, 0.9, 0.9), specular=0.0, name="back")
-    scene = vsgl.Scene.load(write_quads(folder, [floor, wall_a, wall_b, back], name="two_rooms.gltf"))
-    d = np.array([-0.9, -0.3, 0.0]) / np.hypot(0.9, 0.3)
-    scene.lights = [vsgl.SpotLight(position=(-0.6, 0.9, 0.0), direction=tuple(d), intensity=10.0, inner_cone_deg=30, outer_cone_deg=40)]
-    return scene, vsgl.Camera.look_at(eye=(1.3, 1.2, 0.0), target=(0.7, 0.0, 0.55), fov_y_deg=30)
 
 
 def main() -> int:

@@ -10,24 +10,13 @@ import numpy as np
 import pytest
 
 import vsgl
-from scene_builders import write_quads
+from scene_builders import two_rooms, write_quads
 
 SIZE = 32
 
 
 def _two_rooms(tmp_path) -> tuple[vsgl.Scene, vsgl.Camera]:
-    """A floor split by a wall at x = 0 with a narrow door (|z| < 0.15). A spot light in the
-    left room lights its back wall; the camera looks at the right room's floor, which only the
-    light coming through the door reaches (no direct light there)."""
-    floor = dict(corners=[(-1.5, 0, -1), (-1.5, 0, 1), (1.5, 0, 1), (1.5, 0, -1)], base_color=(0.8, 0.8, 0.8), specular=0.0, name="floor")
-    wall_a = dict(corners=[(0, 0, -1), (0, 0, -0.15), (0, 1.5, -0.15), (0, 1.5, -1)], base_color=(0.7, 0.7, 0.7), specular=0.0, name="wall_a")
-    wall_b = dict(corners=[(0, 0, 0.15), (0, 0, 1), (0, 1.5, 1), (0, 1.5, 0.15)], base_color=(0.7, 0.7, 0.7), specular=0.0, name="wall_b")
-    back = dict(corners=[(-1.5, 0, -1), (-1.5, 1.5, -1), (-1.5, 1.5, 1), (-1.5, 0, 1)], base_color=(0.9, 0.9, 0.9), specular=0.0, name="back")
-    scene = vsgl.Scene.load(write_quads(tmp_path, [floor, wall_a, wall_b, back], name="two_rooms.gltf"))
-    d = np.array([-0.9, -0.3, 0.0]) / math.hypot(0.9, 0.3)
-    scene.lights = [vsgl.SpotLight(position=(-0.6, 0.9, 0.0), direction=tuple(d), intensity=10.0, inner_cone_deg=30, outer_cone_deg=40)]
-    cam = vsgl.Camera.look_at(eye=(1.3, 1.2, 0.0), target=(0.7, 0.0, 0.55), fov_y_deg=30)
-    return scene, cam
+    return two_rooms(tmp_path)
 
 
 def _indirect(frame: vsgl.Frame) -> np.ndarray:

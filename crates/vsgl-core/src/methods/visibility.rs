@@ -111,6 +111,15 @@ pub const VPL_RECORD_WORDS: u32 = (crate::passes::vpl_sample::VPL_BYTES / 4) as 
 pub const VSGL_RECORD_WORDS: u32 = (crate::passes::vsgl_gen::VSGL_BYTES / 4) as u32;
 
 impl VirtualLightVisibility {
+    /// Placeholders for every group-2 binding: the shading variant without visibility code.
+    fn unshadowed(ctx: &mut FrameContext<'_>, ids: wgpu::TextureView) -> Self {
+        let nodes = ctx.rec.storage_written("visibility_placeholder_node_buffer", PLACEHOLDER_BYTES);
+        let triangles = ctx.rec.storage_written("visibility_placeholder_triangle_buffer", PLACEHOLDER_BYTES);
+        let ism_atlas = ctx.rec.storage_written("visibility_placeholder_ism_atlas_buffer", PLACEHOLDER_BYTES);
+        let ism_lookup = ctx.rec.uniform("visibility_placeholder_ism_lookup_uniform_buffer", &IsmLookupRaw::zeroed());
+        Self { traced: false, ism: None, nodes, triangles, ids, ism_atlas, ism_lookup }
+    }
+
     /// `max_lights`: the most lights one batch shades (the maps of a batch are held at once).
     pub fn new(ctx: &mut FrameContext<'_>, mode: VisibilityMode, max_lights: u32) -> Result<Self> {
         let ids = ctx.visibility.ids.clone();
@@ -118,22 +127,14 @@ impl VirtualLightVisibility {
         match mode {
             VisibilityMode::None => {
                 ctx.skip("vpl_shadow_maps", "visibility=\"none\": virtual lights are unshadowed");
-                let nodes = placeholder(ctx, "visibility_placeholder_node_buffer");
-                let triangles = placeholder(ctx, "visibility_placeholder_triangle_buffer");
-                let ism_atlas = placeholder(ctx, "visibility_placeholder_ism_atlas_buffer");
-                let ism_lookup = ctx.rec.uniform("visibility_placeholder_ism_lookup_uniform_buffer", &IsmLookupRaw::zeroed());
-                Ok(Self { traced: false, ism: None, nodes, triangles, ids, ism_atlas, ism_lookup })
+                Ok(Self::unshadowed(ctx, ids))
             }
             // Pass-plan rule: when every surface lies on the scene's convex hull no segment
             // between a receiver and a virtual light (both on surfaces) can be blocked, so the
             // shadow rays would all pass; `plan="full"` casts them anyway (tests compare).
             VisibilityMode::RayTraced if !ctx.plan_full && ctx.gpu_scene.convex_shell(ctx.scene) => {
                 ctx.skip("vpl_shadow_rays", "every surface lies on the scene's convex hull: no segment between two surface points can be blocked");
-                let nodes = placeholder(ctx, "visibility_placeholder_node_buffer");
-                let triangles = placeholder(ctx, "visibility_placeholder_triangle_buffer");
-                let ism_atlas = placeholder(ctx, "visibility_placeholder_ism_atlas_buffer");
-                let ism_lookup = ctx.rec.uniform("visibility_placeholder_ism_lookup_uniform_buffer", &IsmLookupRaw::zeroed());
-                Ok(Self { traced: false, ism: None, nodes, triangles, ids, ism_atlas, ism_lookup })
+                Ok(Self::unshadowed(ctx, ids))
             }
             VisibilityMode::RayTraced => {
                 let (bvh, built) = ctx.gpu_scene.bvh(ctx.gpu, ctx.scene)?;
