@@ -14,9 +14,7 @@
 #include "common/vpl.wgsl"
 #include "common/interleave.wgsl"
 #include "common/receiver.wgsl"
-#include "common/bvh.wgsl"
-#include "common/shadow_ray.wgsl"
-#include "common/ism_lookup.wgsl"
+#include "common/light_visibility.wgsl"
 
 struct ShadeParams {
     // This dispatch shades VPLs first … first + vpl_count − 1.
@@ -41,18 +39,6 @@ const TILE: u32 = 64u; // = WORKGROUP², one VPL loaded per thread
 @group(1) @binding(6) var<storage, read_write> indirect_diffuse: array<vec4f>;
 @group(1) @binding(7) var<storage, read_write> indirect_specular: array<vec4f>;
 
-// visibility="raytrace": the scene's BVH and the camera's triangle ids (the receiver's own
-// triangle is skipped by its shadow rays). Placeholders otherwise.
-override VISIBILITY_TRACED: bool = false;
-@group(2) @binding(0) var<storage, read> bvh_nodes: array<BvhNode>;
-@group(2) @binding(1) var<storage, read> bvh_triangles: array<BvhTriangle>;
-@group(2) @binding(2) var visibility_ids: texture_2d<u32>;
-// visibility="ism": one imperfect shadow map per light of the buffer (passes/ism.wgsl built them
-// just before this pass; map j belongs to light j) and how to read them. Placeholders otherwise.
-override VISIBILITY_ISM: bool = false;
-@group(2) @binding(3) var<storage, read> ism_atlas: array<u32>;
-@group(2) @binding(4) var<uniform> ism_lookup: IsmLookup;
-
 var<workgroup> tile: array<Vpl, TILE>;
 
 @compute @workgroup_size(WORKGROUP, WORKGROUP, 1)
@@ -73,12 +59,11 @@ fn main(@builtin(workgroup_id) wg: vec3u, @builtin(local_invocation_id) lid: vec
     let rs = rcv.rs;
     let alpha = rcv.alpha;
     let has_surface = rcv.has_surface;
-    var ng = vec3f(0.0, 0.0, 1.0);
-    var own_triangle = BVH_NO_TRIANGLE;
+    var geo_normal = vec3f(0.0, 0.0, 1.0);
     if (VISIBILITY_TRACED && has_surface) {
-        ng = gbuf_geo_normal[index].xyz;
-        own_triangle = textureLoad(visibility_ids, vec2i(ip.pixel), 0).r - 1u;
+        geo_normal = gbuf_geo_normal[index].xyz;
     }
+    let shadowing = shadow_receiver(has_surface, geo_normal, ip.pixel);
     var diffuse = vec3f(0.0);
     var specular = vec3f(0.0);
     // The class's VPLs are params.first + class_index + m·k², m = 0 … class_count − 1.
@@ -95,15 +80,14 @@ fn main(@builtin(workgroup_id) wg: vec3u, @builtin(local_invocation_id) lid: vec
         if (has_surface) {
             for (var k = 0u; k < n_tile; k++) {
                 var r = vpl_radiance(tile[k], p, n, v, rd, rs, alpha, params.min_distance2);
-                if (VISIBILITY_ISM && any((r.diffuse + r.specular) > vec3f(0.0))) {
-                    // The lit fraction of the receiver in this VPL's map (light index = map index).
-                    let lit = ism_visibility(class_first + (tile_start + k) * stride, p - tile[k].position, n);
+                // Visibility only where the VPL contributes (no ray or lookup for nothing).
+                if ((VISIBILITY_TRACED || VISIBILITY_ISM) && any((r.diffuse + r.specular) > vec3f(0.0))) {
+                    let lit = light_visibility(p, n, shadowing, class_first + (tile_start + k) * stride, tile[k].position);
+                    if (lit <= 0.0) {
+                        continue;
+                    }
                     r.diffuse *= lit;
                     r.specular *= lit;
-                }
-                if (VISIBILITY_TRACED && any((r.diffuse + r.specular) > vec3f(0.0))
-                    && !virtual_light_visible(p, ng, own_triangle, tile[k].position, frame.view_origin.xyz, frame.scene_extent)) {
-                    continue;
                 }
                 diffuse += r.diffuse;
                 specular += r.specular;

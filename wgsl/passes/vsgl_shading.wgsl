@@ -20,9 +20,7 @@
 #include "common/plan.wgsl"
 #include "common/interleave.wgsl"
 #include "common/receiver.wgsl"
-#include "common/bvh.wgsl"
-#include "common/shadow_ray.wgsl"
-#include "common/ism_lookup.wgsl"
+#include "common/light_visibility.wgsl"
 
 struct ShadeParams {
     // This dispatch shades VSGLs first … first + count − 1 (first is a multiple of k²).
@@ -54,18 +52,6 @@ const TILE: u32 = 64u; // = WORKGROUP², one VSGL loaded per thread
 @group(1) @binding(6) var<storage, read_write> indirect_diffuse: array<vec4f>;
 @group(1) @binding(7) var<storage, read_write> indirect_specular: array<vec4f>;
 
-// visibility="raytrace": the scene's BVH and the camera's triangle ids (the receiver's own
-// triangle is skipped by its shadow rays). Placeholders otherwise.
-override VISIBILITY_TRACED: bool = false;
-@group(2) @binding(0) var<storage, read> bvh_nodes: array<BvhNode>;
-@group(2) @binding(1) var<storage, read> bvh_triangles: array<BvhTriangle>;
-@group(2) @binding(2) var visibility_ids: texture_2d<u32>;
-// visibility="ism": one imperfect shadow map per light of the buffer (passes/ism.wgsl built them
-// just before this pass; map j belongs to light j) and how to read them. Placeholders otherwise.
-override VISIBILITY_ISM: bool = false;
-@group(2) @binding(3) var<storage, read> ism_atlas: array<u32>;
-@group(2) @binding(4) var<uniform> ism_lookup: IsmLookup;
-
 var<workgroup> tile: array<VsglRaw, TILE>;
 
 fn diffuse_over_rd(radiance: Sg, n: vec3f) -> f32 {
@@ -96,12 +82,11 @@ fn main(@builtin(workgroup_id) wg: vec3u, @builtin(local_invocation_id) lid: vec
     let rs = rcv.rs;
     let alpha = rcv.alpha;
     let has_surface = rcv.has_surface;
-    var ng = vec3f(0.0, 0.0, 1.0);
-    var own_triangle = BVH_NO_TRIANGLE;
+    var geo_normal = vec3f(0.0, 0.0, 1.0);
     if (VISIBILITY_TRACED && has_surface) {
-        ng = gbuf_geo_normal[index].xyz;
-        own_triangle = textureLoad(visibility_ids, vec2i(ip.pixel), 0).r - 1u;
+        geo_normal = gbuf_geo_normal[index].xyz;
     }
+    let shadowing = shadow_receiver(has_surface, geo_normal, ip.pixel);
     // The class's VSGLs are params.first + class_index + m·k², m = 0 … class_count − 1.
     let class_first = params.first + ip.class_index;
     let class_count = class_light_count(ip.class_index, params.count, k);
@@ -118,13 +103,10 @@ fn main(@builtin(workgroup_id) wg: vec3u, @builtin(local_invocation_id) lid: vec
         if (has_surface) {
             for (var t = 0u; t < n_tile; t++) {
                 var light = tile[t];
-                if (VISIBILITY_TRACED && !virtual_light_visible(p, ng, own_triangle, light.mean, frame.view_origin.xyz, frame.scene_extent)) {
-                    continue;
-                }
-                if (VISIBILITY_ISM) {
-                    // V(x_p, μ_v) of Tok15 Eq. 3 from the VSGL's imperfect shadow map, as a lit
-                    // fraction (PCF): it scales both lobes' powers (light index = map index).
-                    let lit = ism_visibility(class_first + (tile_start + t) * stride, p - light.mean, n);
+                if (VISIBILITY_TRACED || VISIBILITY_ISM) {
+                    // V(x_p, μ_v) of Tok15 Eq. 3: a shadow ray to μ, or the lit fraction of μ's
+                    // imperfect shadow map; it scales both lobes' powers.
+                    let lit = light_visibility(p, n, shadowing, class_first + (tile_start + t) * stride, light.mean);
                     if (lit <= 0.0) {
                         continue;
                     }
