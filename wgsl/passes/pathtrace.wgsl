@@ -193,12 +193,13 @@ fn light_power(light: LightRaw) -> f32 {
     return light.intensity * c * 2.0 * TWO_PI;
 }
 
-fn light_pick_probability(i: u32) -> f32 {
+// Σ light_power over the frame's lights: photons pick light i with light_power(i) / this.
+fn total_light_power() -> f32 {
     var total = 0.0;
     for (var k = 0u; k < frame.light_count; k++) {
         total += light_power(lights[k]);
     }
-    return select(0.0, light_power(lights[i]) / total, total > 0.0);
+    return total;
 }
 
 // Pdf (solid angle) of a photon's direction from a spot (uniform over the outer cone) or point
@@ -210,10 +211,10 @@ fn light_direction_pdf(light: LightRaw) -> f32 {
     return 0.25 * INV_PI;
 }
 
-// The light strategy's density of x per unit area for light i (picked with its probability):
+// The light strategy's density of x per unit area for `light` (picked with probability q):
 // p_dir · cos_g(x, l)/d² for a spot or point light at distance d, cos_g(x, l)/(π R²) for a
 // directional light's disk of radius R. l points from x to the light.
-fn light_emission_density(light: LightRaw, i: u32, x: Surface, l: vec3f, dist: f32) -> f32 {
+fn light_emission_density(light: LightRaw, q: f32, x: Surface, l: vec3f, dist: f32) -> f32 {
     let cos_x = max(dot(x.ng, l), 0.0);
     var density: f32;
     if (light.kind == LIGHT_KIND_DIRECTIONAL) {
@@ -222,7 +223,7 @@ fn light_emission_density(light: LightRaw, i: u32, x: Surface, l: vec3f, dist: f
     } else {
         density = light_direction_pdf(light) * cos_x / max(dist * dist, FLT_MIN);
     }
-    return light_pick_probability(i) * density;
+    return q * density;
 }
 
 // Area of one pixel on the image plane at distance 1 (the camera's pixel footprint).
@@ -269,6 +270,10 @@ fn mis_light_weight(p_cam: f32, p_light: f32) -> f32 {
 fn lights_radiance(s: Surface, v: vec3f, mis: CameraMis) -> vec3f {
     var radiance = vec3f(0.0);
     let origin = s.position + s.ng * ray_offset(s.position);
+    var total_power = 0.0;
+    if (mis.enabled) {
+        total_power = total_light_power();
+    }
     for (var i = 0u; i < frame.light_count; i++) {
         let light = lights[i];
         let inc = light_incidence(light, s.position);
@@ -299,7 +304,8 @@ fn lights_radiance(s: Surface, v: vec3f, mis: CameraMis) -> vec3f {
         if (mis.enabled) {
             // The light strategy would have made this path by emitting towards x and sampling
             // x's BRDF towards y (v, from x to y) given the light's direction l.
-            let p_light = light_emission_density(light, i, s, l, inc.dist) * bsdf_pdf(s, v, l) * mis.cos_gy_x;
+            let q = select(0.0, light_power(light) / total_power, total_power > 0.0);
+            let p_light = light_emission_density(light, q, s, l, inc.dist) * bsdf_pdf(s, v, l) * mis.cos_gy_x;
             weight = 1.0 - mis_light_weight(mis.p_cam, p_light);
         }
         radiance += brdf * inc.e * n_dot_l * weight;
@@ -516,10 +522,7 @@ fn light_paths(@builtin(global_invocation_id) gid: vec3u, @builtin(num_workgroup
     }
     // A stream apart from the camera paths' (those hash (pixel, sample, seed)).
     var rng = rng_init(photon, params.sample_offset, params.seed ^ 0x5bd1e995u);
-    var total = 0.0;
-    for (var k = 0u; k < frame.light_count; k++) {
-        total += light_power(lights[k]);
-    }
+    let total = total_light_power();
     if (!(total > 0.0)) {
         return;
     }
@@ -633,7 +636,7 @@ fn light_paths(@builtin(global_invocation_id) gid: vec3u, @builtin(num_workgroup
     }
     let p_y = image_per_surface_area(y.position, y.ng) / pixel_area();
     let p_cam = p_y * bsdf_pdf(y, to_x, to_eye) * cos_gx_y;
-    let p_light = light_emission_density(light, pick, x, to_light, distance(x.position, light.position)) * p_x * cos_gy_x;
+    let p_light = light_emission_density(light, q, x, to_light, distance(x.position, light.position)) * p_x * cos_gy_x;
     let weight = mis_light_weight(p_cam, p_light);
     if (!(weight > 0.0)) {
         return;

@@ -327,20 +327,40 @@ pub fn directional_view_uniforms(light: &DirectionalLight, extent: f64, size: u3
     let up = orthogonal(dir);
     let right = dir.cross(up).normalize();
     let up = right.cross(dir);
-    let v4 = |v: DVec3| [v.x as f32, v.y as f32, v.z as f32, 0.0];
-    FrameUniforms {
-        view_proj: directional_view_proj(light, DVec3::ZERO, extent).to_cols_array_2d(),
-        cam_right: v4(right * r),
-        cam_up: v4(up * r),
-        cam_forward: v4(dir),
-        view_origin: v4(directional_rsm_origin(light, extent)),
-        size: [size, size],
-        light_count: 1,
-        texture_layer_size,
-        scene_extent: extent as f32,
-        shadow_size: size as f32,
-        orthographic: 1,
-        _pad: 0.0,
+    let view_proj = directional_view_proj(light, DVec3::ZERO, extent);
+    let view = RsmView { view_proj, right: right * r, up: up * r, forward: dir, origin: directional_rsm_origin(light, extent), orthographic: true };
+    view.uniforms(extent, size, texture_layer_size)
+}
+
+/// What differs between the lights' square RSM views: the projection, the image plane's
+/// half-axes (scaled by tan(fov/2) for a perspective view, by the half-width for an orthographic
+/// one), the view axis and where its rays start (anchor-relative).
+struct RsmView {
+    view_proj: Mat4,
+    right: DVec3,
+    up: DVec3,
+    forward: DVec3,
+    origin: DVec3,
+    orthographic: bool,
+}
+
+impl RsmView {
+    fn uniforms(&self, extent: f64, size: u32, texture_layer_size: u32) -> FrameUniforms {
+        let v4 = |v: DVec3| [v.x as f32, v.y as f32, v.z as f32, 0.0];
+        FrameUniforms {
+            view_proj: self.view_proj.to_cols_array_2d(),
+            cam_right: v4(self.right),
+            cam_up: v4(self.up),
+            cam_forward: v4(self.forward),
+            view_origin: v4(self.origin),
+            size: [size, size],
+            light_count: 1,
+            texture_layer_size,
+            scene_extent: extent as f32,
+            shadow_size: size as f32,
+            orthographic: u32::from(self.orthographic),
+            _pad: 0.0,
+        }
     }
 }
 
@@ -351,21 +371,8 @@ pub fn directional_view_uniforms(light: &DirectionalLight, extent: f64, size: u3
 pub fn cube_face_view_uniforms(light: &PointLight, face: usize, anchor: DVec3, extent: f64, size: u32, texture_layer_size: u32) -> FrameUniforms {
     let (forward, up) = CUBE_FACES[face];
     let right = forward.cross(up);
-    let v4 = |v: DVec3| [v.x as f32, v.y as f32, v.z as f32, 0.0];
-    FrameUniforms {
-        view_proj: cube_face_view_proj(light.position - anchor, face, extent).to_cols_array_2d(),
-        cam_right: v4(right),
-        cam_up: v4(up),
-        cam_forward: v4(forward),
-        view_origin: v4(light.position - anchor),
-        size: [size, size],
-        light_count: 1,
-        texture_layer_size,
-        scene_extent: extent as f32,
-        shadow_size: size as f32,
-        orthographic: 0,
-        _pad: 0.0,
-    }
+    let view_proj = cube_face_view_proj(light.position - anchor, face, extent);
+    RsmView { view_proj, right, up, forward, origin: light.position - anchor, orthographic: false }.uniforms(extent, size, texture_layer_size)
 }
 
 /// The view of a spot light's reflective shadow map: a square perspective image over the outer
@@ -378,21 +385,8 @@ pub fn light_view_uniforms(light: &SpotLight, anchor: DVec3, extent: f64, size: 
     let dir = light.direction.normalize();
     let up = orthogonal(dir);
     let right = dir.cross(up).normalize();
-    let v4 = |v: DVec3| [v.x as f32, v.y as f32, v.z as f32, 0.0];
-    FrameUniforms {
-        view_proj: light_view_proj(light, anchor, extent).to_cols_array_2d(),
-        cam_right: v4(right * t),
-        cam_up: v4(up * t),
-        cam_forward: v4(dir),
-        view_origin: v4(light.position - anchor),
-        size: [size, size],
-        light_count: 1,
-        texture_layer_size,
-        scene_extent: extent as f32,
-        shadow_size: size as f32,
-        orthographic: 0,
-        _pad: 0.0,
-    }
+    let view_proj = light_view_proj(light, anchor, extent);
+    RsmView { view_proj, right: right * t, up: up * t, forward: dir, origin: light.position - anchor, orthographic: false }.uniforms(extent, size, texture_layer_size)
 }
 
 #[cfg(test)]
