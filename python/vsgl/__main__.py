@@ -46,7 +46,8 @@ def _render(args: argparse.Namespace) -> int:
     frame.save(args.output, exposure=args.exposure)
     image = frame.image
     print(f"scene     {scene!r}")
-    print(f"lights    {describe_lights(scene)}")
+    lo, hi = scene.bounds
+    print(f"lights    {describe_lights(scene)}; scene bounds {tuple(round(x, 3) for x in lo)} to {tuple(round(x, 3) for x in hi)} (--light positions are in these units)")
     print(f"adapter   {renderer.adapter['name']} ({renderer.adapter['device_type']})")
     print(f"method    {args.method}, {width}x{height}")
     for warning in frame.warnings:
@@ -198,7 +199,8 @@ def main(argv: list[str] | None = None) -> int:
                              'or "directional direction=X,Y,Z intensity=LUX [color=R,G,B]" (intensities in W/sr, lux)')
     render.add_argument("--no-scene-lights", action="store_true", help="drop the scene's own lights (then light it with --light)")
     render.add_argument("--rsm-size", type=int, default=None, help="RSM side, power of two; any 32..4096 for vsgl2 (default: 256; reference 1024)")
-    render.add_argument("--kernel", default="integral", choices=["integral", "density"], help="VSGL kernel size rule (default: integral)")
+    render.add_argument("--kernel", default="integral", choices=["integral", "density", "node"],
+                        help="VSGL kernel size rule (default: integral; node: quadtree nodes read exactly, converging to VPLs as --lights reaches the RSM's texel count)")
     render.add_argument("--interleave", type=int, default=None,
                         help="interleaving tile side of vsgl and vpl (default: the method's, 8 for vsgl, 1 for vpl)")
     render.add_argument("--seed", type=int, default=0, help="sampling seed (default: 0)")
