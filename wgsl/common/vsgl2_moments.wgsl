@@ -10,7 +10,10 @@
 //   specular_power     = (Φ·R_s rgb, w_s ‖y‖²)
 //   specular_direction = (w_s ξ̄_s, w_s)        ξ̄_s: Toksvig mean direction of the GGX lobe SG
 //   specular_position  = (w_s y, 0)
-// = 6 vec4 per texel: the poster's three RGBA32F buffers per VSGL.
+// = 6 vec4 per texel: the poster's three RGBA32F buffers per VSGL; and one shared by both,
+//   plane              = (w n, w (y·n))       w = w_d + w_s, n the texel normal
+// the mean tangent plane of issue 18 item 4 (vsgl_tangent_plane.wgsl; the fade's height
+// p·N̄ − E_w[y·n] does not depend on which weights gave μ, so one plane serves both records).
 // Shared by the two implementations of the reduction (passes/vsgl2_reduce.wgsl: shared memory;
 // passes/vsgl2_reduce_subgroup.wgsl: subgroup sums). Their entry points:
 //   `tiles`: one 8×8 workgroup per 8×8 RSM tile (texels outside the RSM count as zero, so any
@@ -27,6 +30,7 @@
 #include "common/ggx.wgsl"
 #include "common/vsgl.wgsl"
 #include "common/vsgl_record.wgsl"
+#include "common/vsgl_tangent_plane.wgsl"
 #include "common/plan.wgsl"
 #include "common/rsm_lobes.wgsl"
 
@@ -51,6 +55,7 @@ struct Moments2 {
     specular_power: vec4f,
     specular_direction: vec4f,
     specular_position: vec4f,
+    plane: vec4f,
 }
 
 const TILE: u32 = 8u;
@@ -69,7 +74,7 @@ const MERGE_SPAN: u32 = 256u;
 
 
 fn moments_zero() -> Moments2 {
-    return Moments2(vec4f(0.0), vec4f(0.0), vec4f(0.0), vec4f(0.0), vec4f(0.0), vec4f(0.0));
+    return Moments2(vec4f(0.0), vec4f(0.0), vec4f(0.0), vec4f(0.0), vec4f(0.0), vec4f(0.0), vec4f(0.0));
 }
 
 fn moments_add(a: Moments2, b: Moments2) -> Moments2 {
@@ -80,6 +85,7 @@ fn moments_add(a: Moments2, b: Moments2) -> Moments2 {
         a.specular_power + b.specular_power,
         a.specular_direction + b.specular_direction,
         a.specular_position + b.specular_position,
+        a.plane + b.plane,
     );
 }
 
@@ -102,7 +108,8 @@ fn texel_moments(xy: vec2u) -> Moments2 {
         return moments_zero();
     }
     let y = rsm_position[i].xyz;
-    let lobes = rsm_lobe_means(y, rsm_normal[i].xyz, rsm_normal[i].w, params.light_dir);
+    let normal = rsm_normal[i].xyz;
+    let lobes = rsm_lobe_means(y, normal, rsm_normal[i].w, params.light_dir);
     let mean_d = lobes.diffuse;
     let mean_s = lobes.specular;
     let y2 = dot(y, y);
@@ -113,6 +120,7 @@ fn texel_moments(xy: vec2u) -> Moments2 {
         vec4f(fs, ws * y2),
         vec4f(ws * mean_s, ws),
         vec4f(ws * y, 0.0),
+        (wd + ws) * vec4f(normal, dot(y, normal)),
     );
 }
 
@@ -124,10 +132,15 @@ fn partial_at(i: u32) -> Moments2 {
 }
 
 // The record of one lobe's VSGL from its summed moments; the other lobe carries no power.
-fn lobe_record(power: vec4f, direction: vec4f, position_sum: vec4f) -> VsglRaw {
+fn lobe_record(power: vec4f, direction: vec4f, position_sum: vec4f, plane_sum: vec4f, plane_weight: f32) -> VsglRaw {
     var out: VsglRaw;
     let lobe = vsgl_lobe_from_moments(direction.w, direction.xyz);
     let position = vsgl_position_from_moments(direction.w, position_sum.xyz, power.w);
+    // plane_sum is over all texels with w = w_d + w_s (plane_weight = Σw); the shading pass
+    // reads the plane only for the forms that fade (ShadeParams.plane_fade).
+    let plane = vsgl_tangent_plane_from_moments(plane_weight, plane_sum.xyz, plane_sum.w, position.mean);
+    out.plane_normal = plane.normal;
+    out.plane_offset = plane.offset;
     out.mean = position.mean + params.light_offset;
     out.variance = position.variance;
     // vsgl_lobe_from_moments: ξ̄ = Σwξ̄/Σw → (axis, λ) by sg_from_toksvig_mean_direction; a lobe
@@ -147,8 +160,9 @@ fn lobe_record(power: vec4f, direction: vec4f, position_sum: vec4f) -> VsglRaw {
 // The last merge's total → record 0: the diffuse VSGL (its lobe in the diffuse fields);
 // record 1: the specular VSGL (its lobe moved to the specular fields).
 fn write_records(total: Moments2) {
-    vsgls[0] = lobe_record(total.diffuse_power, total.diffuse_direction, total.diffuse_position);
-    var specular = lobe_record(total.specular_power, total.specular_direction, total.specular_position);
+    let plane_weight = total.diffuse_direction.w + total.specular_direction.w;
+    vsgls[0] = lobe_record(total.diffuse_power, total.diffuse_direction, total.diffuse_position, total.plane, plane_weight);
+    var specular = lobe_record(total.specular_power, total.specular_direction, total.specular_position, total.plane, plane_weight);
     specular.specular_axis = specular.diffuse_axis;
     specular.specular_sharpness = specular.diffuse_sharpness;
     specular.specular_power = specular.diffuse_power;

@@ -1,4 +1,4 @@
-// The VSGL as stored between generation and shading (96 bytes; twin `VsglRaw` in
+// The VSGL as stored between generation and shading (112 bytes; twin `VsglRaw` in
 // crates/vsgl-core/src/passes/vsgl_gen.rs, read by `Frame.vsgls()`).
 struct VsglRaw {
     // Positional Gaussian: mean relative to the frame origin (the camera), variance σ².
@@ -21,4 +21,10 @@ struct VsglRaw {
     center: vec2f,
     mass: f32,
     _pad: f32,
+    // The cluster's mean tangent plane (issue 18, item 4): plane_normal = Σw·n/Σw (not unit:
+    // its length says how coherent the normals are), plane_offset = E_w[(μ − y)·n], so that
+    // (p − μ)·plane_normal + plane_offset is the weighted mean height of p above the texels'
+    // tangent planes. Zero when the shading mode does not use it (vsgl_tangent_plane_fade).
+    plane_normal: vec3f,
+    plane_offset: f32,
 }

@@ -19,6 +19,7 @@ fn subgroup_sum(m: Moments2) -> Moments2 {
         subgroupAdd(m.specular_power),
         subgroupAdd(m.specular_direction),
         subgroupAdd(m.specular_position),
+        subgroupAdd(m.plane),
     );
 }
 

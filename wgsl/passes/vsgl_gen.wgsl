@@ -12,11 +12,13 @@
 //     "node": the node's exact totals F_v/(N P_v) (moments read at the node, no filtering);
 //     with f̄, p̄ in density units on the unit square (M × the texel average);
 //  4. the VSGL from the moments [Tok15 §3.1; Tok16s §3]: Toksvig-merged lobes and the
-//     positional Gaussian (vsgl.wgsl).
+//     positional Gaussian (vsgl.wgsl), and (chain F, issue 18 item 4) the cluster's mean
+//     tangent plane.
 #include "common/constants.wgsl"
 #include "common/math.wgsl"
 #include "common/sg.wgsl"
 #include "common/vsgl.wgsl"
+#include "common/vsgl_tangent_plane.wgsl"
 #include "common/vsgl_record.wgsl"
 #include "common/rsm_warp.wgsl"
 
@@ -34,6 +36,8 @@ struct GenParams {
     light_offset: vec3f,
     // K of [Tok16 §4.2] (kernel size trade-off).
     k: f32,
+    // 1: the moments have chain F and the records get the cluster's tangent plane.
+    planes: u32,
 }
 
 const WORKGROUP: u32 = 64u;
@@ -141,6 +145,7 @@ fn main(@builtin(global_invocation_id) gid: vec3u) {
     var c: vec4f;
     var d: vec4f;
     var e: vec4f;
+    var f = vec4f(0.0);
     if (params.kernel == 2u) {
         let l = u32(level);
         let at = vec2i(node);
@@ -149,12 +154,18 @@ fn main(@builtin(global_invocation_id) gid: vec3u) {
         c = moment_texel(2u, l, at);
         d = moment_texel(3u, l, at);
         e = moment_texel(4u, l, at);
+        if (params.planes == 1u) {
+            f = moment_texel(5u, l, at);
+        }
     } else {
         a = moment_trilinear(0u, s, level);
         b = moment_trilinear(1u, s, level);
         c = moment_trilinear(2u, s, level);
         d = moment_trilinear(3u, s, level);
         e = moment_trilinear(4u, s, level);
+        if (params.planes == 1u) {
+            f = moment_trilinear(5u, s, level);
+        }
     }
     // Cluster total of a texel-averaged moment f̄_texel: Eq. 5 gives W·f̄/(N·w̄); Eq. 4 gives
     // M·f̄/max(N p, 1).
@@ -167,6 +178,12 @@ fn main(@builtin(global_invocation_id) gid: vec3u) {
     let lobe_d = sg_from_toksvig_mean_direction(c.xyz / max(b.w, FLT_MIN));
     let lobe_s = sg_from_toksvig_mean_direction(d.xyz / max(c.w, FLT_MIN));
     let position = vsgl_position_from_moments(a.w, e.xyz, d.w);
+    if (params.planes == 1u && a.w > 0.0) {
+        // Ratios of texel averages at one level = ratios of the cluster's sums.
+        let plane = vsgl_tangent_plane_from_moments(a.w, f.xyz, f.w, position.mean);
+        out.plane_normal = plane.normal;
+        out.plane_offset = plane.offset;
+    }
     out.mean = position.mean + params.light_offset;
     out.variance = position.variance;
     out.diffuse_axis = lobe_d.axis;

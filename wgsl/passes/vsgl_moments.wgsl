@@ -1,11 +1,13 @@
 // The papers' additional RSM buffers (compute) [Tok15 §4.1 and Fig. 4; Tok16 §4.1 and Fig. 4]:
-// per texel, the moments whose sums over a cluster define a VSGL. Five vec4 chains, each a
+// per texel, the moments whose sums over a cluster define a VSGL. Six vec4 chains, each a
 // full mip chain in one buffer (chain c starts at c·chain_len; levels as in pdf_mips):
 //   A = (Φ·R_d rgb, w)                 w = Φ·(R_d + R_s) summed over rgb (the paper's weight)
 //   B = (Φ·R_s rgb, w_d)               w_d = Φ·R_d summed over rgb
 //   C = (w_d ξ̄_d, w_s)                 ξ̄_d: Toksvig mean direction of the diffuse lobe SG
 //   D = (w_s ξ̄_s, w ‖y‖²)              ξ̄_s: Toksvig mean direction of the GGX lobe SG
 //   E = (w y, 0)                       y: texel position relative to the light (local origin)
+//   F = (w n, w (y·n))                 n: texel normal — the cluster's mean tangent plane
+//                                      (issue 18, item 4; vsgl_tangent_plane_fade in vsgl.wgsl)
 // Mip levels hold 2×2 averages (passes/moment_mips.wgsl), so a cluster of 4^l texels sums to
 // 4^l × its level-l value [Tok15 §4.1].
 #include "common/constants.wgsl"
@@ -19,7 +21,8 @@
 struct MomentParams {
     rsm_size: u32,
     chain_len: u32,
-    _pad0: u32,
+    // 1: chain F exists (MomentChains::count = 6) and is written.
+    planes: u32,
     _pad1: u32,
     // (direction, 1) for a directional light, 0 otherwise (rsm_lobe_means).
     light_dir: vec4f,
@@ -50,14 +53,16 @@ fn main(@builtin(global_invocation_id) gid: vec3u) {
     let wd = fd.r + fd.g + fd.b;
     let ws = fs.r + fs.g + fs.b;
     let w = wd + ws;
+    let chains = select(5u, 6u, params.planes == 1u);
     if (!(w > 0.0)) {
-        for (var c = 0u; c < 5u; c++) {
+        for (var c = 0u; c < chains; c++) {
             moments[c * stride + i] = vec4f(0.0);
         }
         return;
     }
     let y = rsm_position[i].xyz;
-    let lobes = rsm_lobe_means(y, rsm_normal[i].xyz, rsm_normal[i].w, params.light_dir);
+    let normal = rsm_normal[i].xyz;
+    let lobes = rsm_lobe_means(y, normal, rsm_normal[i].w, params.light_dir);
     let mean_d = lobes.diffuse;
     let mean_s = lobes.specular;
     moments[i] = vec4f(fd.rgb, w);
@@ -65,4 +70,7 @@ fn main(@builtin(global_invocation_id) gid: vec3u) {
     moments[2u * stride + i] = vec4f(wd * mean_d, ws);
     moments[3u * stride + i] = vec4f(ws * mean_s, w * dot(y, y));
     moments[4u * stride + i] = vec4f(w * y, 0.0);
+    if (params.planes == 1u) {
+        moments[5u * stride + i] = vec4f(w * normal, w * dot(y, normal));
+    }
 }

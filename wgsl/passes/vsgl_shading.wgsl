@@ -14,6 +14,7 @@
 #include "common/sg.wgsl"
 #include "common/ggx.wgsl"
 #include "common/vsgl.wgsl"
+#include "common/vsgl_tangent_plane.wgsl"
 #include "common/vsgl_record.wgsl"
 #include "common/frame.wgsl"
 #include "common/gbuffer.wgsl"
@@ -34,7 +35,9 @@ struct ShadeParams {
     // its diffuse lobe as a Lambertian point emitter, I(ω) = P_d·max(ω·n_t, 0)/π — so VSGLs
     // become VPLs as N reaches the texel count and converge with them (issue 18, item 3).
     exact_texels: u32,
-    _pad0: u32,
+    // 1 (diffuse "accurate" and "sg_product"): their diffuse term fades out below each VSGL's
+    // mean tangent plane (vsgl_tangent_plane_fade; issue 18, item 4).
+    plane_fade: u32,
     _pad1: u32,
     _pad2: u32,
 }
@@ -114,6 +117,15 @@ fn main(@builtin(workgroup_id) wg: vec3u, @builtin(local_invocation_id) lid: vec
                     light.specular_power *= lit;
                 }
                 let position = VsglPosition(light.mean, light.variance);
+                // The diffuse forms that integrate the incoming lobe over the receiver's
+                // hemisphere ("accurate", "sg_product") also need the cluster's: texels reflect
+                // only into their own hemisphere, so nothing reaches p from below the cluster's
+                // tangent plane. The papers' form (horizon clamp of the lobe axis) and the
+                // specular ASG form vanish there already and are left as they are.
+                var fade = 1.0;
+                if (params.plane_fade == 1u) {
+                    fade = vsgl_tangent_plane_fade(VsglTangentPlane(light.plane_normal, light.plane_offset), position, p);
+                }
                 // Each lobe: radiance SG per unit power (amplitude 1/A(λ)), times its rgb
                 // power. A lobe without power (vsgl2's records carry one lobe each; metal
                 // clusters have no diffuse lobe) is skipped: it would add exactly 0.
@@ -131,7 +143,7 @@ fn main(@builtin(workgroup_id) wg: vec3u, @builtin(local_invocation_id) lid: vec
                 } else if (any(light.diffuse_power > vec3f(0.0))) {
                     let lobe_d = Sg(light.diffuse_axis, light.diffuse_sharpness, 1.0 / sg_integral(light.diffuse_sharpness));
                     let in_d = vsgl_incoming_radiance(lobe_d, position, p);
-                    diffuse += light.diffuse_power * diffuse_over_rd(in_d, n);
+                    diffuse += light.diffuse_power * (fade * diffuse_over_rd(in_d, n));
                     if (HAS_SPECULAR) {
                         specular += light.diffuse_power * vsgl_specular(in_d, n, v, alpha);
                     }
@@ -140,7 +152,7 @@ fn main(@builtin(workgroup_id) wg: vec3u, @builtin(local_invocation_id) lid: vec
                 if (HAS_SPECULAR && any(light.specular_power > vec3f(0.0))) {
                     let lobe_s = Sg(light.specular_axis, light.specular_sharpness, 1.0 / sg_integral(light.specular_sharpness));
                     let in_s = vsgl_incoming_radiance(lobe_s, position, p);
-                    diffuse += light.specular_power * diffuse_over_rd(in_s, n);
+                    diffuse += light.specular_power * (fade * diffuse_over_rd(in_s, n));
                     specular += light.specular_power * vsgl_specular(in_s, n, v, alpha);
                 }
             }

@@ -56,24 +56,36 @@ impl Rsm {
     }
 }
 
-/// A, B, C, D, E of the shader.
-pub const CHAINS: u64 = 5;
+/// A, B, C, D, E of `wgsl/passes/vsgl_moments.wgsl`: what every VSGL needs.
+pub const BASE_CHAINS: u32 = 5;
+/// With F (Σw·n, Σw·(y·n)), the clusters' tangent planes, which only the shading modes that
+/// fade light below them read (issue 18, item 4); left out otherwise.
+pub const PLANE_CHAINS: u32 = 6;
 
-/// The five moment mip chains in one buffer (chain c at c·chain_len vec4s).
+/// The moment mip chains in one buffer (chain c at c·chain_len vec4s).
 pub struct MomentChains {
     pub buffer: wgpu::Buffer,
     pub chain_len: u32,
+    /// BASE_CHAINS or PLANE_CHAINS.
+    pub count: u32,
 }
 
 impl MomentChains {
-    pub fn new(rec: &mut Recorder<'_>, rsm_size: u32) -> Self {
+    pub fn new(rec: &mut Recorder<'_>, rsm_size: u32, with_planes: bool) -> Self {
         let (_, chain_len) = pyramid_layout(rsm_size);
-        Self { buffer: rec.storage("vsgl_moment_chain_buffer", CHAINS * chain_len as u64 * 16), chain_len }
+        let count = if with_planes { PLANE_CHAINS } else { BASE_CHAINS };
+        Self { buffer: rec.storage("vsgl_moment_chain_buffer", Self::bytes(rsm_size, with_planes)), chain_len, count }
+    }
+
+    /// Whether chain F (tangent planes) is present.
+    pub fn has_planes(&self) -> bool {
+        self.count == PLANE_CHAINS
     }
 
     /// Bytes needed for an RSM of side `rsm_size`.
-    pub fn bytes(rsm_size: u32) -> u64 {
-        CHAINS * pyramid_layout(rsm_size).1 as u64 * 16
+    pub fn bytes(rsm_size: u32, with_planes: bool) -> u64 {
+        let count = if with_planes { PLANE_CHAINS } else { BASE_CHAINS };
+        count as u64 * pyramid_layout(rsm_size).1 as u64 * 16
     }
 }
 

@@ -120,7 +120,7 @@ impl Method for Vsgl {
     fn check(&self, gpu: &Gpu) -> Result<()> {
         check_rsm_size(gpu, self.rsm_size)?;
         let limit = gpu.limits.max_storage_buffer_binding_size as u64;
-        let bytes = MomentChains::bytes(self.rsm_size);
+        let bytes = MomentChains::bytes(self.rsm_size, self.diffuse.fades_below_tangent_plane());
         if bytes > limit {
             let n = self.rsm_size;
             return Err(Error::invalid("rsm_size", format!("the VSGL moment mips of a {n}² RSM ({bytes} bytes) exceed this adapter's storage binding limit of {limit} bytes")));
@@ -138,7 +138,7 @@ impl Method for Vsgl {
         let vis = VirtualLightVisibility::new(ctx, self.visibility, self.num_lights)?;
         let lit = for_each_light(ctx, &rsm, |ctx, light| {
             let feat = ctx.features;
-            let chains = chains.get_or_insert_with(|| MomentChains::new(&mut ctx.rec, self.rsm_size));
+            let chains = chains.get_or_insert_with(|| MomentChains::new(&mut ctx.rec, self.rsm_size, self.diffuse.fades_below_tangent_plane()));
             pdf_mips.record(&mut ctx.rec, light.rsm);
             moments.record(&mut ctx.rec, light.rsm, chains, light.raw.rsm_light_dir(), feat);
             moment_mips.record(&mut ctx.rec, self.rsm_size, chains);

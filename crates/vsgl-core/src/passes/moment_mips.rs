@@ -13,6 +13,8 @@ struct LevelRaw {
     dst_offset: u32,
     dst_size: u32,
     chain_len: u32,
+    chains: u32,
+    _pad: [u32; 3],
 }
 
 pub struct MomentMipsPass {
@@ -29,7 +31,7 @@ impl MomentMipsPass {
         let (offsets, _) = crate::frame::pyramid_layout(rsm_size);
         for level in 1..offsets.len() {
             let dst_size = rsm_size >> level;
-            let uniform = rec.uniform("moment_mips_level_uniform_buffer", &LevelRaw { src_offset: offsets[level - 1], dst_offset: offsets[level], dst_size, chain_len: chains.chain_len });
+            let uniform = rec.uniform("moment_mips_level_uniform_buffer", &LevelRaw { src_offset: offsets[level - 1], dst_offset: offsets[level], dst_size, chain_len: chains.chain_len, chains: chains.count, _pad: [0; 3] });
             rec.compute(
                 "moment_mips",
                 &self.pipeline,

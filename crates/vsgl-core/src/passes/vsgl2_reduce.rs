@@ -6,7 +6,7 @@
 //! Dispatches (all timed as `vsgl2_reduce`): `tiles` (one 8×8 workgroup per RSM tile, any RSM
 //! side) writes ⌈n/8⌉² partials; `merge` (64 threads, 256 partials per workgroup) runs until
 //! one workgroup is left, whose dispatch also writes the VSGLs. Temporary memory: two partial
-//! buffers of 96 bytes per partial, ⌈n/8⌉² and ⌈⌈n/8⌉²/256⌉ partials (see [`Vsgl2Reduce::temporary_bytes`]).
+//! buffers of 112 bytes per partial, ⌈n/8⌉² and ⌈⌈n/8⌉²/256⌉ partials (see [`Vsgl2Reduce::temporary_bytes`]).
 
 use crate::error::Result;
 use crate::frame::Rsm;
@@ -17,8 +17,8 @@ use crate::plan::ShaderFeatures;
 const TILE: u32 = 8;
 /// Partials one `merge` workgroup sums.
 const MERGE_SPAN: u32 = 256;
-/// Bytes of one partial: six vec4 (`Moments2` in the shader).
-pub const PARTIAL_BYTES: u64 = 96;
+/// Bytes of one partial: seven vec4 (`Moments2` in the shader).
+pub const PARTIAL_BYTES: u64 = 112;
 /// Records written: diffuse, specular.
 pub const VSGL2_COUNT: u32 = 2;
 
@@ -121,7 +121,7 @@ impl Vsgl2Reduce {
     }
 
     /// Temporary bytes the reduction allocates for an RSM of side `rsm_size` (both partial
-    /// buffers; the two 96-byte VSGL records are the output, not counted).
+    /// buffers; the two 112-byte VSGL records are the output, not counted).
     pub fn temporary_bytes(rsm_size: u32) -> u64 {
         let p = tile_partials(rsm_size);
         (p * PARTIAL_BYTES).max(16) + (p.div_ceil(MERGE_SPAN as u64) * PARTIAL_BYTES).max(16)

@@ -7,9 +7,9 @@ use crate::gpu::{groups, Gpu, Recorder};
 
 const WORKGROUP: u32 = 64;
 
-/// GPU twin of `VsglRaw` in `wgsl/common/vsgl_record.wgsl` (96 bytes = 24 f32).
-pub const VSGL_FLOATS: usize = 24;
-pub const VSGL_BYTES: u64 = 96;
+/// GPU twin of `VsglRaw` in `wgsl/common/vsgl_record.wgsl` (112 bytes = 28 f32).
+pub const VSGL_FLOATS: usize = 28;
+pub const VSGL_BYTES: u64 = 112;
 
 /// Field names and widths of a VSGL record, in order (for `Frame.vsgls()`).
 pub const VSGL_FIELDS: &[(&str, usize)] = &[
@@ -26,6 +26,8 @@ pub const VSGL_FIELDS: &[(&str, usize)] = &[
     ("center", 2),
     ("mass", 1),
     ("_pad", 1),
+    ("plane_normal", 3),
+    ("plane_offset", 1),
 ];
 const _: () = {
     let mut total = 0;
@@ -62,6 +64,8 @@ struct GenParamsRaw {
     chain_len: u32,
     light_offset: [f32; 3],
     k: f32,
+    planes: u32,
+    _pad: [u32; 3],
 }
 
 /// What one generation dispatch needs besides the RSM.
@@ -99,6 +103,8 @@ impl VsglGenPass {
             chain_len: chains.chain_len,
             light_offset: s.light_offset,
             k: s.k,
+            planes: u32::from(chains.has_planes()),
+            _pad: [0; 3],
         };
         let uniform = rec.uniform("vsgl_gen_params_uniform_buffer", &params);
         rec.compute(

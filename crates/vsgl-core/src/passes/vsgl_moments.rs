@@ -14,7 +14,9 @@ const WORKGROUP: u32 = 8;
 struct MomentParamsRaw {
     rsm_size: u32,
     chain_len: u32,
-    _pad: [u32; 2],
+    // 1: also write chain F (tangent planes).
+    planes: u32,
+    _pad: u32,
     /// [`LightRaw::rsm_light_dir`](crate::frame::uniforms::LightRaw::rsm_light_dir).
     light_dir: [f32; 4],
 }
@@ -32,7 +34,7 @@ impl VsglMomentsPass {
     pub fn record(&self, rec: &mut Recorder<'_>, rsm: &Rsm, chains: &MomentChains, light_dir: [f32; 4], features: ShaderFeatures) {
         let gpu = rec.gpu;
         let pipeline = self.pipelines.get(gpu, &features.specular_flags());
-        let uniform = rec.uniform("vsgl_moments_params_uniform_buffer", &MomentParamsRaw { rsm_size: rsm.size, chain_len: chains.chain_len, _pad: [0; 2], light_dir });
+        let uniform = rec.uniform("vsgl_moments_params_uniform_buffer", &MomentParamsRaw { rsm_size: rsm.size, chain_len: chains.chain_len, planes: u32::from(chains.has_planes()), _pad: 0, light_dir });
         rec.compute(
             "vsgl_moments",
             &pipeline,

@@ -16,7 +16,8 @@ struct ShadeParamsRaw {
     diffuse_mode: u32,
     first: u32,
     exact_texels: u32,
-    _pad: [u32; 3],
+    plane_fade: u32,
+    _pad: [u32; 2],
 }
 
 /// Most loop iterations (VSGLs per pixel) one dispatch runs: lavapipe (Mesa 22.3) silently
@@ -46,6 +47,17 @@ impl DiffuseMode {
             DiffuseMode::Accurate => "accurate",
             DiffuseMode::SgProduct => "sg_product",
         }
+    }
+
+    /// Whether this form's diffuse term fades out below a cluster's mean tangent plane (issue 18,
+    /// item 4; the specular term never needs it: the ASG form vanishes there). The
+    /// papers' form needs no fade: its horizon clamp max(ξ_in·n, 0) already gives a lone plane
+    /// exactly 0, and it stays the papers' formula bit for bit. The accurate clamped cosine and
+    /// the SG product integrate the incoming lobe's part above the receiver's horizon, so a
+    /// plane lights itself (3.9% of its direct light at N = 4096) unless the cluster's own
+    /// hemisphere is enforced.
+    pub fn fades_below_tangent_plane(self) -> bool {
+        self != DiffuseMode::Papers
     }
 
     /// `ShadeParams.diffuse_mode` of the shader.
@@ -93,7 +105,7 @@ impl VsglShadingPass {
         let per_dispatch = if visibility.traced { TRACED_VSGLS_PER_PIXEL_PER_DISPATCH } else { VSGLS_PER_PIXEL_PER_DISPATCH };
         let chunk = per_dispatch * interleave * interleave;
         for_each_chunk(count, chunk, |first, n| {
-            let params = ShadeParamsRaw { count: n, interleave, diffuse_mode: diffuse.shader_code(), first, exact_texels: u32::from(exact_texels), _pad: [0; 3] };
+            let params = ShadeParamsRaw { count: n, interleave, diffuse_mode: diffuse.shader_code(), first, exact_texels: u32::from(exact_texels), plane_fade: u32::from(diffuse.fades_below_tangent_plane()), _pad: [0; 2] };
             let uniform = rec.uniform("vsgl_shading_params_uniform_buffer", &params);
             rec.compute(
                 &label,

@@ -1,0 +1,93 @@
+"""Issue 18, item 4: a VSGL's light stays above its cluster's mean tangent plane.
+
+Every RSM texel reflects only into its own hemisphere, so a lone lit plane receives no
+indirect light from itself. The papers' diffuse form gets exactly 0 from its horizon clamp; the
+"accurate" clamped cosine and the "sg_product" form integrate the part of the incoming lobe
+above the receiver's horizon, so before the fade a plane lit itself (3.9% of its direct light at
+N = 4096 with "accurate"). The fade (wgsl/common/vsgl_tangent_plane.wgsl) must remove exactly
+that and keep light that does reach a receiver in front of the cluster."""
+
+from __future__ import annotations
+
+import numpy as np
+import pytest
+
+import vsgl
+from scene_builders import write_quad, write_quads
+
+SIZE = 32
+
+
+def _spot_over_plane(scene: vsgl.Scene) -> tuple[vsgl.Scene, vsgl.Camera]:
+    scene.add_light(vsgl.SpotLight(position=(0.3, 2.0, 0.2), direction=(-0.1, -1, -0.05), intensity=30.0, inner_cone_deg=35, outer_cone_deg=45))
+    cam = vsgl.Camera.look_at(eye=(0.5, 3.0, 2.5), target=(0, 0, 0), up=(0, 1, 0), fov_y_deg=50)
+    return scene, cam
+
+
+@pytest.mark.parametrize("diffuse", ["papers", "accurate", "sg_product"])
+@pytest.mark.parametrize("kernel", ["integral", "node", "density"])
+def test_a_lone_plane_gets_no_indirect_light_in_every_diffuse_form(tmp_path, make_renderer, diffuse, kernel):
+    scene, cam = _spot_over_plane(vsgl.Scene.load(write_quad(tmp_path, half_size=3.0, roughness=0.6, specular=0.5)))
+    r = make_renderer(SIZE, SIZE)
+    for n in (256, 4096):
+        f = r.render(scene, camera=cam, method="vsgl", num_lights=n, rsm_size=64, kernel=kernel, diffuse=diffuse, interleave=1, denoise=False, aovs=["direct", "indirect"])
+        direct = f.aov("direct").astype(np.float64)
+        indirect = f.aov("indirect").astype(np.float64)
+        assert direct.sum() > 0
+        assert np.all(np.isfinite(indirect))
+        assert indirect.max() == 0.0, f"N={n}: the plane lights itself, {indirect.sum() / direct.sum():.3%} of direct"
+
+
+def _floor_and_wall(tmp_path):
+    """A lit floor (y = 0) and an unlit wall (x = −1) facing it (the cone ends 0.56 m short of
+    the wall): everything the wall receives comes from the floor's clusters, from in front of
+    their tangent plane, and the floor receives nothing."""
+    quads = [
+        {"name": "floor", "corners": [(-1, 0, -2), (-1, 0, 2), (3, 0, 2), (3, 0, -2)], "specular": 0.0},
+        {"name": "wall", "corners": [(-1, 0, -2), (-1, 3, -2), (-1, 3, 2), (-1, 0, 2)], "specular": 0.0},
+    ]
+    scene = vsgl.Scene.load(write_quads(tmp_path, quads))
+    scene.add_light(vsgl.SpotLight(position=(1.0, 2.5, 0.0), direction=(0, -1, 0), intensity=40.0, inner_cone_deg=20, outer_cone_deg=30))
+    cam = vsgl.Camera.look_at(eye=(3.5, 1.5, 0.0), target=(-1, 1.0, 0), up=(0, 1, 0), fov_y_deg=60)
+    return scene, cam
+
+
+@pytest.mark.parametrize("diffuse", ["accurate", "sg_product"])
+def test_the_fade_keeps_light_that_reaches_a_receiver_in_front_of_the_cluster(tmp_path, make_renderer, diffuse):
+    """The wall's indirect light with the fade against the every-texel reference (same RSM,
+    exact per-texel hemispheres). With quadtree-node clusters, which converge to the reference,
+    the wall keeps its light within 2% at N = 4096 (measured: 0.998 "accurate", 0.996
+    "sg_product"); with the default kernel the fade costs nothing next to the papers' form (both
+    0.848 here: what is missing is the SG approximation's, not the fade's). The floor, which
+    sees the floor's clusters edge-on, gets exactly 0, as in the reference."""
+    scene, cam = _floor_and_wall(tmp_path)
+    r = make_renderer(SIZE, SIZE)
+    kw = dict(camera=cam, rsm_size=64, aovs=["indirect", "normal"])
+    ref = r.render(scene, method="reference", **kw)
+    normal = ref.aov("normal")
+    wall = normal[..., 0] > 0.9
+    floor = normal[..., 1] > 0.9
+    assert wall.sum() > 50 and floor.sum() > 50
+    assert ref.aov("indirect")[floor].max() == 0.0
+    want = ref.aov("indirect")[wall].astype(np.float64).sum()
+    assert want > 0
+    ratio = {}
+    for kernel, form in (("node", diffuse), ("integral", diffuse), ("integral", "papers")):
+        f = r.render(scene, method="vsgl", num_lights=4096, interleave=1, denoise=False, kernel=kernel, diffuse=form, **kw)
+        ratio[kernel, form] = f.aov("indirect")[wall].astype(np.float64).sum() / want
+        assert f.aov("indirect")[floor].max() == 0.0, (kernel, form)
+    print(f"wall indirect vsgl / reference: {ratio}")
+    assert abs(ratio["node", diffuse] - 1) < 0.02
+    assert ratio["integral", diffuse] > ratio["integral", "papers"] - 0.15
+    if diffuse == "accurate":
+        assert abs(ratio["integral", "accurate"] - ratio["integral", "papers"]) < 0.01
+
+
+@pytest.mark.parametrize("diffuse", ["papers", "accurate", "sg_product"])
+def test_two_vsgls_of_a_lone_plane_do_not_light_it(tmp_path, make_renderer, diffuse):
+    """vsgl2's two VSGLs carry the plane of all texels (vsgl2_moments.wgsl)."""
+    scene, cam = _spot_over_plane(vsgl.Scene.load(write_quad(tmp_path, half_size=3.0, roughness=0.6, specular=0.5)))
+    f = make_renderer(SIZE, SIZE).render(scene, camera=cam, method="vsgl2", rsm_size=64, diffuse=diffuse, aovs=["direct", "indirect"])
+    assert f.aov("direct").sum() > 0
+    indirect = f.aov("indirect").astype(np.float64)
+    assert indirect.max() == 0.0, f"{indirect.sum() / f.aov('direct').astype(np.float64).sum():.3%} of direct"
