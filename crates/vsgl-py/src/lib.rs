@@ -662,7 +662,9 @@ impl PyFrame {
     /// NumPy structured array with fields
     /// mean (relative to the camera), variance, diffuse_axis, diffuse_sharpness, diffuse_power
     /// (rgb, W), level, specular_axis, specular_sharpness, specular_power, pdf, center (kernel
-    /// centre in RSM texels), mass (the kernel's probability mass (4^l/M)·p̄), _pad.
+    /// centre in RSM texels), mass (the kernel's probability mass (4^l/M)·p̄), _pad,
+    /// plane_normal and plane_offset (the cluster's mean tangent plane Σw·n/Σw and
+    /// E_w[(μ − y)·n]; zero unless `diffuse` is "accurate" or "sg_product", or for vsgl2).
     fn vsgls<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyAny>> {
         let Some(data) = &self.inner.vsgls else {
             return Err(argument_error("this frame has no VSGLs; render with method=\"vsgl\" or \"vsgl2\" and a spot light"));
