@@ -91,3 +91,40 @@ def test_two_vsgls_of_a_lone_plane_do_not_light_it(tmp_path, make_renderer, diff
     assert f.aov("direct").sum() > 0
     indirect = f.aov("indirect").astype(np.float64)
     assert indirect.max() == 0.0, f"{indirect.sum() / f.aov('direct').astype(np.float64).sum():.3%} of direct"
+
+
+def test_a_single_texel_vsgl_is_an_area_light_of_the_texels_footprint(tmp_path, make_renderer):
+    """Issue 18, item 2: each texel adds its own positional variance to Σw‖y‖². With a 32² RSM
+    and N = 4096 quadtree-node VSGLs, every VSGL is one texel, so its σ² must be the texel's
+    footprint, (a²/12)(1 + 1/cos²θ) with a² = Δω·d² its cross-section perpendicular to the
+    light. Δω is taken from the RSM's own flux (Φ = I·ρ_d·Δω inside the inner cone on a
+    Lambertian plane), d and θ from the captured positions and normals: nothing here is
+    computed by the code under test. Without footprints σ² is the rounding floor, 1e-6·d²."""
+    rho, intensity = 0.5, 30.0
+    scene = vsgl.Scene.load(write_quad(tmp_path, half_size=3.0, base_color=(rho, rho, rho), specular=0.0))
+    scene.add_light(vsgl.SpotLight(position=(0.3, 2.0, 0.2), direction=(0.4, -1, -0.2), intensity=intensity, inner_cone_deg=50, outer_cone_deg=55))
+    cam = vsgl.Camera.look_at(eye=(0.5, 3.0, 2.5), target=(0, 0, 0), up=(0, 1, 0), fov_y_deg=50)
+    n = 32
+    f = make_renderer(SIZE, SIZE).render(scene, camera=cam, method="vsgl", num_lights=4096, rsm_size=n, kernel="node", capture_rsm=True)
+    v = f.vsgls()
+    # Dim nodes (cone edge) may stop above level 0: only single-texel VSGLs are checked.
+    single = v["level"] == 0
+    assert single.mean() > 0.5
+    y = f.rsm("position").astype(np.float64).reshape(n * n, 3)
+    normal = f.rsm("normal").astype(np.float64).reshape(n * n, 3)
+    flux = f.rsm("flux_diffuse").astype(np.float64).reshape(n * n, 3)[:, 0]
+    d2 = (y**2).sum(axis=1)
+    cos_surface = np.abs((normal * -y).sum(axis=1)) / np.sqrt(d2)
+    solid_angle = flux / (intensity * rho)
+    want = solid_angle * d2 * (1 + 1 / np.maximum(cos_surface, 0.1) ** 2) / 12
+    # Texels well inside the inner cone (the cone factor is 1 there), away from the quad's edge.
+    axis = np.array([0.4, -1, -0.2]) / np.linalg.norm([0.4, -1, -0.2])
+    inside = ((y / np.sqrt(d2)[:, None]) @ axis > np.cos(np.radians(45))) & (flux > 0)
+    texel = np.floor(v["center"]).astype(int)
+    index = texel[:, 1] * n + texel[:, 0]
+    pick = inside[index] & single
+    assert pick.sum() > 500
+    got = v["variance"].astype(np.float64)[pick]
+    ratio = got / want[index[pick]]
+    print(f"single-texel σ² / footprint: median {np.median(ratio):.4f}, range {ratio.min():.4f}…{ratio.max():.4f}")
+    np.testing.assert_allclose(ratio, 1.0, rtol=0.02)

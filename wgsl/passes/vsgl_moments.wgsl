@@ -4,7 +4,8 @@
 //   A = (Φ·R_d rgb, w)                 w = Φ·(R_d + R_s) summed over rgb (the paper's weight)
 //   B = (Φ·R_s rgb, w_d)               w_d = Φ·R_d summed over rgb
 //   C = (w_d ξ̄_d, w_s)                 ξ̄_d: Toksvig mean direction of the diffuse lobe SG
-//   D = (w_s ξ̄_s, w ‖y‖²)              ξ̄_s: Toksvig mean direction of the GGX lobe SG
+//   D = (w_s ξ̄_s, w (‖y‖² + v))        ξ̄_s: Toksvig mean direction of the GGX lobe SG;
+//                                      v: the texel's own positional variance (footprint)
 //   E = (w y, 0)                       y: texel position relative to the light (local origin)
 //   F = (w n, w (y·n))                 n: texel normal — the cluster's mean tangent plane
 //                                      (issue 18, item 4; vsgl_tangent_plane_fade in vsgl.wgsl)
@@ -26,6 +27,35 @@ struct MomentParams {
     _pad1: u32,
     // (direction, 1) for a directional light, 0 otherwise (rsm_lobe_means).
     light_dir: vec4f,
+    // LightRsm::texel_footprint: (view axis, t²(2/N)²) of a perspective RSM; (0, (2R/N)²) of
+    // an orthographic one.
+    texel_footprint: vec4f,
+}
+
+// A texel is not a point but a patch of the surface (issue 18, item 2). Its cross-section
+// perpendicular to the light is a square of side a, a² = Δω·d² (perspective, Δω the texel's
+// solid angle, as in rsm_flux.wgsl) or (2R/N)² (orthographic); on a surface tilted by θ to the
+// light it is stretched by 1/cos θ along one axis. A uniform a × a/cos θ rectangle has
+// positional variance (a² + a²/cos²θ)/12 (summed over its two axes), which the texel adds to
+// Σw‖y‖² so that a single-texel cluster is an area light of the texel's size, not a point.
+// cos θ is floored at 0.1: a grazing texel's footprint is long, but not unbounded.
+const FOOTPRINT_COS_MIN: f32 = 0.1;
+
+fn texel_footprint_variance(y: vec3f, normal: vec3f) -> f32 {
+    var cross_section: f32;
+    var to_light: vec3f;
+    if (params.light_dir.w != 0.0) {
+        cross_section = params.texel_footprint.w;
+        to_light = -params.light_dir.xyz;
+    } else {
+        let d2 = dot(y, y);
+        let inv_d = inverseSqrt(max(d2, FLT_MIN));
+        let cos_axis = abs(dot(y, params.texel_footprint.xyz)) * inv_d;
+        cross_section = params.texel_footprint.w * cos_axis * cos_axis * cos_axis * d2;
+        to_light = -y * inv_d;
+    }
+    let cos_surface = max(abs(dot(normal, to_light)), FOOTPRINT_COS_MIN);
+    return cross_section * (1.0 + 1.0 / (cos_surface * cos_surface)) / 12.0;
 }
 
 const WORKGROUP: u32 = 8u;
@@ -68,7 +98,7 @@ fn main(@builtin(global_invocation_id) gid: vec3u) {
     moments[i] = vec4f(fd.rgb, w);
     moments[stride + i] = vec4f(fs, wd);
     moments[2u * stride + i] = vec4f(wd * mean_d, ws);
-    moments[3u * stride + i] = vec4f(ws * mean_s, w * dot(y, y));
+    moments[3u * stride + i] = vec4f(ws * mean_s, w * (dot(y, y) + texel_footprint_variance(y, normal)));
     moments[4u * stride + i] = vec4f(w * y, 0.0);
     if (params.planes == 1u) {
         moments[5u * stride + i] = vec4f(w * normal, w * dot(y, normal));

@@ -131,10 +131,15 @@ fn main(@builtin(workgroup_id) wg: vec3u, @builtin(local_invocation_id) lid: vec
                 // clusters have no diffuse lobe) is skipped: it would add exactly 0.
                 if (params.exact_texels == 1u && light.level == 0.0 && any(light.diffuse_power > vec3f(0.0))) {
                     // Radiant intensity towards p over power, max(−ω·n_t, 0)/π, at distance d:
-                    // irradiance per unit power facing p is that times max(n·ω, 0)/d².
+                    // irradiance per unit power facing p is that times max(n·ω, 0)/d². The texel
+                    // is a patch, not a point (issue 18, item 2): a Lambertian disk of radius r
+                    // gives on its axis exactly Φ/(π(d² + r²)), and r² = 2σ² for a disk's
+                    // positional variance σ² (the texel's footprint variance, vsgl_moments.wgsl),
+                    // so d² + 2σ² bounds the VPL's 1/d² spike at contacts by the texel's size.
                     let to_light = light.mean - p;
-                    let dist2 = max(dot(to_light, to_light), FLT_MIN);
-                    let l = to_light * inverseSqrt(dist2);
+                    let center_dist2 = dot(to_light, to_light);
+                    let dist2 = max(center_dist2 + 2.0 * light.variance, FLT_MIN);
+                    let l = to_light * inverseSqrt(max(center_dist2, FLT_MIN));
                     let e = max(dot(-l, light.diffuse_axis), 0.0) * INV_PI * max(dot(n, l), 0.0) / dist2;
                     diffuse += light.diffuse_power * (e * INV_PI);
                     if (HAS_SPECULAR) {

@@ -80,6 +80,30 @@ pub struct LightRsm<'a> {
     /// A storage buffer holding this light alone (what the RSM passes bind).
     pub light: &'a wgpu::Buffer,
     pub rsm: &'a Rsm,
+    /// The RSM's view (`rsm_views`): what gives a texel its footprint (`texel_footprint`).
+    pub view: &'a crate::frame::uniforms::FrameUniforms,
+}
+
+impl LightRsm<'_> {
+    /// What `vsgl_moments.wgsl` needs to give each RSM texel its area on the surface
+    /// (issue 18, item 2): for a perspective RSM (spot light, point light face) the view
+    /// axis and t²·(2/N)², so that a texel at angle α to the axis spans the solid angle
+    /// Δω = t²(2/N)²cos³α (as in rsm_flux.wgsl) and a cross-section Δω·d² at distance d;
+    /// for an orthographic RSM (directional light) w is the cross-section (2R/N)² itself and
+    /// xyz = 0.
+    pub fn texel_footprint(&self) -> [f32; 4] {
+        let v = self.view;
+        let n = v.size[0] as f32;
+        let len = |a: [f32; 4]| (a[0] * a[0] + a[1] * a[1] + a[2] * a[2]).sqrt();
+        let texel = 2.0 / n;
+        if v.orthographic != 0 {
+            [0.0, 0.0, 0.0, len(v.cam_right) * len(v.cam_up) * texel * texel]
+        } else {
+            let t2 = len(v.cam_up) * len(v.cam_up);
+            let f = v.cam_forward;
+            [f[0], f[1], f[2], t2 * texel * texel]
+        }
+    }
 }
 
 /// What renders one RSM: the shared targets and the three passes.
@@ -202,7 +226,7 @@ pub fn for_each_light(ctx: &mut FrameContext<'_>, s: &RsmSettings, mut per_light
             }
             passes.record(ctx, "rsm", view, &light);
             if !dark {
-                per_light(ctx, &LightRsm { budget, raw, light: &light, rsm: &passes.rsm })?;
+                per_light(ctx, &LightRsm { budget, raw, light: &light, rsm: &passes.rsm, view })?;
             }
             if capture {
                 // Read back before the next view overwrites the shared RSM buffers; a point

@@ -140,7 +140,7 @@ impl Method for Vsgl {
             let feat = ctx.features;
             let chains = chains.get_or_insert_with(|| MomentChains::new(&mut ctx.rec, self.rsm_size, self.diffuse.fades_below_tangent_plane()));
             pdf_mips.record(&mut ctx.rec, light.rsm);
-            moments.record(&mut ctx.rec, light.rsm, chains, light.raw.rsm_light_dir(), feat);
+            moments.record(&mut ctx.rec, light.rsm, chains, light.raw.rsm_light_dir(), light.texel_footprint(), feat);
             moment_mips.record(&mut ctx.rec, self.rsm_size, chains);
             // This RSM's share of num_lights (split over lights and cube faces by reflected
             // power, `power_budgets`).
