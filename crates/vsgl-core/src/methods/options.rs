@@ -144,6 +144,8 @@ impl OptionSpec {
 #[derive(Clone, Debug)]
 pub struct Options {
     values: Vec<(&'static str, OptionValue)>,
+    /// The names the caller gave (the rest took their defaults).
+    given: Vec<&'static str>,
 }
 
 impl Options {
@@ -163,14 +165,35 @@ impl Options {
             }
         }
         let mut values = Vec::with_capacity(specs.len());
+        let mut names = Vec::new();
         for spec in specs {
             let value = match given.iter().find(|(n, _)| n == spec.name) {
-                Some((_, v)) => spec.check(v)?,
+                Some((_, v)) => {
+                    names.push(spec.name);
+                    spec.check(v)?
+                }
                 None => spec.default.clone(),
             };
             values.push((spec.name, value));
         }
-        Ok(Self { values })
+        Ok(Self { values, given: names })
+    }
+
+    /// Whether the caller gave `name` (false: it has its default).
+    pub fn was_given(&self, name: &str) -> bool {
+        self.given.iter().any(|n| *n == name)
+    }
+
+    /// Replaces the default of an option the caller did not give by one that depends on other
+    /// options (e.g. the RSM side that grows with num_lights), so `frame.settings` shows the
+    /// value used. A given value is kept.
+    pub fn resolve_default(&mut self, name: &str, value: OptionValue) {
+        if self.was_given(name) {
+            return;
+        }
+        if let Some((_, v)) = self.values.iter_mut().find(|(n, _)| *n == name) {
+            *v = value;
+        }
     }
 
     fn get(&self, name: &str) -> Result<&OptionValue> {
@@ -238,6 +261,16 @@ pub mod common {
         help: "side of each light's reflective shadow map in texels",
         note: "",
     };
+
+    /// The RSM side `vpl` and `vsgl` use when `rsm_size` is not given (issue 18, item 2): at least
+    /// four texels per virtual light, so clusters keep several texels and quadtree-node VSGLs
+    /// (`kernel="node"`) reach single texels only where the light is concentrated:
+    /// max(256, 2^⌈log2(2√N)⌉), at most 1024 (whose six moment chains take 134 MB). 256 up to
+    /// N = 16384, 512 up to 65536, 1024 beyond.
+    pub fn rsm_size_for(num_lights: u32) -> u32 {
+        let side = (2.0 * (num_lights as f64).sqrt()).ceil() as u32;
+        side.next_power_of_two().clamp(256, 1024)
+    }
     pub const SAMPLING: OptionSpec = choice("sampling", &["stratified", "random"], "how RSM texels are drawn: stratified or independent random numbers");
     pub const SEED: OptionSpec = int("seed", 0, u32::MAX as i64, 0, "seed of the random numbers (same seed, same image)");
     pub const VPL_CLAMP: OptionSpec = OptionSpec {
@@ -297,4 +330,24 @@ pub mod common {
         &["papers", "accurate", "sg_product"],
         "diffuse SG shading: the papers' clamped form, the unclamped SG-cosine product, or an SG product",
     );
+}
+
+#[cfg(test)]
+mod tests {
+    use super::common::rsm_size_for;
+
+    /// At least four texels per virtual light up to the cap, never below the old default.
+    #[test]
+    fn rsm_size_grows_with_num_lights() {
+        assert_eq!(rsm_size_for(1), 256);
+        assert_eq!(rsm_size_for(16384), 256);
+        assert_eq!(rsm_size_for(16385), 512);
+        assert_eq!(rsm_size_for(65536), 512);
+        assert_eq!(rsm_size_for(65537), 1024);
+        assert_eq!(rsm_size_for(1 << 20), 1024);
+        for n in [1u32, 7, 256, 4096, 20000, 65536, 262144] {
+            let side = rsm_size_for(n) as u64;
+            assert!(side * side >= 4 * n as u64 || side == 1024, "{n}: {side}");
+        }
+    }
 }

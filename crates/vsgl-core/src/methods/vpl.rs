@@ -59,7 +59,8 @@ pub(super) fn sampling(o: &Options) -> Result<Sampling> {
 }
 
 impl Vpl {
-    fn new(o: &Options) -> Result<Self> {
+    fn new(given: &Options) -> Result<Self> {
+        let o = &with_rsm_size_for_num_lights(given)?;
         Ok(Self {
             options: o.clone(),
             visibility: VisibilityMode::from_options(o)?,
@@ -108,4 +109,13 @@ impl Method for Vpl {
     fn settings(&self, _gpu: &Gpu) -> Result<Vec<(String, String)>> {
         Ok(self.options.rows())
     }
+}
+
+/// The options with `rsm_size`, when not given, grown with `num_lights`
+/// ([`common::rsm_size_for`](super::options::common::rsm_size_for)); shared by `vpl` and `vsgl`.
+pub(super) fn with_rsm_size_for_num_lights(given: &Options) -> Result<Options> {
+    let mut o = given.clone();
+    let side = super::options::common::rsm_size_for(o.u32("num_lights")?);
+    o.resolve_default("rsm_size", super::options::OptionValue::Int(side as i64));
+    Ok(o)
 }

@@ -92,7 +92,8 @@ pub(super) fn diffuse_mode(o: &Options) -> Result<DiffuseMode> {
 }
 
 impl Vsgl {
-    fn new(o: &Options) -> Result<Self> {
+    fn new(given: &Options) -> Result<Self> {
+        let o = &super::vpl::with_rsm_size_for_num_lights(given)?;
         Ok(Self {
             options: o.clone(),
             visibility: VisibilityMode::from_options(o)?,

@@ -1,4 +1,7 @@
-"""Issue 18, item 4: a VSGL's light stays above its cluster's mean tangent plane.
+"""Issue 18, items 2 and 4: what a VSGL cluster knows of its texels — their mean tangent plane
+(light stays above it), their own footprints, and an RSM that grows with N.
+
+Item 4: a VSGL's light stays above its cluster's mean tangent plane.
 
 Every RSM texel reflects only into its own hemisphere, so a lone lit plane receives no
 indirect light from itself. The papers' diffuse form gets exactly 0 from its horizon clamp; the
@@ -113,7 +116,7 @@ def test_a_single_texel_vsgl_is_an_area_light_of_the_texels_footprint(tmp_path, 
     y = f.rsm("position").astype(np.float64).reshape(n * n, 3)
     normal = f.rsm("normal").astype(np.float64).reshape(n * n, 3)
     flux = f.rsm("flux_diffuse").astype(np.float64).reshape(n * n, 3)[:, 0]
-    d2 = (y**2).sum(axis=1)
+    d2 = np.maximum((y**2).sum(axis=1), 1e-30)
     cos_surface = np.abs((normal * -y).sum(axis=1)) / np.sqrt(d2)
     solid_angle = flux / (intensity * rho)
     want = solid_angle * d2 * (1 + 1 / np.maximum(cos_surface, 0.1) ** 2) / 12
@@ -128,3 +131,15 @@ def test_a_single_texel_vsgl_is_an_area_light_of_the_texels_footprint(tmp_path, 
     ratio = got / want[index[pick]]
     print(f"single-texel σ² / footprint: median {np.median(ratio):.4f}, range {ratio.min():.4f}…{ratio.max():.4f}")
     np.testing.assert_allclose(ratio, 1.0, rtol=0.02)
+
+
+def test_the_default_rsm_grows_with_num_lights(renderer):
+    """Without rsm_size, vpl and vsgl take max(256, 2^ceil(log2(2*sqrt(N)))) up to 1024 (at least
+    four texels per virtual light); a given rsm_size is kept."""
+    scene = vsgl.scenes.cornell_box()
+    for method in ("vpl", "vsgl"):
+        for n, side in ((4096, 256), (16385, 512), (70000, 1024)):
+            f = renderer.render(scene, method=method, num_lights=n, interleave=8, aovs=["indirect"])
+            assert f.settings["rsm_size"] == str(side), (method, n, f.settings["rsm_size"])
+        f = renderer.render(scene, method=method, num_lights=70000, rsm_size=64, interleave=8, aovs=["indirect"])
+        assert f.settings["rsm_size"] == "64"
