@@ -144,6 +144,8 @@ impl OptionSpec {
 #[derive(Clone, Debug)]
 pub struct Options {
     values: Vec<(&'static str, OptionValue)>,
+    /// The names the caller gave (the rest took their defaults).
+    given: Vec<&'static str>,
 }
 
 impl Options {
@@ -163,14 +165,18 @@ impl Options {
             }
         }
         let mut values = Vec::with_capacity(specs.len());
+        let mut given_names = Vec::new();
         for spec in specs {
             let value = match given.iter().find(|(n, _)| n == spec.name) {
-                Some((_, v)) => spec.check(v)?,
+                Some((_, v)) => {
+                    given_names.push(spec.name);
+                    spec.check(v)?
+                }
                 None => spec.default.clone(),
             };
             values.push((spec.name, value));
         }
-        Ok(Self { values })
+        Ok(Self { values, given: given_names })
     }
 
     fn get(&self, name: &str) -> Result<&OptionValue> {
@@ -208,6 +214,11 @@ impl Options {
             OptionValue::Str(v) => Ok(v.as_ref()),
             v => Err(Error::invalid(name.to_string(), format!("expected a string, got {}", v.display()))),
         }
+    }
+
+    /// Whether the caller gave `name` (false: it took its default).
+    pub fn given(&self, name: &str) -> bool {
+        self.given.contains(&name)
     }
 
     /// (name, value as shown in `frame.settings`), in declaration order.
@@ -296,5 +307,12 @@ pub mod common {
         "diffuse",
         &["papers", "accurate", "sg_product"],
         "diffuse SG shading: the papers' clamped form, the unclamped SG-cosine product, or an SG product",
+    );
+    /// SG lighting forms (docs/rendering.md, "SG lighting"): the papers' (ASG specular, `diffuse=`)
+    /// or the accurate ones (filtered-NDF specular and the clamped-cosine diffuse).
+    pub const LIGHTING: OptionSpec = choice(
+        "lighting",
+        &["asg", "accurate"],
+        "SG lighting: \"asg\" (the papers' SG–ASG specular, diffuse as diffuse= says) or \"accurate\" (GGX with its NDF widened by the light's spread, after Tokuyoshi et al. 2024, and the clamped-cosine diffuse)",
     );
 }

@@ -16,7 +16,8 @@ struct ShadeParamsRaw {
     diffuse_mode: u32,
     first: u32,
     exact_texels: u32,
-    _pad: [u32; 3],
+    lighting_mode: u32,
+    _pad: [u32; 2],
 }
 
 /// Most loop iterations (VSGLs per pixel) one dispatch runs: lavapipe (Mesa 22.3) silently
@@ -58,6 +59,27 @@ impl DiffuseMode {
     }
 }
 
+/// Specular (glossy) shading form of the SG lighting, `lighting=` (the diffuse form of
+/// `Accurate` is [`DiffuseMode::Accurate`], chosen by the method).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum LightingMode {
+    /// The papers' SG–ASG product integral (`vsgl_specular`).
+    Asg,
+    /// The GGX NDF widened by the light's spread through the reflection Jacobian
+    /// (`vsgl_specular_accurate`, after Tokuyoshi et al. 2024).
+    Accurate,
+}
+
+impl LightingMode {
+    /// `ShadeParams.lighting_mode` of the shader.
+    fn shader_code(self) -> u32 {
+        match self {
+            LightingMode::Asg => 0,
+            LightingMode::Accurate => 1,
+        }
+    }
+}
+
 pub struct VsglShadingPass {
     pipelines: PipelineVariants,
 }
@@ -76,6 +98,7 @@ impl VsglShadingPass {
         count: u32,
         interleave: u32,
         diffuse: DiffuseMode,
+        lighting: LightingMode,
         exact_texels: bool,
         gbuffer: &GBuffer,
         out: &IndirectTargets,
@@ -93,7 +116,7 @@ impl VsglShadingPass {
         let per_dispatch = if visibility.traced { TRACED_VSGLS_PER_PIXEL_PER_DISPATCH } else { VSGLS_PER_PIXEL_PER_DISPATCH };
         let chunk = per_dispatch * interleave * interleave;
         for_each_chunk(count, chunk, |first, n| {
-            let params = ShadeParamsRaw { count: n, interleave, diffuse_mode: diffuse.shader_code(), first, exact_texels: u32::from(exact_texels), _pad: [0; 3] };
+            let params = ShadeParamsRaw { count: n, interleave, diffuse_mode: diffuse.shader_code(), first, exact_texels: u32::from(exact_texels), lighting_mode: lighting.shader_code(), _pad: [0; 2] };
             let uniform = rec.uniform("vsgl_shading_params_uniform_buffer", &params);
             rec.compute(
                 &label,
