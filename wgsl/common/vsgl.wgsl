@@ -141,6 +141,12 @@ fn vsgl_specular(radiance: Sg, normal: vec3f, w_o: vec3f, alpha: f32) -> f32 {
 // directional albedo. (An α given above 1 is kept: the cap is max(α², 1).)
 const VSGL_FILTERED_ALPHA2_MIN: f32 = 1.0e-8;
 const VSGL_FILTERED_ALPHA2_MAX: f32 = 1.0;
+// Largest 1/‖ξ + ω_o‖ in vsgl_specular_accurate, so ‖m‖ = tan θ_d·‖n × e_∥‖ ≤ 2·5e8 = 1e9 and the
+// squares of B's entries (≤ ~1e36) stay finite in f32. It binds only for ξ within 2e-9 of −ω_o
+// (both on the horizon), where B's large eigenvalue ~‖m‖² is capped anyway (‖m‖²/(2λh_n⁴) ≥ 1e18/
+// 2e9 ≫ max(α², 1) for λ ≤ SG_SHARPNESS_MAX), and b₋ = det B/b₊ → h_n² + (h₂ × m̂₂)² does not
+// depend on ‖m‖ (found by the stability suite: ξ = −ω_o on the horizon overflowed to FLT_MAX).
+const VSGL_FILTERED_INV_HALF_LENGTH_MAX: f32 = 5.0e8;
 
 // Specular reflected radiance over R_s for the GGX BRDF (Fresnel = 1), the accurate SG lighting
 // (lighting="accurate", after the filtered-NDF idea of Tokuyoshi et al. 2024, "Hierarchical
@@ -195,7 +201,7 @@ fn vsgl_specular_accurate(radiance: Sg, normal: vec3f, w_o: vec3f, alpha: f32) -
     let frame = orthonormal_basis(normal);
     let h_n = dot(h, normal);
     let h2 = vec2f(dot(h, frame[0]), dot(h, frame[1]));
-    let m_full = cross(normal, radiance.axis - w_o) * inverseSqrt(max(u_len2, FLT_MIN));
+    let m_full = cross(normal, radiance.axis - w_o) * min(inverseSqrt(max(u_len2, FLT_MIN)), VSGL_FILTERED_INV_HALF_LENGTH_MAX);
     let m2 = vec2f(dot(m_full, frame[0]), dot(m_full, frame[1]));
     let h_n2 = h_n * h_n;
     let b_tt = h_n2 + h2.x * h2.x + m2.x * m2.x;

@@ -130,6 +130,11 @@ mod tests {
             ("common/ggx.wgsl", "GGX_ALPHA_MIN", super::ggx::GGX_ALPHA_MIN),
             ("common/vsgl.wgsl", "VSGL_FILTERED_ALPHA2_MIN", super::vsgl::VSGL_FILTERED_ALPHA2_MIN),
             ("common/vsgl.wgsl", "VSGL_FILTERED_ALPHA2_MAX", super::vsgl::VSGL_FILTERED_ALPHA2_MAX),
+            (
+                "common/vsgl.wgsl",
+                "VSGL_FILTERED_INV_HALF_LENGTH_MAX",
+                super::vsgl::VSGL_FILTERED_INV_HALF_LENGTH_MAX,
+            ),
         ];
         for &(file, name, oracle) in pairs {
             let wgsl = const_value(file, name);

@@ -111,6 +111,8 @@ pub fn vsgl_specular(radiance: Sg, normal: DVec3, w_o: DVec3, alpha: f64) -> f64
 pub const VSGL_FILTERED_ALPHA2_MIN: f64 = 1.0e-8;
 /// Same as `VSGL_FILTERED_ALPHA2_MAX` in vsgl.wgsl: the widening stops at α'² = 1 (D = 1/π).
 pub const VSGL_FILTERED_ALPHA2_MAX: f64 = 1.0;
+/// Same as `VSGL_FILTERED_INV_HALF_LENGTH_MAX` in vsgl.wgsl: 1/‖ξ + ω_o‖ ≤ 5e8 (‖m‖ ≤ 1e9).
+pub const VSGL_FILTERED_INV_HALF_LENGTH_MAX: f64 = 5.0e8;
 
 /// The widened slope covariance Σ' = α²I + (2/λ)JJᵀ of `vsgl_specular_accurate`, in the tangent
 /// frame (t, b) = orthonormal_basis(n), as its eigen-decomposition: (σ₊, σ₋, unit eigenvector of
@@ -124,7 +126,7 @@ pub fn vsgl_filtered_slope_covariance(sharpness: f64, normal: DVec3, w_in: DVec3
     let (t, b) = (frame.x_axis, frame.y_axis);
     let h_n = h.dot(normal);
     let (h_t, h_b) = (h.dot(t), h.dot(b));
-    let m = normal.cross(w_in - w_o) / u_len2.max(FLT_MIN).sqrt();
+    let m = normal.cross(w_in - w_o) * (1.0 / u_len2.max(FLT_MIN).sqrt()).min(VSGL_FILTERED_INV_HALF_LENGTH_MAX);
     let (m_t, m_b) = (m.dot(t), m.dot(b));
     let h_n2 = h_n * h_n;
     // B = h_n² I + h₂h₂ᵀ + m₂m₂ᵀ
@@ -609,6 +611,16 @@ mod tests {
                                 vsgl_diffuse_accurate(l_in, n),
                                 vsgl_diffuse_sg_product(l_in, n),
                                 vsgl_specular(l_in, n, w_o, alpha),
+                                vsgl_specular_accurate(l_in, n, w_o, alpha),
+                                vsgl_specular_accurate(
+                                    Sg {
+                                        axis: dir(1.5, 0.0),
+                                        ..l_in
+                                    },
+                                    n,
+                                    w_o,
+                                    alpha,
+                                ),
                                 vsgl_specular(
                                     Sg {
                                         axis: dir(1.5, 0.0),
