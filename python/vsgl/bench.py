@@ -1,6 +1,7 @@
 """Error against run time: ``python -m vsgl bench`` and ``vsgl.bench.run(...)``.
 
-Sweeps methods × light counts × RSM sizes × VSGL kernels over scenes at one resolution. For each
+Sweeps methods × light counts × RSM sizes × VSGL kernels (× K with ``--K``, × the SG lighting forms of
+vsgl and vsgl2 with ``--lighting asg,accurate``) over scenes at one resolution. For each
 configuration it reports GPU time per pass and in total (median, interquartile range and
 extremes over frames rendered back to back after a warm-up of ``--warmup-seconds`` of sustained
 rendering, so the GPU leaves its idle clock; from timestamp queries; the SM clock before and

@@ -187,7 +187,7 @@ const VSGL_FILTERED_INV_HALF_LENGTH_MAX: f32 = 5.0e8;
 // unwidened G2 a broad light at grazing view came out up to 10× too bright (n·ω_o = 0.05, λ ≤ 30,
 // measured by the oracle test). So G2' uses Smith Λ with α(ω)² = ω̂₂ᵀΣ'ω̂₂; as λ → ∞ it is G2.
 // Accuracy against the exact GGX integral (oracle test vsgl_specular_accurate_vs_quadrature, α
-// 0.05…0.5, view angles 0…1.52 rad): see docs/rendering.md "Lighting" for the table.
+// 0.05…0.5, view angles 0…1.52 rad): see docs/rendering.md "SG lighting" for the table.
 // Zero when the light axis or the view is below the surface (as vsgl_specular).
 fn vsgl_specular_accurate(radiance: Sg, normal: vec3f, w_o: vec3f, alpha: f32) -> f32 {
     let n_dot_l = dot(normal, radiance.axis);
