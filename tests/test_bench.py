@@ -72,7 +72,7 @@ def test_small_sweep_writes_files_and_has_sane_numbers(tmp_path, renderer):
 def test_cli_help_documents_every_flag():
     out = subprocess.run([sys.executable, "-m", "vsgl", "bench", "--help"], capture_output=True, text=True, timeout=60)
     assert out.returncode == 0
-    for flag in ("--scene", "--methods", "--lights", "--size", "--rsm-sizes", "--kernels", "--seeds", "--reference", "--plans", "--out"):
+    for flag in ("--scene", "--methods", "--lights", "--size", "--rsm-sizes", "--kernels", "--lighting", "--seeds", "--reference", "--plans", "--out"):
         assert flag in out.stdout, flag
 
 
@@ -262,3 +262,22 @@ def test_bench_shadows_every_virtual_light_and_the_reference_with_visibility(tmp
     assert json.loads((tmp_path / "bench.json").read_text())["visibility"] == "raytrace"
     with pytest.raises(ValueError, match="visibility"):
         bench.run(scenes=["cornell_box"], methods=["vpl"], visibility="shadows", progress=False)
+
+
+def test_lighting_sweeps_the_sg_lighting_forms_of_vsgl_and_vsgl2(tmp_path, renderer):
+    """--lighting asg,accurate (issue 18, item 5): one row per form for vsgl and vsgl2 (not for
+    vpl), named in the table and the CSV; the two forms differ on a glossy scene."""
+    report = bench.run(
+        scenes=["glossy_cornell"], methods=["vpl", "vsgl", "vsgl2"], lights=[32], size=(24, 16), rsm_sizes=[32],
+        seeds=(0,), frames=1, warmup=0, reference_rsm=32, lightings=("asg", "accurate"), out=tmp_path, progress=False,
+    )
+    assert [(r.method, r.lighting) for r in report.rows] == [
+        ("vpl", None), ("vsgl", "asg"), ("vsgl", "accurate"), ("vsgl2", "asg"), ("vsgl2", "accurate")]
+    table = bench.table(report)
+    for label in ("vsgl:asg", "vsgl:accurate", "vsgl2:asg", "vsgl2:accurate"):
+        assert label in table, label
+    by = {(r.method, r.lighting): r.rmse_indirect for r in report.rows}
+    assert by[("vsgl2", "asg")] != by[("vsgl2", "accurate")]
+    assert "lighting" in (tmp_path / "bench.csv").read_text().splitlines()[0].split(",")
+    with pytest.raises(ValueError, match="lightings"):
+        bench.run(lightings=("exact",), size=(8, 8), out=None, progress=False)

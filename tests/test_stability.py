@@ -27,7 +27,7 @@ FUNCTIONS = [
     "sg_asg_product_integral_over_asg_integral", "vsgl_lobe_from_moments", "vsgl_position_from_moments",
     "vsgl_incoming_radiance", "vsgl_diffuse", "vsgl_diffuse_approx", "vsgl_diffuse_accurate",
     "vsgl_diffuse_sg_product", "vsgl_specular", "ggx_alpha_from_roughness", "ggx_d", "ggx_smith_lambda",
-    "ggx_smith_g2", "ggx_brdf_over_rs", "lambert_brdf_over_rd",
+    "ggx_smith_g2", "ggx_brdf_over_rs", "lambert_brdf_over_rd", "vsgl_specular_accurate",
 ]
 
 

@@ -1,6 +1,7 @@
 """Error against run time: ``python -m vsgl bench`` and ``vsgl.bench.run(...)``.
 
-Sweeps methods × light counts × RSM sizes × VSGL kernels over scenes at one resolution. For each
+Sweeps methods × light counts × RSM sizes × VSGL kernels (× K with ``--K``, × the SG lighting forms of
+vsgl and vsgl2 with ``--lighting asg,accurate``) over scenes at one resolution. For each
 configuration it reports GPU time per pass and in total (median, interquartile range and
 extremes over frames rendered back to back after a warm-up of ``--warmup-seconds`` of sustained
 rendering, so the GPU leaves its idle clock; from timestamp queries; the SM clock before and
@@ -119,6 +120,8 @@ class Row:
     block_rmse_indirect: float | None = None
     # vsgl's kernel mass K when --K sweeps it (None: the method's default, 1).
     K: float | None = None
+    # vsgl / vsgl2's lighting= when --lighting sweeps it (None: the method's default, "asg").
+    lighting: str | None = None
     # With --sequence N: metrics.flicker of the indirect AOV over N frames of a moving light
     # (the scene's animation, or its lights slid along x) against the every-texel reference of
     # the same frames; stochastic methods draw seed k in frame k, as a real-time renderer would.
@@ -349,6 +352,7 @@ def run(
     progress=True,
     sequence=0,
     Ks=(None,),
+    lightings=(None,),
 ) -> Report:
     """Runs the sweep and returns a :class:`Report`; with ``out`` also writes CSV, JSON and plots.
 
@@ -372,6 +376,8 @@ def run(
         raise ValueError("seeds: expected at least one seed")
     if not Ks or any(K is not None and not (isinstance(K, (int, float)) and np.isfinite(K) and K > 0) for K in Ks):
         raise ValueError(f"Ks: expected kernel masses K > 0 (or None for the default), got {list(Ks)}")
+    if not lightings or any(x not in (None, "asg", "accurate") for x in lightings):
+        raise ValueError(f"lightings: expected \"asg\" and/or \"accurate\" (or None for the default), got {list(lightings)}")
     if isinstance(sequence, bool) or not isinstance(sequence, int) or sequence < 0 or sequence == 1:
         raise ValueError(f"sequence: expected 0 (off) or a number of frames >= 2, got {sequence!r}")
     # The adapter decides the defaults; a tiny renderer finds it (~0.1 s) before the real one.
@@ -434,13 +440,15 @@ def run(
                 for r in rsm_sizes:
                     for k in (kernels if m == "vsgl" else (None,)):
                         for K in (Ks if m == "vsgl" else (None,)):
-                            configs.append((m, n, r, k, K))
+                            for li in (lightings if m == "vsgl" else (None,)):
+                                configs.append((m, n, r, k, K, li))
         elif m in ("reference", "vsgl2"):
             # Deterministic and without a light count: one configuration per RSM size.
             for r in rsm_sizes:
-                configs.append((m, None, r, None, None))
+                for li in (lightings if m == "vsgl2" else (None,)):
+                    configs.append((m, None, r, None, None, li))
         else:
-            configs.append((m, None, None, None, None))
+            configs.append((m, None, None, None, None, None))
     # Plans alternate inside one configuration so both see the same machine state.
     configs = [(*c, plan) for c in configs for plan in plans]
     # Per row (by its index in report.rows): its SeedErrors, for the equal-time comparisons.
@@ -455,7 +463,7 @@ def run(
         ref_error = report.reference_rel_error[scene_name]
         ref_has_light = bool(np.any(ref.indirect != 0))
         bar = _progress(len(configs), progress)
-        for method, n, rsm, kernel, K, plan in configs:
+        for method, n, rsm, kernel, K, lighting, plan in configs:
             settings: dict[str, Any] = {"plan": plan}
             if n is not None:
                 settings["num_lights"] = n
@@ -465,6 +473,8 @@ def run(
                 settings.update(kernel=kernel, interleave=interleave)
             if K is not None:
                 settings["K"] = float(K)
+            if lighting is not None:
+                settings["lighting"] = lighting
             if method == "vpl":
                 # 1: every VPL at every pixel (the baseline); 8: the papers' equal-footing
                 # comparison, interleaved and denoised like the VSGLs.
@@ -520,6 +530,7 @@ def run(
                 rsm_size=rsm,
                 kernel=kernel,
                 K=K,
+                lighting=lighting,
                 seeds=len(run_seeds),
                 total_ms_median=statistics.median(totals),
                 total_ms_min=min(totals),
@@ -688,13 +699,18 @@ def _kernel_label(kernel: str | None, K: float | None) -> str | None:
     return kernel if K is None else f"{kernel} K={K:g}"
 
 
+def _method_label(r: Row) -> str:
+    """The method as tables and plots name it: with its lighting when --lighting set it ("vsgl:accurate")."""
+    return r.method + (f":{r.lighting}" if r.lighting else "")
+
+
 def _label(r: Row) -> str:
     k = _kernel_label(r.kernel, r.K)
-    return r.method + (f"[{k}]" if k else "")
+    return _method_label(r) + (f"[{k}]" if k else "")
 
 
 def _brief(r: Row) -> dict[str, Any]:
-    return {"method": r.method, "kernel": _kernel_label(r.kernel, r.K), "num_lights": r.num_lights, "rsm_size": r.rsm_size, "total_ms": r.total_ms_median,
+    return {"method": _method_label(r), "kernel": _kernel_label(r.kernel, r.K), "num_lights": r.num_lights, "rsm_size": r.rsm_size, "total_ms": r.total_ms_median,
             "relmse_indirect_debiased": r.relmse_indirect_debiased, "interval": r.relmse_indirect_debiased_interval,
             "reference_too_noisy": r.reference_too_noisy}
 
@@ -728,14 +744,14 @@ def _equal_time(rows: list[Row], seed_stats: dict[int, metrics.SeedErrors]) -> l
 
 def _plan_ratios(rows: list[Row]) -> list[dict[str, Any]]:
     """Pairs each "auto" row with the "full" row of the same configuration."""
-    key = lambda r: (r.scene, r.method, r.num_lights, r.rsm_size, r.kernel, r.K)  # noqa: E731
+    key = lambda r: (r.scene, r.method, r.num_lights, r.rsm_size, r.kernel, r.K, r.lighting)  # noqa: E731
     full = {key(r): r for r in rows if r.plan == "full"}
     out = []
     for r in rows:
         f = full.get(key(r)) if r.plan == "auto" else None
         if f is not None:
             out.append({
-                "scene": r.scene, "method": r.method, "num_lights": r.num_lights, "rsm_size": r.rsm_size, "kernel": r.kernel,
+                "scene": r.scene, "method": _method_label(r), "num_lights": r.num_lights, "rsm_size": r.rsm_size, "kernel": r.kernel,
                 "auto_ms": r.total_ms_median, "full_ms": f.total_ms_median, "ratio": r.total_ms_median / f.total_ms_median,
                 "passes_ratio": {k: r.passes_ms[k] / f.passes_ms[k] for k in r.passes_ms if f.passes_ms.get(k, 0) > 0},
                 "rmse_image_auto": r.rmse_image, "rmse_image_full": f.rmse_image,
@@ -771,12 +787,12 @@ def table(report: Report) -> str:
         lines.append(f"flicker   metrics.flicker of indirect over {report.sequence} frames against the reference's frames "
                      f"(seed k in frame k for vpl and vsgl; {moves})")
     flick = bool(report.sequence)
-    head = (f"{'scene':<16}{'plan':<6}{'method':<10}{'N':>6}{'rsm':>6}{'kernel':>14}{'total ms':>11}{'IQR':>20}{'RMSE ind.':>12}{'± seeds':>10}"
+    head = (f"{'scene':<16}{'plan':<6}{'method':<16}{'N':>6}{'rsm':>6}{'kernel':>14}{'total ms':>11}{'IQR':>20}{'RMSE ind.':>12}{'± seeds':>10}"
             f"{'rel ind.':>10}{'bias':>9}{'noise':>9}{'debiased':>11}{'90%':>20}{'SSIM':>7}{format('flicker', '>9') if flick else ''}  flag")
     lines += [head, "-" * len(head)]
     for r in report.rows:
         lines.append(
-            f"{r.scene:<16}{r.plan:<6}{r.method:<10}{r.num_lights or '-':>6}{r.rsm_size or '-':>6}{_kernel_label(r.kernel, r.K) or '-':>14}"
+            f"{r.scene:<16}{r.plan:<6}{_method_label(r):<16}{r.num_lights or '-':>6}{r.rsm_size or '-':>6}{_kernel_label(r.kernel, r.K) or '-':>14}"
             f"{r.total_ms_median:>11.3f}{f'[{r.total_ms_q1:.3f},{r.total_ms_q3:.3f}]':>20}"
             f"{r.rmse_indirect:>12.5g}{r.rmse_indirect_std:>10.2g}{_num(r.rel_rmse_indirect, '.4g'):>10}{_num(r.bias, '.3g'):>9}{_num(r.noise, '.3g'):>9}"
             f"{_num(r.relmse_indirect_debiased, '.4g'):>11}{_interval(r.relmse_indirect_debiased_interval):>20}{_num(r.ssim_image, '.3f'):>7}"
@@ -820,7 +836,7 @@ def _equal_time_line(e: dict[str, Any], last_budget_ms: float | None = None) -> 
 
 
 CSV_COLUMNS = [
-    "scene", "plan", "method", "num_lights", "rsm_size", "kernel", "K", "seeds", "total_ms_median", "total_ms_q1", "total_ms_q3", "total_ms_min", "total_ms_max",
+    "scene", "plan", "method", "num_lights", "rsm_size", "kernel", "K", "lighting", "seeds", "total_ms_median", "total_ms_q1", "total_ms_q3", "total_ms_min", "total_ms_max",
     "rmse_indirect", "rmse_indirect_std", "rmse_image", "relmse_indirect", "relmse_image", "flip_image", "rel_rmse_indirect", "bias", "noise",
     "relmse_indirect_debiased", "relmse_indirect_debiased_lo", "relmse_indirect_debiased_hi", "reference_rel_error", "reference_too_noisy",
     "ssim_image", "block_rmse_indirect", "flicker_indirect", "notes", "passes_ms",
@@ -853,7 +869,7 @@ def _plots(report: Report, out: pathlib.Path) -> None:
     title = f"{report.adapter['name']}, {report.size[0]}x{report.size[1]}"
     series: dict[tuple, list[Row]] = {}
     for r in report.rows:
-        series.setdefault((r.scene, r.method, r.rsm_size, _kernel_label(r.kernel, r.K)), []).append(r)
+        series.setdefault((r.scene, _method_label(r), r.rsm_size, _kernel_label(r.kernel, r.K)), []).append(r)
     fig, ax = plt.subplots(figsize=(6, 4.5))
     for (scene, method, rsm, kernel), rows in series.items():
         rows = [r for r in rows if r.rel_rmse_indirect]
@@ -928,6 +944,8 @@ def main(argv: list[str] | None = None) -> int:
     p.add_argument("--rsm-sizes", type=_ints, default=None, help="comma-separated RSM sides (default: 256; 128 on a CPU adapter)")
     p.add_argument("--K", type=lambda t: [float(x) for x in t.split(",")], default=None, metavar="K1,K2,...",
                    help="vsgl kernel masses K to sweep, e.g. 1,2,4 (default: the method's, 1); larger K is smoother in space and time")
+    p.add_argument("--lighting", type=_strs, default=None, metavar="asg,accurate",
+                   help="SG lighting forms of vsgl and vsgl2 to sweep: asg (the papers'), accurate (filtered-NDF specular, clamped-cosine diffuse) (default: the methods' own, asg)")
     p.add_argument("--kernels", type=_strs, default=["integral"], help="VSGL kernels: integral, density (default: integral)")
     p.add_argument("--interleave", type=int, default=8, help="VSGL interleaving (default: 8)")
     p.add_argument("--visibility", default="none", choices=["none", "raytrace", "ism"],
@@ -974,7 +992,7 @@ def main(argv: list[str] | None = None) -> int:
         scenes=a.scene, methods=a.methods, lights=a.lights, size=size, rsm_sizes=a.rsm_sizes, kernels=a.kernels,
         seeds=None if a.seeds is None else tuple(range(a.seeds)), frames=a.frames, warmup=a.warmup, warmup_seconds=a.warmup_seconds, reference=a.reference, reference_rsm=a.reference_rsm,
         reference_spp=a.reference_spp, reference_strategy=a.reference_strategy, add_lights=add_lights, scene_lights=not a.no_scene_lights, interleave=a.interleave, vpl_interleave=a.vpl_interleave, visibility=a.visibility, plans=tuple(a.plans), adapter=a.adapter, out=a.out, progress=not a.no_progress,
-        sequence=a.sequence, Ks=tuple(a.K) if a.K else (None,),
+        sequence=a.sequence, Ks=tuple(a.K) if a.K else (None,), lightings=tuple(a.lighting) if a.lighting else (None,),
     )
     print(table(report))
     print(f"wrote     {os.path.join(a.out, 'bench.csv')}, bench.json, bench.txt and plots (with matplotlib)")

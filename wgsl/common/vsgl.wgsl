@@ -132,3 +132,119 @@ fn vsgl_specular(radiance: Sg, normal: vec3f, w_o: vec3f, alpha: f32) -> f32 {
     let lobe = sg_asg_product_integral_over_asg_integral(radiance.axis, radiance.sharpness, asg);
     return min(radiance.amplitude * g2 * lobe, FLT_MAX);
 }
+
+// Bounds of α² in the filtered NDF of vsgl_specular_accurate. MIN: GGX_ALPHA_MIN², so √det Σ'
+// ≥ 1e-8 and (n·h)⁴(…)² stay inside f32 (ggx_d's own smallest α). MAX: the widening stops at
+// α'² = 1, where GGX is D = 1/π for every microfacet normal of the hemisphere; beyond it the
+// linearized Jacobian (valid for lights narrower than the lobe) would move the mass to grazing
+// microfacets and send the result to 0 as λ → 0, whereas the exact value tends to c_in times the
+// directional albedo. (An α given above 1 is kept: the cap is max(α², 1).)
+const VSGL_FILTERED_ALPHA2_MIN: f32 = 1.0e-8;
+const VSGL_FILTERED_ALPHA2_MAX: f32 = 1.0;
+// Largest 1/‖ξ + ω_o‖ in vsgl_specular_accurate, so ‖m‖ = tan θ_d·‖n × e_∥‖ ≤ 2·5e8 = 1e9 and the
+// squares of B's entries (≤ ~1e36) stay finite in f32. It binds only for ξ within 2e-9 of −ω_o
+// (both on the horizon), where B's large eigenvalue ~‖m‖² is capped anyway (‖m‖²/(2λh_n⁴) ≥ 1e18/
+// 2e9 ≫ max(α², 1) for λ ≤ SG_SHARPNESS_MAX), and b₋ = det B/b₊ → h_n² + (h₂ × m̂₂)² does not
+// depend on ‖m‖ (found by the stability suite: ξ = −ω_o on the horizon overflowed to FLT_MAX).
+const VSGL_FILTERED_INV_HALF_LENGTH_MAX: f32 = 5.0e8;
+
+// Specular reflected radiance over R_s for the GGX BRDF (Fresnel = 1), the accurate SG lighting
+// (lighting="accurate", after the filtered-NDF idea of Tokuyoshi et al. 2024, "Hierarchical
+// Light Sampling with Accurate Spherical Gaussian Lighting"; the formulas below are derived for
+// vsgl, the paper is not in seeds):
+//   L_s ≈ c_in A(λ) D'(h) G2'(ξ, ω_o)/(4 n·ω_o),   h = (ξ + ω_o)/‖ξ + ω_o‖,
+// D' = GGX with the slope covariance widened by the light's spread, Σ' = α²I + (2/λ)JJᵀ, and G2'
+// the height-correlated Smith G2 of that widened microsurface (filtered_alpha_along).
+// Derivation. ∫ c G(ω) f(ω, ω_o)(n·ω) dω = c ∫ G(ω) D(h(ω)) G2/(4 n·ω_o) dω; G2/(4 n·ω_o) varies
+// slowly and is taken at ω = ξ. Change variables to the slope s = h_t/h_n of h (t, b tangent):
+// dω = |∂ω/∂s| d²s, and D(h) = p(s)/h_n⁴ with p the slope density (D(m)(n·m)dω_m = p(s)d²s,
+// dω_m = h_n³ d²s). For a sharp light, G(ω(s))|∂ω/∂s| = A(λ) k(s), k the density of the slope of
+// h when ω ~ G/A: a normal density around s(ξ) with covariance (1/λ)JJᵀ, J = ∂s/∂ω at ξ (the SG
+// is a normal density of tangent variance 1/λ per axis). So the integral is
+// c A(λ) ∫ k(s) p(s)/h_n⁴ d²s ≈ c A(λ)/h_n(ξ)⁴ · (p ⊛ N(0, JJᵀ/λ))(s(ξ)): with the slope density
+// read as a normal one of covariance α²/2·I (the matching behind λh = 2/α², ggx_ndf_sg_sharpness)
+// the convolution has covariance ½(α²I + (2/λ)JJᵀ) = ½Σ', and it is put back into GGX form:
+//   D'(h) = 1/(π √det Σ' (h_n² + h₂ᵀΣ'⁻¹h₂)²),  h₂ = (h·t, h·b)
+// (the anisotropic GGX NDF with slope covariance Σ', normalized for any SPD Σ'; Σ' = α²I gives
+// ggx_d). As λ → ∞, Σ' → α²I and the form is the exact point-light value c A(λ) f (n·ξ).
+// The Jacobian. h = u/‖u‖, u = ξ + ω_o. Moving ξ by a tangent vector δ moves h by
+// (I − hhᵀ)δ/‖u‖, ‖u‖ = 2 h·ω_o: a move e_∥ within the plane of incidence moves h by e_∥/2
+// (its projection onto h's tangent plane has length h·ξ = h·ω_o), a move e_⊥ across it by
+// e_⊥/(2 h·ω_o) (|∂h/∂ω| = 1/(4 h·ω_o), the Jacobian of the half vector). The slope map moves by
+// ∂s = (T − s nᵀ)∂h/h_n, whose value on a unit e ⊥ h is the tangent part of n × (e × h)/h_n²,
+// and e × h maps e_∥ ↦ ±e_⊥, e_⊥ ↦ ±e_∥. Summing the two outer products, with
+// (n×e_⊥)(n×e_⊥)ᵀ + (n×e_∥)(n×e_∥)ᵀ = (n×)(I − hhᵀ)(n×)ᵀ = Π − (n×h)(n×h)ᵀ and
+// 1/(h·ω_o)² − 1 = tan²θ_d = ‖ξ − ω_o‖²/‖ξ + ω_o‖², e_∥ = (ξ − ω_o)/‖ξ − ω_o‖:
+//   JJᵀ = B/(4h_n⁴),  B = Π − (n×h)(n×h)ᵀ + mmᵀ,  m = n × (ξ − ω_o)/‖u‖,
+// and in tangent coordinates (n×h has coordinates (−h_b, h_t)) B = h_n²I + h₂h₂ᵀ + m₂m₂ᵀ: a sum
+// of positive terms, no cancellation, and no frame of the plane of incidence is needed (at
+// ξ = ω_o, m = 0 and B = h_n²I + h₂h₂ᵀ, isotropic in the sphere as it must be). The oracle test
+// filtered_slope_covariance_is_the_reflection_jacobian checks it against finite differences.
+// det B = h_n⁴ + h_n²(‖h₂‖² + ‖m₂‖²) + (h₂ × m₂)² (= h_n²/(h·ω_o)², positive terms again).
+// Cap (VSGL_FILTERED_ALPHA2_MAX): in the eigenbasis of B, σ± = min(α² + b±/(2λh_n⁴), max(α², 1)).
+// Masking. D' is the NDF of a (rougher) microsurface, and only with that surface's own masking G1'
+// does it keep the projected-area identity ∫ D'(m) G1'(ω_o, m) max(ω_o·m, 0) dm = n·ω_o; with the
+// unwidened G2 a broad light at grazing view came out up to 10× too bright (n·ω_o = 0.05, λ ≤ 30,
+// measured by the oracle test). So G2' uses Smith Λ with α(ω)² = ω̂₂ᵀΣ'ω̂₂; as λ → ∞ it is G2.
+// Accuracy against the exact GGX integral (oracle test vsgl_specular_accurate_vs_quadrature, α
+// 0.05…0.5, view angles 0…1.52 rad): see docs/rendering.md "SG lighting" for the table.
+// Zero when the light axis or the view is below the surface (as vsgl_specular).
+fn vsgl_specular_accurate(radiance: Sg, normal: vec3f, w_o: vec3f, alpha: f32) -> f32 {
+    let n_dot_l = dot(normal, radiance.axis);
+    let n_dot_v = dot(normal, w_o);
+    if (n_dot_l <= 0.0 || n_dot_v <= 0.0) {
+        return 0.0;
+    }
+    let u = radiance.axis + w_o;
+    let u_len2 = dot(u, u);
+    let h = safe_normalize(u, normal);
+    let frame = orthonormal_basis(normal);
+    let h_n = dot(h, normal);
+    let h2 = vec2f(dot(h, frame[0]), dot(h, frame[1]));
+    let m_full = cross(normal, radiance.axis - w_o) * min(inverseSqrt(max(u_len2, FLT_MIN)), VSGL_FILTERED_INV_HALF_LENGTH_MAX);
+    let m2 = vec2f(dot(m_full, frame[0]), dot(m_full, frame[1]));
+    let h_n2 = h_n * h_n;
+    let b_tt = h_n2 + h2.x * h2.x + m2.x * m2.x;
+    let b_bb = h_n2 + h2.y * h2.y + m2.y * m2.y;
+    let b_tb = h2.x * h2.y + m2.x * m2.y;
+    let cross2 = h2.x * m2.y - h2.y * m2.x;
+    let det_b = h_n2 * h_n2 + h_n2 * (dot(h2, h2) + dot(m2, m2)) + cross2 * cross2;
+    let half_diff = 0.5 * (b_tt - b_bb);
+    let b_plus = 0.5 * (b_tt + b_bb) + sqrt(half_diff * half_diff + b_tb * b_tb);
+    let b_minus = det_b / max(b_plus, FLT_MIN);
+    // Eigenvector of b₊: the larger of the two (equivalent) forms; B ∝ I leaves any direction.
+    let v1 = vec2f(b_tb, b_plus - b_tt);
+    let v2 = vec2f(b_plus - b_bb, b_tb);
+    let n1 = dot(v1, v1);
+    let n2 = dot(v2, v2);
+    var e = vec2f(1.0, 0.0);
+    if (max(n1, n2) > FLT_MIN) {
+        e = select(v2 * inverseSqrt(n2), v1 * inverseSqrt(n1), n1 >= n2);
+    }
+    let a2 = max(alpha * alpha, VSGL_FILTERED_ALPHA2_MIN);
+    let cap = max(a2, VSGL_FILTERED_ALPHA2_MAX);
+    // b/(2λh_n⁴), formed as min(b, cap·den)/den so it stays finite for λ → 0 or h_n → 0.
+    let den = max(2.0 * radiance.sharpness * h_n2 * h_n2, FLT_MIN);
+    let s_plus = min(a2 + min(b_plus, cap * den) / den, cap);
+    let s_minus = min(a2 + min(b_minus, cap * den) / den, cap);
+    let y_plus = dot(h2, e);
+    let y_minus = h2.y * e.x - h2.x * e.y;
+    let q = h_n2 + y_plus * y_plus / s_plus + y_minus * y_minus / s_minus;
+    let d = 1.0 / (PI * sqrt(s_plus * s_minus) * q * q);
+    // G2' of the widened microsurface: Smith Λ with α(ω)² = ω̂₂ᵀΣ'ω̂₂ along each direction's
+    // azimuth — the α of anisotropic GGX's Λ [Heitz 2014, §5.3: α_φ² = α_x²cos²φ + α_y²sin²φ, the
+    // same quadratic form]. At ω = n the azimuth is undefined and Λ = 0 whatever α: α is kept.
+    var alpha_lv = vec2f(alpha);
+    for (var k = 0; k < 2; k++) {
+        let w = select(w_o, radiance.axis, k == 0);
+        let w2 = vec2f(dot(w, frame[0]), dot(w, frame[1]));
+        let len2 = dot(w2, w2);
+        if (len2 > FLT_MIN) {
+            let wp = dot(w2, e);
+            let wm = w2.y * e.x - w2.x * e.y;
+            alpha_lv[k] = sqrt((s_plus * wp * wp + s_minus * wm * wm) / len2);
+        }
+    }
+    let g2 = 1.0 / (1.0 + ggx_smith_lambda(n_dot_l, alpha_lv.x) + ggx_smith_lambda(n_dot_v, alpha_lv.y));
+    return min(radiance.amplitude * sg_integral(radiance.sharpness) * d * g2 / (4.0 * n_dot_v), FLT_MAX);
+}

@@ -136,6 +136,8 @@ fn main(@builtin(global_invocation_id) gid: vec3u) {
         case 35u: { out1(0u, ggx_smith_g2(in1(0u), in1(1u), in1(2u))); }
         case 36u: { out1(0u, ggx_brdf_over_rs(in3(0u), in3(3u), in3(6u), in1(9u))); }
         case 37u: { out1(0u, lambert_brdf_over_rd(in3(0u), in3(3u))); }
+        // vsgl.wgsl (added after the ggx block: ids are append-only)
+        case 38u: { out1(0u, vsgl_specular_accurate(in_sg(0u), in3(5u), in3(8u), in1(11u))); }
         // Ids come from HarnessFunction only; anything else leaves the zeros.
         default: {}
     }

@@ -38,7 +38,9 @@ struct ShadeParams {
     // 1 (diffuse "accurate" and "sg_product"): their diffuse term fades out below each VSGL's
     // mean tangent plane (vsgl_tangent_plane_fade; issue 18, item 4).
     plane_fade: u32,
-    _pad1: u32,
+    // 0 = lighting="asg": the papers' SG–ASG specular (vsgl_specular); 1 = lighting="accurate":
+    // the filtered-NDF specular (vsgl_specular_accurate; the host also selects diffuse_mode 1).
+    lighting_mode: u32,
     _pad2: u32,
 }
 
@@ -65,6 +67,13 @@ fn diffuse_over_rd(radiance: Sg, n: vec3f) -> f32 {
         return vsgl_diffuse_sg_product(radiance, n);
     }
     return vsgl_diffuse_approx(radiance, n);
+}
+
+fn specular_over_rs(radiance: Sg, n: vec3f, v: vec3f, alpha: f32) -> f32 {
+    if (params.lighting_mode == 1u) {
+        return vsgl_specular_accurate(radiance, n, v, alpha);
+    }
+    return vsgl_specular(radiance, n, v, alpha);
 }
 
 @compute @workgroup_size(WORKGROUP, WORKGROUP, 1)
@@ -150,7 +159,7 @@ fn main(@builtin(workgroup_id) wg: vec3u, @builtin(local_invocation_id) lid: vec
                     let in_d = vsgl_incoming_radiance(lobe_d, position, p);
                     diffuse += light.diffuse_power * (fade * diffuse_over_rd(in_d, n));
                     if (HAS_SPECULAR) {
-                        specular += light.diffuse_power * vsgl_specular(in_d, n, v, alpha);
+                        specular += light.diffuse_power * specular_over_rs(in_d, n, v, alpha);
                     }
                 }
                 // Without specular materials no record has specular power (and R_s = 0 here).
@@ -158,7 +167,7 @@ fn main(@builtin(workgroup_id) wg: vec3u, @builtin(local_invocation_id) lid: vec
                     let lobe_s = Sg(light.specular_axis, light.specular_sharpness, 1.0 / sg_integral(light.specular_sharpness));
                     let in_s = vsgl_incoming_radiance(lobe_s, position, p);
                     diffuse += light.specular_power * (fade * diffuse_over_rd(in_s, n));
-                    specular += light.specular_power * vsgl_specular(in_s, n, v, alpha);
+                    specular += light.specular_power * specular_over_rs(in_s, n, v, alpha);
                 }
             }
         }

@@ -862,9 +862,12 @@ impl PyRenderer {
     /// - "vsgl": num_lights VSGLs (in all) by filtered importance sampling. shadow_size,
     ///   num_lights, rsm_size, sampling, seed, kernel ("integral" | "density" | "node"), K,
     ///   bisection_steps, interleave, denoise, diffuse ("papers" | "accurate" | "sg_product"),
+    ///   lighting ("asg": the papers' SG–ASG specular and diffuse= | "accurate": GGX with its
+    ///   NDF widened by the light's spread, after Tokuyoshi et al. 2024, and the clamped-cosine
+    ///   diffuse; docs/rendering.md "SG lighting"),
     ///   visibility, ism_size, ism_points, ism_points_per_map, ism_bias, ism_pcf, capture_rsm.
     /// - "vsgl2": two VSGLs per light by a parallel sum. shadow_size, rsm_size (any side
-    ///   32..4096), diffuse, vsgl2_reduction ("auto" | "subgroup" | "shared_memory"),
+    ///   32..4096), diffuse, lighting, vsgl2_reduction ("auto" | "subgroup" | "shared_memory"),
     ///   visibility, ism_size, ism_points, ism_points_per_map, ism_bias, ism_pcf, capture_rsm.
     /// - "reference": every texel of an rsm_size² RSM (default 1024²) as a VPL. shadow_size,
     ///   rsm_size, vpl_clamp, visibility, ism_size, ism_points, ism_points_per_map, ism_bias,

@@ -330,6 +330,13 @@ pub mod common {
         &["papers", "accurate", "sg_product"],
         "diffuse SG shading: the papers' clamped form, the unclamped SG-cosine product, or an SG product",
     );
+    /// SG lighting forms (docs/rendering.md, "SG lighting"): the papers' (ASG specular, `diffuse=`)
+    /// or the accurate ones (filtered-NDF specular and the clamped-cosine diffuse).
+    pub const LIGHTING: OptionSpec = choice(
+        "lighting",
+        &["asg", "accurate"],
+        "SG lighting: \"asg\" (the papers' SG–ASG specular, diffuse as diffuse= says) or \"accurate\" (GGX with its NDF widened by the light's spread, after Tokuyoshi et al. 2024, and the clamped-cosine diffuse)",
+    );
 }
 
 #[cfg(test)]

@@ -14,7 +14,7 @@ use crate::passes::pdf_mips::PdfMipsPass;
 use crate::passes::vpl_sample::Sampling;
 use crate::passes::vsgl_gen::{GenSettings, Kernel, VsglGenPass, VSGL_BYTES};
 use crate::passes::vsgl_moments::VsglMomentsPass;
-use crate::passes::vsgl_shading::{DiffuseMode, VsglShadingPass};
+use crate::passes::vsgl_shading::{DiffuseMode, LightingMode, VsglShadingPass};
 use std::borrow::Cow;
 
 pub const INFO: MethodInfo = MethodInfo {
@@ -57,6 +57,7 @@ const OPTIONS: &[OptionSpec] = &[
     common::interleave(8),
     common::DENOISE,
     common::DIFFUSE,
+    common::LIGHTING,
     common::VISIBILITY,
     common::ISM_SIZE,
     common::ISM_POINTS,
@@ -79,15 +80,36 @@ struct Vsgl {
     interleave: u32,
     denoise: bool,
     diffuse: DiffuseMode,
+    lighting: LightingMode,
     capture_rsm: bool,
 }
 
-/// `diffuse=` as the shading pass takes it.
+/// `diffuse=` as the shading pass takes it. `lighting="accurate"` brings its own diffuse form
+/// (the clamped cosine, `diffuse="accurate"`); another one given with it is an error rather than
+/// silently replaced.
 pub(super) fn diffuse_mode(o: &Options) -> Result<DiffuseMode> {
+    if lighting_mode(o)? == LightingMode::Accurate {
+        let diffuse = o.str("diffuse")?;
+        if o.was_given("diffuse") && diffuse != "accurate" {
+            return Err(Error::invalid(
+                "diffuse",
+                format!("diffuse={diffuse:?} is a form of lighting=\"asg\"; lighting=\"accurate\" shades diffuse by the clamped-cosine integral (diffuse=\"accurate\"): leave diffuse out or give \"accurate\""),
+            ));
+        }
+        return Ok(DiffuseMode::Accurate);
+    }
     Ok(match o.str("diffuse")? {
         "accurate" => DiffuseMode::Accurate,
         "sg_product" => DiffuseMode::SgProduct,
         _ => DiffuseMode::Papers,
+    })
+}
+
+/// `lighting=` as the shading pass takes it.
+pub(super) fn lighting_mode(o: &Options) -> Result<LightingMode> {
+    Ok(match o.str("lighting")? {
+        "accurate" => LightingMode::Accurate,
+        _ => LightingMode::Asg,
     })
 }
 
@@ -111,6 +133,7 @@ impl Vsgl {
             interleave: o.u32("interleave")?,
             denoise: o.bool("denoise")?,
             diffuse: diffuse_mode(o)?,
+            lighting: lighting_mode(o)?,
             capture_rsm: o.bool("capture_rsm")?,
         })
     }
@@ -158,7 +181,7 @@ impl Method for Vsgl {
             gen.record(&mut ctx.rec, light.rsm, chains, &settings, &buf);
             vis.build_maps(ctx, &buf, light.budget, VSGL_RECORD_WORDS)?;
             let target = shading_out.target(ctx.indirect);
-            shading.record(&mut ctx.rec, ctx.frame_uniforms, &buf, light.budget, self.interleave, self.diffuse, self.kernel == Kernel::Node, ctx.gbuffer, target, feat, ctx.size, &vis);
+            shading.record(&mut ctx.rec, ctx.frame_uniforms, &buf, light.budget, self.interleave, self.diffuse, self.lighting, self.kernel == Kernel::Node, ctx.gbuffer, target, feat, ctx.size, &vis);
             if ctx.vsgls.is_none() {
                 ctx.vsgls = Some(buf);
             }

@@ -17,7 +17,8 @@ struct ShadeParamsRaw {
     first: u32,
     exact_texels: u32,
     plane_fade: u32,
-    _pad: [u32; 2],
+    lighting_mode: u32,
+    _pad: u32,
 }
 
 /// Most loop iterations (VSGLs per pixel) one dispatch runs: lavapipe (Mesa 22.3) silently
@@ -70,6 +71,27 @@ impl DiffuseMode {
     }
 }
 
+/// Specular (glossy) shading form of the SG lighting, `lighting=` (the diffuse form of
+/// `Accurate` is [`DiffuseMode::Accurate`], chosen by the method).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum LightingMode {
+    /// The papers' SG–ASG product integral (`vsgl_specular`).
+    Asg,
+    /// The GGX NDF widened by the light's spread through the reflection Jacobian
+    /// (`vsgl_specular_accurate`, after Tokuyoshi et al. 2024).
+    Accurate,
+}
+
+impl LightingMode {
+    /// `ShadeParams.lighting_mode` of the shader.
+    fn shader_code(self) -> u32 {
+        match self {
+            LightingMode::Asg => 0,
+            LightingMode::Accurate => 1,
+        }
+    }
+}
+
 pub struct VsglShadingPass {
     pipelines: PipelineVariants,
 }
@@ -88,6 +110,7 @@ impl VsglShadingPass {
         count: u32,
         interleave: u32,
         diffuse: DiffuseMode,
+        lighting: LightingMode,
         exact_texels: bool,
         gbuffer: &GBuffer,
         out: &IndirectTargets,
@@ -105,7 +128,7 @@ impl VsglShadingPass {
         let per_dispatch = if visibility.traced { TRACED_VSGLS_PER_PIXEL_PER_DISPATCH } else { VSGLS_PER_PIXEL_PER_DISPATCH };
         let chunk = per_dispatch * interleave * interleave;
         for_each_chunk(count, chunk, |first, n| {
-            let params = ShadeParamsRaw { count: n, interleave, diffuse_mode: diffuse.shader_code(), first, exact_texels: u32::from(exact_texels), plane_fade: u32::from(diffuse.fades_below_tangent_plane()), _pad: [0; 2] };
+            let params = ShadeParamsRaw { count: n, interleave, diffuse_mode: diffuse.shader_code(), first, exact_texels: u32::from(exact_texels), plane_fade: u32::from(diffuse.fades_below_tangent_plane()), lighting_mode: lighting.shader_code(), _pad: 0 };
             let uniform = rec.uniform("vsgl_shading_params_uniform_buffer", &params);
             rec.compute(
                 &label,

@@ -89,13 +89,15 @@ pub enum HarnessFunction {
     GgxSmithG2 = 35,
     GgxBrdfOverRs = 36,
     LambertBrdfOverRd = 37,
+    // vsgl.wgsl, lighting="accurate"
+    VsglSpecularAccurate = 38,
 }
 
 use HarnessFunction as F;
 
 impl HarnessFunction {
     /// Every function, in id order.
-    pub const ALL: [HarnessFunction; 38] = [
+    pub const ALL: [HarnessFunction; 39] = [
         F::Expm1OverX,
         F::Expm1,
         F::Mulsign,
@@ -134,6 +136,7 @@ impl HarnessFunction {
         F::GgxSmithG2,
         F::GgxBrdfOverRs,
         F::LambertBrdfOverRd,
+        F::VsglSpecularAccurate,
     ];
 
     /// The id of the function in the shader's switch.
@@ -177,7 +180,7 @@ impl HarnessFunction {
             F::SgProduct | F::SgProductIntegral => 8,
             F::VsglDiffuse | F::VsglDiffuseApprox | F::VsglDiffuseAccurate | F::VsglDiffuseSgProduct => 8,
             F::GgxBrdfOverRs => 10,
-            F::VsglIncomingRadiance | F::VsglSpecular => 12,
+            F::VsglIncomingRadiance | F::VsglSpecular | F::VsglSpecularAccurate => 12,
             F::AsgEvaluate => 14,
             F::SgAsgProductIntegral | F::SgAsgProductIntegralOverAsgIntegral => 15,
         }
@@ -268,6 +271,9 @@ impl HarnessFunction {
             F::VsglDiffuseSgProduct => ("vsgl_diffuse_sg_product", V, RAD_N, "value 0", 1),
             F::VsglSpecular => {
                 ("vsgl_specular", V, "radiance Sg 0-4, normal 5-7, w_o 8-10, alpha 11", "value 0", 1)
+            }
+            F::VsglSpecularAccurate => {
+                ("vsgl_specular_accurate", V, "radiance Sg 0-4, normal 5-7, w_o 8-10, alpha 11", "value 0", 1)
             }
             F::GgxAlphaFromRoughness => ("ggx_alpha_from_roughness", G, "roughness 0", "value 0", 1),
             F::GgxD => ("ggx_d", G, "n·h 0, ‖n×h‖² 1, alpha 2", "value 0", 1),
@@ -361,6 +367,7 @@ impl HarnessFunction {
             F::VsglDiffuseAccurate => o[0] = oracle::vsgl_diffuse_accurate(sg(0), v(5)),
             F::VsglDiffuseSgProduct => o[0] = oracle::vsgl_diffuse_sg_product(sg(0), v(5)),
             F::VsglSpecular => o[0] = oracle::vsgl_specular(sg(0), v(5), v(8), a(11)),
+            F::VsglSpecularAccurate => o[0] = oracle::vsgl_specular_accurate(sg(0), v(5), v(8), a(11)),
             F::GgxAlphaFromRoughness => o[0] = oracle::ggx_alpha_from_roughness(a(0)),
             F::GgxD => o[0] = oracle::ggx_d(a(0), a(1), a(2)),
             F::GgxSmithLambda => o[0] = oracle::ggx_smith_lambda(a(0), a(1)),

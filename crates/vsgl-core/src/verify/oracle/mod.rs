@@ -128,6 +128,13 @@ mod tests {
                 super::vsgl::VSGL_VARIANCE_MIN_FRACTION,
             ),
             ("common/ggx.wgsl", "GGX_ALPHA_MIN", super::ggx::GGX_ALPHA_MIN),
+            ("common/vsgl.wgsl", "VSGL_FILTERED_ALPHA2_MIN", super::vsgl::VSGL_FILTERED_ALPHA2_MIN),
+            ("common/vsgl.wgsl", "VSGL_FILTERED_ALPHA2_MAX", super::vsgl::VSGL_FILTERED_ALPHA2_MAX),
+            (
+                "common/vsgl.wgsl",
+                "VSGL_FILTERED_INV_HALF_LENGTH_MAX",
+                super::vsgl::VSGL_FILTERED_INV_HALF_LENGTH_MAX,
+            ),
         ];
         for &(file, name, oracle) in pairs {
             let wgsl = const_value(file, name);

@@ -110,6 +110,17 @@ fn bound_vsgl_specular(i: &Input, r: &Output64) -> f64 {
     perturbation(F::VsglSpecular, i, 0..1, 10.0, &[0, 5, 8]) + 16.0 * ULP * r[0] + FLT_MIN * a(i, 4)
 }
 
+/// vsgl_specular_accurate: the half vector and m = n × (ξ − ω_o)/‖u‖ (normalize 6, cross and
+/// inverseSqrt 4), B's entries and det (3), the eigenvalue b₊ (sqrt 4.5, sums 2) and b₋ = det/b₊
+/// (2.5), the eigenvector (inverseSqrt 2), the widened σ (division 2.5), the quadratic form (2.5
+/// per division, 3 sums) and G2 (Smith Λ's 8 ULP through α): c = 12 ULP per input; c₀ = sg_integral
+/// (~4) + the final 1/(π√(σ₊σ₋)q²) (2.5 + 4.5 + 2) + /(4 n·ω_o) (2.5) + products (2) ≈ 18.
+/// Condition numbers (from the perturbation): grazing n·l and n·v, the eigenvector of a nearly
+/// isotropic B (harmless: σ₊ ≈ σ₋ there) and the sharp NDF's exponent-like q².
+fn bound_vsgl_specular_accurate(i: &Input, r: &Output64) -> f64 {
+    perturbation(F::VsglSpecularAccurate, i, 0..1, 12.0, &[0, 5, 8]) + 18.0 * ULP * r[0] + FLT_MIN * a(i, 4)
+}
+
 pub(super) fn vsgl_families(f: &mut Vec<Family>) {
     // vsgl_lobe_from_moments: single lobes and mixtures × powers 1e-8…1e8; zero power.
     let (mut broad, mut sharp, mut zero) = (Vec::new(), Vec::new(), Vec::new());
@@ -318,8 +329,14 @@ pub(super) fn vsgl_families(f: &mut Vec<Family>) {
         f.push(Family {
             function: F::VsglSpecular,
             name,
-            inputs: ins,
+            inputs: ins.clone(),
             checks: vec![check("value", 0..1, |i, _| fl(1e-30 * a(i, 4)), bound_vsgl_specular)],
+        });
+        f.push(Family {
+            function: F::VsglSpecularAccurate,
+            name,
+            inputs: ins,
+            checks: vec![check("value", 0..1, |i, _| fl(1e-30 * a(i, 4)), bound_vsgl_specular_accurate)],
         });
     }
 }
