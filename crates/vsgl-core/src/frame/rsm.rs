@@ -67,8 +67,13 @@ pub struct MomentChains {
 
 impl MomentChains {
     pub fn new(rec: &mut Recorder<'_>, rsm_size: u32) -> Self {
+        Self::labelled(rec, "vsgl_moment_chain_buffer", rsm_size)
+    }
+
+    /// The chains in a buffer called `label` (the view's chains of bidirectional importance).
+    pub fn labelled(rec: &mut Recorder<'_>, label: &str, rsm_size: u32) -> Self {
         let (_, chain_len) = pyramid_layout(rsm_size);
-        Self { buffer: rec.storage("vsgl_moment_chain_buffer", CHAINS * chain_len as u64 * 16), chain_len }
+        Self { buffer: rec.storage(label, CHAINS * chain_len as u64 * 16), chain_len }
     }
 
     /// Bytes needed for an RSM of side `rsm_size`.

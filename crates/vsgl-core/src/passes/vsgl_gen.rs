@@ -62,6 +62,8 @@ struct GenParamsRaw {
     chain_len: u32,
     light_offset: [f32; 3],
     k: f32,
+    importance: u32,
+    _pad: [u32; 3],
 }
 
 /// What one generation dispatch needs besides the RSM.
@@ -74,6 +76,9 @@ pub struct GenSettings {
     pub k: f32,
     pub bisection_steps: u32,
     pub light_offset: [f32; 3],
+    /// The sampling pyramid is a density other than the moments' weight (bidirectional
+    /// importance, `brsm_mix`): kernel masses and estimator densities are read from it.
+    pub importance: bool,
 }
 
 pub struct VsglGenPass {
@@ -86,8 +91,15 @@ impl VsglGenPass {
         Ok(Self { pipeline: gpu.compute_pipeline("vsgl_gen_pipeline", &module, "main") })
     }
 
-    #[allow(clippy::too_many_arguments)]
+    /// VSGLs sampled by the RSM's own weight pyramid.
     pub fn record(&self, rec: &mut Recorder<'_>, rsm: &Rsm, chains: &MomentChains, s: &GenSettings, out: &wgpu::Buffer) {
+        self.record_with_pdf(rec, "vsgl_gen", rsm, &rsm.pyramid, chains, s, out);
+    }
+
+    /// VSGLs sampled by `pdf`, a pyramid in the layout of `rsm.pyramid` (`s.importance` says
+    /// whether it differs from the moments' weight), timed as `label`.
+    #[allow(clippy::too_many_arguments)]
+    pub fn record_with_pdf(&self, rec: &mut Recorder<'_>, label: &str, rsm: &Rsm, pdf: &wgpu::Buffer, chains: &MomentChains, s: &GenSettings, out: &wgpu::Buffer) {
         let params = GenParamsRaw {
             count: s.count,
             levels: rsm.levels,
@@ -99,14 +111,16 @@ impl VsglGenPass {
             chain_len: chains.chain_len,
             light_offset: s.light_offset,
             k: s.k,
+            importance: s.importance as u32,
+            _pad: [0; 3],
         };
         let uniform = rec.uniform("vsgl_gen_params_uniform_buffer", &params);
         rec.compute(
-            "vsgl_gen",
+            label,
             &self.pipeline,
             &[&[
                 uniform.as_entire_binding(),
-                rsm.pyramid.as_entire_binding(),
+                pdf.as_entire_binding(),
                 rsm.level_offsets.as_entire_binding(),
                 chains.buffer.as_entire_binding(),
                 out.as_entire_binding(),

@@ -30,11 +30,16 @@ impl VsglMomentsPass {
 
     /// `light_dir`: [`LightRaw::rsm_light_dir`](crate::frame::uniforms::LightRaw::rsm_light_dir) of the RSM's light.
     pub fn record(&self, rec: &mut Recorder<'_>, rsm: &Rsm, chains: &MomentChains, light_dir: [f32; 4], features: ShaderFeatures) {
+        self.record_as(rec, "vsgl_moments", rsm, chains, light_dir, features);
+    }
+
+    /// As [`Self::record`], timed as `label`.
+    pub fn record_as(&self, rec: &mut Recorder<'_>, label: &str, rsm: &Rsm, chains: &MomentChains, light_dir: [f32; 4], features: ShaderFeatures) {
         let gpu = rec.gpu;
         let pipeline = self.pipelines.get(gpu, &features.specular_flags());
         let uniform = rec.uniform("vsgl_moments_params_uniform_buffer", &MomentParamsRaw { rsm_size: rsm.size, chain_len: chains.chain_len, _pad: [0; 2], light_dir });
         rec.compute(
-            "vsgl_moments",
+            label,
             &pipeline,
             &[&[
                 uniform.as_entire_binding(),
