@@ -1,8 +1,8 @@
 // The importance map of bidirectional RSM importance (compute) [Tok15 §4.3, Fig. 6: "VSGLs are
 // also used for the importance estimation"]: for every RSM texel i, an estimate of what it adds
-// to the image, from the view's VSGLs (brsm_view.wgsl → vsgl_gen.wgsl).
+// to the image, from the view's VSGLs (brsm_view_gbuffer.wgsl → vsgl_gen.wgsl).
 //
-// What is evaluated (derived for vsgl from the adjoint reading in brsm_view.wgsl): texel i is a
+// What is evaluated (derived for vsgl from the adjoint reading in brsm_view_gbuffer.wgsl): texel i is a
 // VPL of radiant intensity I_i(ω) = Φ_i [R_d,i/π + R_s,i f_s,i(ω_l, ω)/R_s,i] cos_i(ω); its
 // contribution to the image, summed over pixels j and rgb, is
 //   q_i = Σ_j I_i(ω_ij) Ψ_j(ω_ji)/d_ij²,   Ψ_j(ω) = f_j(ω, ω_o,j) cos_j(ω),

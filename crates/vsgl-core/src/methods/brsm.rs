@@ -18,7 +18,7 @@ use crate::error::Result;
 use crate::frame::{pyramid_layout, MomentChains};
 use crate::passes::brsm_importance::BrsmImportancePass;
 use crate::passes::brsm_mix::BrsmMixPass;
-use crate::passes::brsm_view::{view_grid, view_grid_side, BrsmViewPass};
+use crate::passes::brsm_view_gbuffer::{view_grid, view_grid_side, BrsmViewPass};
 use crate::passes::moment_mips::MomentMipsPass;
 use crate::passes::pdf_mips::PdfMipsPass;
 use crate::passes::vsgl_gen::{GenSettings, Kernel, VsglGenPass, VSGL_BYTES};

@@ -5,7 +5,7 @@
 pub mod aov_pack;
 pub mod brsm_importance;
 pub mod brsm_mix;
-pub mod brsm_view;
+pub mod brsm_view_gbuffer;
 pub mod denoise;
 pub mod direct;
 pub mod ism;
@@ -38,7 +38,7 @@ passes_from_device!(
     aov_pack::AovPackPass,
     brsm_importance::BrsmImportancePass,
     brsm_mix::BrsmMixPass,
-    brsm_view::BrsmViewPass,
+    brsm_view_gbuffer::BrsmViewPass,
     denoise::DenoisePass,
     direct::DirectPass,
     ism::IsmPass,

@@ -1,4 +1,4 @@
-//! The camera side of bidirectional RSM importance (compute, `wgsl/passes/brsm_view.wgsl`): the
+//! The camera side of bidirectional RSM importance (compute, `wgsl/passes/brsm_view_gbuffer.wgsl`): the
 //! camera's G-buffer resampled onto a square power-of-two grid laid out like an RSM — the
 //! papers' "additional G-buffer" [Tok15 §4.3; Tok16 Table 1] — so the VSGL passes build the
 //! view's VSGLs from it as they build a light's from its RSM.
@@ -65,7 +65,7 @@ pub struct BrsmViewPass {
 
 impl BrsmViewPass {
     pub fn new(gpu: &Gpu) -> Result<Self> {
-        Ok(Self { pipelines: PipelineVariants::new(gpu, "passes/brsm_view.wgsl", "main")? })
+        Ok(Self { pipelines: PipelineVariants::new(gpu, "passes/brsm_view_gbuffer.wgsl", "main")? })
     }
 
     /// Fills `grid` (from [`view_grid`]) from the camera G-buffer of `size`.
