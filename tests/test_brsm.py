@@ -150,3 +150,18 @@ def test_brsm_vsgl_powers_estimate_the_rsm_power(tmp_path, make_renderer):
         totals.append(float((v["diffuse_power"] + v["specular_power"]).astype(np.float64).sum()))
     z = (np.mean(totals) - rsm_power) / (np.std(totals, ddof=1) / np.sqrt(len(totals)))
     assert abs(z) < 4.0, (z, np.mean(totals), rsm_power)
+
+
+@pytest.mark.parametrize("method", ["vpl", "vsgl"])
+def test_brsm_diffuse_only_variants_leave_the_image_unchanged(renderer, method):
+    """The pass plan's rule for diffuse-only scenes (docs/rendering.md, "Pass plan") covers the
+    brsm passes too: their [diffuse_only] variants drop only terms that are 0 there."""
+    scene = vsgl.scenes.diffuse_cornell()
+    opts = dict(method=method, num_lights=64, rsm_size=32, importance="brsm", importance_lights=64)
+    pruned = renderer.render(scene, **opts)
+    full = renderer.render(scene, plan="full", **opts)
+    for p in ["brsm_view_gbuffer", "brsm_view_moments", "brsm_importance"]:
+        assert f"{p}[diffuse_only]" in pruned.passes and p in full.passes
+    assert pruned.aov("indirect").mean() > 0
+    for aov in pruned.aovs:
+        np.testing.assert_allclose(pruned.aov(aov), full.aov(aov), rtol=1e-6, atol=1e-7, err_msg=aov)
