@@ -3,7 +3,11 @@ lit area, does N = 1024 with importance="brsm" beat N = 4096 without? relRMSE of
 AOV against the every-texel `reference` of the same RSM (whose own error against that target is
 0: it is the sum both estimate), mean ± standard error over seeds.
 
-    .venv/bin/python scripts/brsm_acceptance.py [--size 48] [--rsm 64] [--seeds 3]
+    .venv/bin/python scripts/brsm_acceptance.py [--size 48] [--rsm 64] [--seeds 3] [--pathtrace SPP]
+
+With --pathtrace SPP the errors are measured against a bidirectional `pathtrace` of SPP samples
+per pixel instead (its own relative error, from its stderr, and the reference's error against
+it are printed first), on lit_floor_corner only.
 
 Scenes: lit_floor_corner (tests/scene_builders.py: a wide spot light over an 8 × 8 floor, the
 camera on a small patch of the wall beside it) and caustics_ring seen up close (the ring's inside
@@ -37,13 +41,24 @@ def main() -> int:
     p.add_argument("--size", type=int, default=48)
     p.add_argument("--rsm", type=int, default=64)
     p.add_argument("--seeds", type=int, default=3)
+    p.add_argument("--pathtrace", type=int, default=0, metavar="SPP", help="measure against pathtrace with SPP samples per pixel")
     a = p.parse_args()
     r = vsgl.Renderer(width=a.size, height=a.size)
     scenes = [("lit_floor_corner", *lit_floor_corner(pathlib.Path(tempfile.mkdtemp()))),
               ("caustics_ring close-up", vsgl.scenes.caustics_ring(), vsgl.Camera.look_at(eye=(0.0, 0.9, -0.9), target=(0.0, 0.0, 0.1), fov_y_deg=25))]
-    print(f"{a.size}x{a.size}, RSM {a.rsm}², {a.seeds} seeds; relRMSE of indirect vs the same-RSM reference (its own error: 0)")
+    if a.pathtrace:
+        scenes = scenes[:1]
+        print(f"{a.size}x{a.size}, RSM {a.rsm}², {a.seeds} seeds; relRMSE of indirect vs pathtrace, {a.pathtrace} spp")
+    else:
+        print(f"{a.size}x{a.size}, RSM {a.rsm}², {a.seeds} seeds; relRMSE of indirect vs the same-RSM reference (its own error: 0)")
     for name, scene, cam in scenes:
         ref = r.render(scene, camera=cam, method="reference", rsm_size=a.rsm).aov("indirect")
+        if a.pathtrace:
+            pt = r.render(scene, camera=cam, method="pathtrace", spp=a.pathtrace, strategy="bidirectional")
+            truth = pt.aov("indirect").astype(np.float64)
+            own = float(np.sqrt(np.mean(pt.aov("stderr").astype(np.float64) ** 2) / np.mean(truth**2)))
+            print(f"pathtrace's own relative error {own:.4f}; the reference (RSM {a.rsm}²) against it: {rel_rmse(ref, truth):.4f}")
+            ref = truth
         for method, extra in VARIANTS:
             cells = []
             for imp, n in [("rsm", 1024), ("rsm", 4096), ("brsm", 1024)]:
