@@ -145,3 +145,15 @@ def two_rooms(directory: pathlib.Path):
     d = np.array([-0.9, -0.3, 0.0]) / math.hypot(0.9, 0.3)
     scene.lights = [vsgl.SpotLight(position=(-0.6, 0.9, 0.0), direction=tuple(d), intensity=10.0, inner_cone_deg=30, outer_cone_deg=40)]
     return scene, vsgl.Camera.look_at(eye=(1.3, 1.2, 0.0), target=(0.7, 0.0, 0.55), fov_y_deg=30)
+
+
+def lit_floor_corner(directory: pathlib.Path, *, wall_roughness: float = 0.35):
+    """A large floor (8 × 8) lit all over by a wide spot light, and a wall along its back edge
+    (z = −4, facing +z, glossy with ``wall_roughness``); the camera looks at a small patch of the
+    wall near the floor, so it sees none of the lit floor and only the floor texels near that
+    patch matter: the case bidirectional RSM importance is for. Returns (scene, camera)."""
+    floor = dict(corners=[(-4, 0, -4), (-4, 0, 4), (4, 0, 4), (4, 0, -4)], base_color=(0.8, 0.8, 0.8), specular=0.0, name="floor")
+    wall = dict(corners=[(-4, 0, -4), (4, 0, -4), (4, 3, -4), (-4, 3, -4)], base_color=(0.7, 0.7, 0.7), roughness=wall_roughness, name="wall")
+    scene = vsgl.Scene.load(write_quads(directory, [floor, wall], name="lit_floor_corner.gltf"))
+    scene.lights = [vsgl.SpotLight(position=(0.0, 5.0, 1.0), direction=(0.0, -1.0, 0.0), intensity=40.0, inner_cone_deg=55, outer_cone_deg=65)]
+    return scene, vsgl.Camera.look_at(eye=(1.5, 0.4, -2.5), target=(1.5, 0.3, -4.0), fov_y_deg=30)

@@ -281,3 +281,23 @@ def test_lighting_sweeps_the_sg_lighting_forms_of_vsgl_and_vsgl2(tmp_path, rende
     assert "lighting" in (tmp_path / "bench.csv").read_text().splitlines()[0].split(",")
     with pytest.raises(ValueError, match="lightings"):
         bench.run(lightings=("exact",), size=(8, 8), out=None, progress=False)
+
+
+def test_bench_compares_rsm_and_brsm_importance(tmp_path):
+    """--importance rsm,brsm: each vpl and vsgl configuration runs with both sampling densities
+    (rows marked in the table, CSV and JSON); methods that sample nothing run once."""
+    with pytest.raises(ValueError, match="importances: expected"):
+        bench.run(importances=("bidirectional",), size=(8, 8), out=None, progress=False)
+    report = bench.run(scenes=["cornell_box"], methods=["vpl", "vsgl", "reference"], lights=[64], size=(24, 16), rsm_sizes=[32], seeds=(0, 1),
+                       frames=1, warmup_seconds=0, reference_rsm=32, importances=("rsm", "brsm"), out=tmp_path, progress=False)
+    got = sorted((r.method, r.importance) for r in report.rows)
+    assert got == [("reference", None), ("vpl", "brsm"), ("vpl", "rsm"), ("vsgl", "brsm"), ("vsgl", "rsm")]
+    by = {(r.method, r.importance): r for r in report.rows}
+    assert "brsm_importance" in by[("vpl", "brsm")].passes_ms or not by[("vpl", "rsm")].passes_ms
+    assert "brsm_importance" not in by[("vpl", "rsm")].passes_ms
+    for key in [("vpl", "brsm"), ("vsgl", "brsm")]:
+        assert by[key].rel_rmse_indirect is not None and np.isfinite(by[key].rel_rmse_indirect)
+    assert " brsm" in bench.table(report)
+    rows = list(csv.DictReader(open(tmp_path / "bench.csv")))
+    assert {r["importance"] for r in rows} == {"", "rsm", "brsm"}
+    assert {r["importance"] for r in json.loads((tmp_path / "bench.json").read_text())["rows"]} == {None, "rsm", "brsm"}

@@ -35,7 +35,8 @@ def _render(args: argparse.Namespace) -> int:
     t1 = time.perf_counter()
     # Pass each flag only to a method that takes it (the registry says which).
     flags = dict(shadow_size=args.shadow_size, num_lights=args.lights, seed=args.seed, rsm_size=args.rsm_size,
-                 kernel=args.kernel, interleave=args.interleave, spp=args.spp, visibility=args.visibility, strategy=args.strategy)
+                 kernel=args.kernel, interleave=args.interleave, spp=args.spp, visibility=args.visibility, strategy=args.strategy,
+                 importance=args.importance)
     takes = vsgl.method_options(args.method)
     options = {k: v for k, v in flags.items() if k in takes and v is not None}
     progress = _progress_line(args.method)
@@ -209,6 +210,8 @@ def main(argv: list[str] | None = None) -> int:
                         help="paths of pathtrace: camera (pixel centres; default), bidirectional (light tracing + camera paths by MIS, per pixel area: caustics) or light")
     render.add_argument("--visibility", default=None, choices=["none", "raytrace"],
                         help="visibility of virtual lights in vpl, vsgl, vsgl2 and reference: none (unshadowed; default) or raytrace (shadow rays through the BVH)")
+    render.add_argument("--importance", default=None, choices=["rsm", "brsm"],
+                        help="RSM sampling density of vpl and vsgl: rsm (reflected power; default) or brsm (bidirectional: importance to the camera's view)")
     render.add_argument("--reference-rsm", type=int, default=128, help="RSM side of the reference the error is measured against (default: 128; the library default 1024 takes minutes on a CPU adapter)")
     render.add_argument("--no-error", action="store_true", help="skip rendering the reference and the error report")
     render.add_argument("--shadow-size", type=int, default=1024, help="shadow map side (default: 1024)")

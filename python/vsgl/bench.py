@@ -25,6 +25,10 @@ two minutes, and the report and stderr say which.
 With ``--plans auto,full`` every configuration also runs with the pass plan forced to
 ``"full"`` (nothing left out), and the report gives the pruned/full time ratio per configuration
 (``plan_ratios``) next to both errors, which must agree: pruning never changes the image.
+
+With ``--importance rsm,brsm`` every vpl and vsgl configuration also runs with bidirectional RSM
+importance (``importance="brsm"``, its rows marked ``brsm``), so the sweep compares the two
+sampling densities at equal light counts and, through ``equal_time``, at equal time.
 """
 
 from __future__ import annotations
@@ -122,6 +126,9 @@ class Row:
     K: float | None = None
     # vsgl / vsgl2's lighting= when --lighting sweeps it (None: the method's default, "asg").
     lighting: str | None = None
+    # The RSM sampling density of vpl and vsgl, "rsm" or "brsm" (bidirectional importance,
+    # --importance); None for the methods that sample nothing.
+    importance: str | None = None
     # With --sequence N: metrics.flicker of the indirect AOV over N frames of a moving light
     # (the scene's animation, or its lights slid along x) against the every-texel reference of
     # the same frames; stochastic methods draw seed k in frame k, as a real-time renderer would.
@@ -353,6 +360,7 @@ def run(
     sequence=0,
     Ks=(None,),
     lightings=(None,),
+    importances=("rsm",),
 ) -> Report:
     """Runs the sweep and returns a :class:`Report`; with ``out`` also writes CSV, JSON and plots.
 
@@ -378,6 +386,9 @@ def run(
         raise ValueError(f"Ks: expected kernel masses K > 0 (or None for the default), got {list(Ks)}")
     if not lightings or any(x not in (None, "asg", "accurate") for x in lightings):
         raise ValueError(f"lightings: expected \"asg\" and/or \"accurate\" (or None for the default), got {list(lightings)}")
+    bad_importance = [i for i in importances if i not in ("rsm", "brsm")]
+    if bad_importance or not importances:
+        raise ValueError(f"importances: expected a non-empty list of \"rsm\" and \"brsm\", got {list(importances)}")
     if isinstance(sequence, bool) or not isinstance(sequence, int) or sequence < 0 or sequence == 1:
         raise ValueError(f"sequence: expected 0 (off) or a number of frames >= 2, got {sequence!r}")
     # The adapter decides the defaults; a tiny renderer finds it (~0.1 s) before the real one.
@@ -441,14 +452,15 @@ def run(
                     for k in (kernels if m == "vsgl" else (None,)):
                         for K in (Ks if m == "vsgl" else (None,)):
                             for li in (lightings if m == "vsgl" else (None,)):
-                                configs.append((m, n, r, k, K, li))
+                                for imp in importances:
+                                    configs.append((m, n, r, k, K, li, imp))
         elif m in ("reference", "vsgl2"):
             # Deterministic and without a light count: one configuration per RSM size.
             for r in rsm_sizes:
                 for li in (lightings if m == "vsgl2" else (None,)):
-                    configs.append((m, None, r, None, None, li))
+                    configs.append((m, None, r, None, None, li, None))
         else:
-            configs.append((m, None, None, None, None, None))
+            configs.append((m, None, None, None, None, None, None))
     # Plans alternate inside one configuration so both see the same machine state.
     configs = [(*c, plan) for c in configs for plan in plans]
     # Per row (by its index in report.rows): its SeedErrors, for the equal-time comparisons.
@@ -463,7 +475,7 @@ def run(
         ref_error = report.reference_rel_error[scene_name]
         ref_has_light = bool(np.any(ref.indirect != 0))
         bar = _progress(len(configs), progress)
-        for method, n, rsm, kernel, K, lighting, plan in configs:
+        for method, n, rsm, kernel, K, lighting, importance, plan in configs:
             settings: dict[str, Any] = {"plan": plan}
             if n is not None:
                 settings["num_lights"] = n
@@ -475,6 +487,9 @@ def run(
                 settings["K"] = float(K)
             if lighting is not None:
                 settings["lighting"] = lighting
+            if importance == "brsm":
+                # The default, "rsm", is left unsaid so the sweep's rsm rows render as before.
+                settings["importance"] = importance
             if method == "vpl":
                 # 1: every VPL at every pixel (the baseline); 8: the papers' equal-footing
                 # comparison, interleaved and denoised like the VSGLs.
@@ -531,6 +546,7 @@ def run(
                 kernel=kernel,
                 K=K,
                 lighting=lighting,
+                importance=importance,
                 seeds=len(run_seeds),
                 total_ms_median=statistics.median(totals),
                 total_ms_min=min(totals),
@@ -706,11 +722,11 @@ def _method_label(r: Row) -> str:
 
 def _label(r: Row) -> str:
     k = _kernel_label(r.kernel, r.K)
-    return _method_label(r) + (f"[{k}]" if k else "")
+    return _method_label(r) + (f"[{k}]" if k else "") + ("+brsm" if r.importance == "brsm" else "")
 
 
 def _brief(r: Row) -> dict[str, Any]:
-    return {"method": _method_label(r), "kernel": _kernel_label(r.kernel, r.K), "num_lights": r.num_lights, "rsm_size": r.rsm_size, "total_ms": r.total_ms_median,
+    return {"method": _method_label(r), "kernel": _kernel_label(r.kernel, r.K), "importance": r.importance, "num_lights": r.num_lights, "rsm_size": r.rsm_size, "total_ms": r.total_ms_median,
             "relmse_indirect_debiased": r.relmse_indirect_debiased, "interval": r.relmse_indirect_debiased_interval,
             "reference_too_noisy": r.reference_too_noisy}
 
@@ -744,7 +760,7 @@ def _equal_time(rows: list[Row], seed_stats: dict[int, metrics.SeedErrors]) -> l
 
 def _plan_ratios(rows: list[Row]) -> list[dict[str, Any]]:
     """Pairs each "auto" row with the "full" row of the same configuration."""
-    key = lambda r: (r.scene, r.method, r.num_lights, r.rsm_size, r.kernel, r.K, r.lighting)  # noqa: E731
+    key = lambda r: (r.scene, r.method, r.num_lights, r.rsm_size, r.kernel, r.K, r.lighting, r.importance)  # noqa: E731
     full = {key(r): r for r in rows if r.plan == "full"}
     out = []
     for r in rows:
@@ -787,13 +803,13 @@ def table(report: Report) -> str:
         lines.append(f"flicker   metrics.flicker of indirect over {report.sequence} frames against the reference's frames "
                      f"(seed k in frame k for vpl and vsgl; {moves})")
     flick = bool(report.sequence)
-    head = (f"{'scene':<16}{'plan':<6}{'method':<16}{'N':>6}{'rsm':>6}{'kernel':>14}{'total ms':>11}{'IQR':>20}{'RMSE ind.':>12}{'± seeds':>10}"
+    head = (f"{'scene':<16}{'plan':<6}{'method':<16}{'N':>6}{'rsm':>6}{'kernel':>14}{'imp.':>6}{'total ms':>11}{'IQR':>20}{'RMSE ind.':>12}{'± seeds':>10}"
             f"{'rel ind.':>10}{'bias':>9}{'noise':>9}{'debiased':>11}{'90%':>20}{'SSIM':>7}{format('flicker', '>9') if flick else ''}  flag")
     lines += [head, "-" * len(head)]
     for r in report.rows:
         lines.append(
             f"{r.scene:<16}{r.plan:<6}{_method_label(r):<16}{r.num_lights or '-':>6}{r.rsm_size or '-':>6}{_kernel_label(r.kernel, r.K) or '-':>14}"
-            f"{r.total_ms_median:>11.3f}{f'[{r.total_ms_q1:.3f},{r.total_ms_q3:.3f}]':>20}"
+            f"{r.importance or '-':>6}{r.total_ms_median:>11.3f}{f'[{r.total_ms_q1:.3f},{r.total_ms_q3:.3f}]':>20}"
             f"{r.rmse_indirect:>12.5g}{r.rmse_indirect_std:>10.2g}{_num(r.rel_rmse_indirect, '.4g'):>10}{_num(r.bias, '.3g'):>9}{_num(r.noise, '.3g'):>9}"
             f"{_num(r.relmse_indirect_debiased, '.4g'):>11}{_interval(r.relmse_indirect_debiased_interval):>20}{_num(r.ssim_image, '.3f'):>7}"
             f"{format(_num(r.flicker_indirect, '.4g'), '>9') if flick else ''}  {'; '.join(r.notes)}"
@@ -836,7 +852,7 @@ def _equal_time_line(e: dict[str, Any], last_budget_ms: float | None = None) -> 
 
 
 CSV_COLUMNS = [
-    "scene", "plan", "method", "num_lights", "rsm_size", "kernel", "K", "lighting", "seeds", "total_ms_median", "total_ms_q1", "total_ms_q3", "total_ms_min", "total_ms_max",
+    "scene", "plan", "method", "num_lights", "rsm_size", "kernel", "K", "lighting", "importance", "seeds", "total_ms_median", "total_ms_q1", "total_ms_q3", "total_ms_min", "total_ms_max",
     "rmse_indirect", "rmse_indirect_std", "rmse_image", "relmse_indirect", "relmse_image", "flip_image", "rel_rmse_indirect", "bias", "noise",
     "relmse_indirect_debiased", "relmse_indirect_debiased_lo", "relmse_indirect_debiased_hi", "reference_rel_error", "reference_too_noisy",
     "ssim_image", "block_rmse_indirect", "flicker_indirect", "notes", "passes_ms",
@@ -869,12 +885,12 @@ def _plots(report: Report, out: pathlib.Path) -> None:
     title = f"{report.adapter['name']}, {report.size[0]}x{report.size[1]}"
     series: dict[tuple, list[Row]] = {}
     for r in report.rows:
-        series.setdefault((r.scene, _method_label(r), r.rsm_size, _kernel_label(r.kernel, r.K)), []).append(r)
+        series.setdefault((r.scene, _method_label(r), r.rsm_size, _kernel_label(r.kernel, r.K), r.importance), []).append(r)
     fig, ax = plt.subplots(figsize=(6, 4.5))
-    for (scene, method, rsm, kernel), rows in series.items():
+    for (scene, method, rsm, kernel, importance), rows in series.items():
         rows = [r for r in rows if r.rel_rmse_indirect]
         if rows:
-            label = f"{scene} {method}" + (f" {kernel}" if kernel else "") + (f" rsm{rsm}" if rsm else "")
+            label = f"{scene} {method}" + (f" {kernel}" if kernel else "") + (" brsm" if importance == "brsm" else "") + (f" rsm{rsm}" if rsm else "")
             ax.loglog([r.total_ms_median for r in rows], [r.rel_rmse_indirect for r in rows], "o-", label=label)
     # The reference's own error is the floor no error can be judged below: a row needs 3× it.
     for scene, floor in report.reference_rel_error.items():
@@ -891,10 +907,10 @@ def _plots(report: Report, out: pathlib.Path) -> None:
     fig.savefig(out / "error_vs_time.png", dpi=120)
     plt.close(fig)
     fig, ax = plt.subplots(figsize=(6, 4.5))
-    for (scene, method, rsm, kernel), rows in series.items():
+    for (scene, method, rsm, kernel, importance), rows in series.items():
         rows = [r for r in rows if r.num_lights and r.rmse_indirect > 0]
         if rows:
-            label = f"{scene} {method}" + (f" {kernel}" if kernel else "") + (f" rsm{rsm}" if rsm else "")
+            label = f"{scene} {method}" + (f" {kernel}" if kernel else "") + (" brsm" if importance == "brsm" else "") + (f" rsm{rsm}" if rsm else "")
             ax.loglog([r.num_lights for r in rows], [r.rmse_indirect for r in rows], "o-", label=label)
     ax.set_xlabel("number of VPLs / VSGLs")
     ax.set_ylabel("RMSE of indirect vs reference")
@@ -906,10 +922,10 @@ def _plots(report: Report, out: pathlib.Path) -> None:
     plt.close(fig)
     # Bias (solid) and noise (dashed) apart: what separates VSGL (bias) from VPL (noise).
     fig, ax = plt.subplots(figsize=(6, 4.5))
-    for (scene, method, rsm, kernel), rows in series.items():
+    for (scene, method, rsm, kernel, importance), rows in series.items():
         rows = [r for r in rows if r.num_lights and r.bias is not None and r.noise is not None]
         if rows:
-            label = f"{scene} {method}" + (f" {kernel}" if kernel else "") + (f" rsm{rsm}" if rsm else "")
+            label = f"{scene} {method}" + (f" {kernel}" if kernel else "") + (" brsm" if importance == "brsm" else "") + (f" rsm{rsm}" if rsm else "")
             (line,) = ax.plot([r.num_lights for r in rows], [max(r.bias, 1e-6) for r in rows], "o-", label=f"{label}: bias")
             ax.plot([r.num_lights for r in rows], [max(r.noise, 1e-6) for r in rows], "s--", color=line.get_color(), label=f"{label}: noise")
     for scene, floor in report.reference_rel_error.items():
@@ -946,6 +962,8 @@ def main(argv: list[str] | None = None) -> int:
                    help="vsgl kernel masses K to sweep, e.g. 1,2,4 (default: the method's, 1); larger K is smoother in space and time")
     p.add_argument("--lighting", type=_strs, default=None, metavar="asg,accurate",
                    help="SG lighting forms of vsgl and vsgl2 to sweep: asg (the papers'), accurate (filtered-NDF specular, clamped-cosine diffuse) (default: the methods' own, asg)")
+    p.add_argument("--importance", type=_strs, default=["rsm"], metavar="rsm,brsm",
+                   help="RSM sampling densities of vpl and vsgl to compare: rsm (reflected power), brsm (bidirectional importance from the camera's view); default: rsm")
     p.add_argument("--kernels", type=_strs, default=["integral"], help="VSGL kernels: integral, density (default: integral)")
     p.add_argument("--interleave", type=int, default=8, help="VSGL interleaving (default: 8)")
     p.add_argument("--visibility", default="none", choices=["none", "raytrace", "ism"],
@@ -992,7 +1010,7 @@ def main(argv: list[str] | None = None) -> int:
         scenes=a.scene, methods=a.methods, lights=a.lights, size=size, rsm_sizes=a.rsm_sizes, kernels=a.kernels,
         seeds=None if a.seeds is None else tuple(range(a.seeds)), frames=a.frames, warmup=a.warmup, warmup_seconds=a.warmup_seconds, reference=a.reference, reference_rsm=a.reference_rsm,
         reference_spp=a.reference_spp, reference_strategy=a.reference_strategy, add_lights=add_lights, scene_lights=not a.no_scene_lights, interleave=a.interleave, vpl_interleave=a.vpl_interleave, visibility=a.visibility, plans=tuple(a.plans), adapter=a.adapter, out=a.out, progress=not a.no_progress,
-        sequence=a.sequence, Ks=tuple(a.K) if a.K else (None,), lightings=tuple(a.lighting) if a.lighting else (None,),
+        sequence=a.sequence, Ks=tuple(a.K) if a.K else (None,), lightings=tuple(a.lighting) if a.lighting else (None,), importances=tuple(a.importance),
     )
     print(table(report))
     print(f"wrote     {os.path.join(a.out, 'bench.csv')}, bench.json, bench.txt and plots (with matplotlib)")

@@ -14,6 +14,14 @@
 //  4. the VSGL from the moments [Tok15 §3.1; Tok16s §3]: Toksvig-merged lobes and the
 //     positional Gaussian (vsgl.wgsl), and (chain F, issue 18 item 4) the cluster's mean
 //     tangent plane.
+// The sampling density p comes from `pyramid` (2×2 sums, level 0 = per-texel weights) and the
+// moments from the five (or six) chains. Usually the pyramid holds the moments' own weight w (chain A's
+// .w), and the kernel mass and Eq. 5 read w̄ from chain A as the papers do. With bidirectional
+// importance (`importance = 1`, brsm_mix.wgsl) the pyramid holds another density q ∝ w ×
+// (view importance): centres, masses and the estimator's density then all come from q — the
+// kernel mass (4^l/M)·p̄ with p̄ = M·q̄/Q, Eq. 5 as Q·f̄/(N·q̄), the node total as
+// F_v/(N·Q_v/Q) — while the cluster's moments (power, lobes, positional Gaussian) still come
+// from the flux chains: the same estimators with p replaced, so "node" stays unbiased.
 #include "common/constants.wgsl"
 #include "common/math.wgsl"
 #include "common/sg.wgsl"
@@ -38,6 +46,10 @@ struct GenParams {
     k: f32,
     // 1: the moments have chain F and the records get the cluster's tangent plane.
     planes: u32,
+    // 1: `pyramid` is a density other than chain A's weight (bidirectional importance).
+    importance: u32,
+    _pad1: u32,
+    _pad2: u32,
 }
 
 const WORKGROUP: u32 = 64u;
@@ -74,9 +86,40 @@ fn moment_trilinear(chain: u32, s: vec2f, level: f32) -> vec4f {
     return mix(moment_bilinear(chain, l0, s), moment_bilinear(chain, l1, s), t);
 }
 
+// Texel average of the sampling pyramid at a level-l texel (its 2×2 sums over 4^l), clamped
+// to the edge like moment_texel.
+fn pdf_texel_average(level: u32, xy: vec2i) -> f32 {
+    let side = i32(params.rsm_size >> level);
+    let c = clamp(xy, vec2i(0), vec2i(side - 1));
+    return pyramid[level_offsets[level] + u32(c.y * side + c.x)] / f32(1u << (2u * level));
+}
+
+// pdf_texel_average read trilinearly, as moment_trilinear reads the chains.
+fn pdf_trilinear(s: vec2f, level: f32) -> f32 {
+    let top = params.levels - 1u;
+    let l0 = min(u32(floor(level)), top);
+    let l1 = min(l0 + 1u, top);
+    let t = clamp(level - f32(l0), 0.0, 1.0);
+    var v = vec2f(0.0);
+    for (var k = 0u; k < 2u; k++) {
+        let l = select(l0, l1, k == 1u);
+        let coord = s / f32(1u << l) - 0.5;
+        let base = floor(coord);
+        let f = coord - base;
+        let i = vec2i(base);
+        let a = mix(pdf_texel_average(l, i), pdf_texel_average(l, i + vec2i(1, 0)), f.x);
+        let b = mix(pdf_texel_average(l, i + vec2i(0, 1)), pdf_texel_average(l, i + vec2i(1, 1)), f.x);
+        v[k] = mix(a, b, f.y);
+    }
+    return mix(v.x, v.y, t);
+}
+
 // Probability mass of the kernel at level l: (4^l/M)·p̄(x, l) = 4^l·w̄(x, l)/W with w̄ the texel
-// average of the weight at that level and W the total weight.
+// average of the weight at that level and W the total weight (with importance: of q and Q).
 fn kernel_mass(s: vec2f, level: f32, total: f32) -> f32 {
+    if (params.importance == 1u) {
+        return exp2(2.0 * level) * pdf_trilinear(s, level) / total;
+    }
     return exp2(2.0 * level) * moment_trilinear(0u, s, level).w / total;
 }
 
@@ -172,6 +215,15 @@ fn main(@builtin(global_invocation_id) gid: vec3u) {
     var scale: f32;
     if (params.kernel == 0u) {
         scale = m / max(n * p, 1.0);
+    } else if (params.importance == 1u) {
+        // Q·f̄/(N·q̄): q̄ the density's texel average over the same kernel (exact at the node).
+        var q_average: f32;
+        if (params.kernel == 2u) {
+            q_average = pdf_texel_average(u32(level), vec2i(node));
+        } else {
+            q_average = pdf_trilinear(s, level);
+        }
+        scale = select(0.0, total / (n * q_average), q_average > 0.0);
     } else {
         scale = select(0.0, total / (n * a.w), a.w > 0.0);
     }

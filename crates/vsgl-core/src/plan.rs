@@ -52,6 +52,7 @@ impl ShaderFeatures {
 const SPECULAR_PASSES: &[&str] = &[
     "direct", "rsm_flux", "vpl_sample", "vpl_sample[every_texel]", "vpl_shading", "vsgl_moments", "vsgl2_reduce",
     "vsgl_shading", "denoise", "vpl_shading[raytrace]", "vsgl_shading[raytrace]",
+    "brsm_view_gbuffer", "brsm_view_moments", "brsm_importance",
 ];
 
 /// A frame's scene-derived plan: the shader features and what they leave out, with reasons.
@@ -100,7 +101,9 @@ mod tests {
     /// The pass whose shader an entry of `frame.passes` names ("vpl_sample[every_texel]" →
     /// passes/vpl_sample.wgsl).
     fn shader_of(pass: &str) -> String {
-        format!("passes/{}.wgsl", pass.split('[').next().unwrap())
+        // The view's moments of bidirectional importance run the light's moment shader.
+        let pass = pass.split('[').next().unwrap();
+        format!("passes/{}.wgsl", if pass == "brsm_view_moments" { "vsgl_moments" } else { pass })
     }
 
     /// `[diffuse_only]` is reported for exactly the passes whose shader reads HAS_SPECULAR, so

@@ -858,14 +858,16 @@ impl PyRenderer {
     ///   seed, vpl_clamp (minimum VPL distance as a fraction of the scene size; 0 = unbiased),
     ///   interleave (default 1), denoise, visibility ("none" | "ism" | "raytrace"), ism_size,
     ///   ism_points, ism_points_per_map, ism_bias, ism_pcf (imperfect shadow maps, with
-    ///   visibility="ism"), capture_rsm.
+    ///   visibility="ism"), importance ("rsm" | "brsm": bidirectional RSM importance from
+    ///   importance_lights VSGLs of the camera's view), importance_lights, capture_rsm.
     /// - "vsgl": num_lights VSGLs (in all) by filtered importance sampling. shadow_size,
     ///   num_lights, rsm_size, sampling, seed, kernel ("integral" | "density" | "node"), K,
     ///   bisection_steps, interleave, denoise, diffuse ("papers" | "accurate" | "sg_product"),
     ///   lighting ("asg": the papers' SG–ASG specular and diffuse= | "accurate": GGX with its
     ///   NDF widened by the light's spread, after Tokuyoshi et al. 2024, and the clamped-cosine
     ///   diffuse; docs/rendering.md "SG lighting"),
-    ///   visibility, ism_size, ism_points, ism_points_per_map, ism_bias, ism_pcf, capture_rsm.
+    ///   visibility, ism_size, ism_points, ism_points_per_map, ism_bias, ism_pcf, importance,
+    ///   importance_lights, capture_rsm.
     /// - "vsgl2": two VSGLs per light by a parallel sum. shadow_size, rsm_size (any side
     ///   32..4096), diffuse, lighting, vsgl2_reduction ("auto" | "subgroup" | "shared_memory"),
     ///   visibility, ism_size, ism_points, ism_points_per_map, ism_bias, ism_pcf, capture_rsm.

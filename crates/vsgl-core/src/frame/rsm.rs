@@ -72,9 +72,14 @@ pub struct MomentChains {
 
 impl MomentChains {
     pub fn new(rec: &mut Recorder<'_>, rsm_size: u32, with_planes: bool) -> Self {
+        Self::labelled(rec, "vsgl_moment_chain_buffer", rsm_size, with_planes)
+    }
+
+    /// The chains in a buffer called `label` (the view's chains of bidirectional importance).
+    pub fn labelled(rec: &mut Recorder<'_>, label: &str, rsm_size: u32, with_planes: bool) -> Self {
         let (_, chain_len) = pyramid_layout(rsm_size);
         let count = if with_planes { PLANE_CHAINS } else { BASE_CHAINS };
-        Self { buffer: rec.storage("vsgl_moment_chain_buffer", Self::bytes(rsm_size, with_planes)), chain_len, count }
+        Self { buffer: rec.storage(label, Self::bytes(rsm_size, with_planes)), chain_len, count }
     }
 
     /// Whether chain F (tangent planes) is present.

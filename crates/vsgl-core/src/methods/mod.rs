@@ -7,6 +7,7 @@
 //! new module here plus one line in [`REGISTRY`]; nothing else names methods.
 
 pub mod options;
+mod brsm;
 mod interleaved;
 mod rsm_lights;
 

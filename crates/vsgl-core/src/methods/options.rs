@@ -306,6 +306,16 @@ pub mod common {
         note: "",
     };
     pub const ISM_PCF: OptionSpec = int("ism_pcf", 0, 2, 0, "percentage-closer filter radius of the imperfect shadow map lookup in texels (0: one texel; 1: 3×3, softer and a few % darker where nothing occludes)");
+    /// Bidirectional RSM importance (issue 18 item 6; docs/rendering.md, "Bidirectional RSM
+    /// importance"): the RSM's sampling density from the camera's view.
+    pub const IMPORTANCE: OptionSpec = OptionSpec {
+        name: "importance",
+        kind: OptionKind::Choice(&["rsm", "brsm"]),
+        default: OptionValue::Str(Cow::Borrowed("rsm")),
+        help: "sampling density of RSM texels: \"rsm\" (reflected power Φ·(R_d + R_s), the papers' default) or \"brsm\" (bidirectional: that power times the texel's importance to the view, estimated with importance_lights VSGLs of the camera's G-buffer, mixed with 1/11 of the \"rsm\" density; unbiased for vpl)",
+        note: "",
+    };
+    pub const IMPORTANCE_LIGHTS: OptionSpec = int("importance_lights", 1, 65536, 2048, "VSGLs of the camera's view that estimate each RSM texel's importance with importance=\"brsm\" (the 2016 paper: 2048, the 2015 paper: 4096)");
     pub const CAPTURE_RSM: OptionSpec = OptionSpec {
         name: "capture_rsm",
         kind: OptionKind::Bool,

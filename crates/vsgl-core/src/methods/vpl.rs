@@ -2,6 +2,7 @@
 //! hierarchical sample warping over the weight pyramid (the papers' baseline; Dachsbacher and
 //! Stamminger 2005 for the RSM), optionally interleaved and denoised like `vsgl`.
 
+use super::brsm::{Importance, ViewImportance};
 use super::interleaved::InterleavedShading;
 use super::rsm_lights::{check_rsm_size, for_each_light, RsmSettings};
 use super::{options::common, DirectLight, FrameContext, Method, MethodInfo, OptionSpec, Options};
@@ -37,6 +38,8 @@ const OPTIONS: &[OptionSpec] = &[
     common::ISM_POINTS_PER_MAP,
     common::ISM_BIAS,
     common::ISM_PCF,
+    common::IMPORTANCE,
+    common::IMPORTANCE_LIGHTS,
     common::CAPTURE_RSM,
 ];
 
@@ -50,6 +53,7 @@ struct Vpl {
     vpl_clamp: f32,
     interleave: u32,
     denoise: bool,
+    importance: Importance,
     capture_rsm: bool,
 }
 
@@ -71,6 +75,7 @@ impl Vpl {
             vpl_clamp: o.f32("vpl_clamp")?,
             interleave: o.u32("interleave")?,
             denoise: o.bool("denoise")?,
+            importance: Importance::from_options(o)?,
             capture_rsm: o.bool("capture_rsm")?,
         })
     }
@@ -89,12 +94,22 @@ impl Method for Vpl {
         let shading_out = InterleavedShading::new(ctx, self.interleave, self.denoise);
         let rsm = RsmSettings { size: self.rsm_size, sampling: true, capture: self.capture_rsm, budget: self.num_lights };
         let vis = VirtualLightVisibility::new(ctx, self.visibility, self.num_lights)?;
+        let view = match self.importance {
+            Importance::Brsm { view_lights } => Some(ViewImportance::new(ctx, view_lights, self.seed)?),
+            Importance::Rsm => None,
+        };
         let lit = for_each_light(ctx, &rsm, |ctx, light| {
             let feat = ctx.features;
             pdf_mips.record(&mut ctx.rec, light.rsm);
+            // Sampled by the RSM's weights, or by its importance to the view (brsm).
+            let reweighted = match &view {
+                Some(view) => Some(view.pyramid(ctx, light)?),
+                None => None,
+            };
+            let pdf = reweighted.as_ref().unwrap_or(&light.rsm.pyramid);
             // This RSM's share of num_lights (split over lights and cube faces by reflected
             // power, `power_budgets`); the buffer holds num_lights, the largest share.
-            sample.record_importance(&mut ctx.rec, light.light.as_entire_binding(), light.rsm, light.budget, self.sampling, self.seed, &vpls, feat);
+            sample.record_importance(&mut ctx.rec, light.light.as_entire_binding(), light.rsm, pdf, light.budget, self.sampling, self.seed, &vpls, feat);
             vis.build_maps(ctx, &vpls, light.budget, VPL_RECORD_WORDS)?;
             let target = shading_out.target(ctx.indirect);
             shading.record(&mut ctx.rec, ctx.frame_uniforms, &vpls, light.budget, self.interleave, min_distance2, ctx.gbuffer, target, feat, ctx.size, &vis);

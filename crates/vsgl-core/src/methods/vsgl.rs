@@ -2,6 +2,7 @@
 //! sampling of the mipmapped RSM (Tokuyoshi 2015 with the 2016 integral kernel), shaded with
 //! interleaving and a geometry-aware filter.
 
+use super::brsm::{Importance, ViewImportance};
 use super::interleaved::InterleavedShading;
 use super::rsm_lights::{check_rsm_size, for_each_light, RsmSettings};
 use super::visibility::{VirtualLightVisibility, VisibilityMode, VSGL_RECORD_WORDS};
@@ -64,6 +65,8 @@ const OPTIONS: &[OptionSpec] = &[
     common::ISM_POINTS_PER_MAP,
     common::ISM_BIAS,
     common::ISM_PCF,
+    common::IMPORTANCE,
+    common::IMPORTANCE_LIGHTS,
     common::CAPTURE_RSM,
 ];
 
@@ -81,6 +84,7 @@ struct Vsgl {
     denoise: bool,
     diffuse: DiffuseMode,
     lighting: LightingMode,
+    importance: Importance,
     capture_rsm: bool,
 }
 
@@ -134,6 +138,7 @@ impl Vsgl {
             denoise: o.bool("denoise")?,
             diffuse: diffuse_mode(o)?,
             lighting: lighting_mode(o)?,
+            importance: Importance::from_options(o)?,
             capture_rsm: o.bool("capture_rsm")?,
         })
     }
@@ -160,10 +165,19 @@ impl Method for Vsgl {
         let mut chains: Option<MomentChains> = None;
         let rsm = RsmSettings { size: self.rsm_size, sampling: true, capture: self.capture_rsm, budget: self.num_lights };
         let vis = VirtualLightVisibility::new(ctx, self.visibility, self.num_lights)?;
+        let view = match self.importance {
+            Importance::Brsm { view_lights } => Some(ViewImportance::new(ctx, view_lights, self.seed)?),
+            Importance::Rsm => None,
+        };
         let lit = for_each_light(ctx, &rsm, |ctx, light| {
             let feat = ctx.features;
             let chains = chains.get_or_insert_with(|| MomentChains::new(&mut ctx.rec, self.rsm_size, self.diffuse.fades_below_tangent_plane()));
             pdf_mips.record(&mut ctx.rec, light.rsm);
+            // Sampled by the RSM's weights, or by its importance to the view (brsm).
+            let reweighted = match &view {
+                Some(view) => Some(view.pyramid(ctx, light)?),
+                None => None,
+            };
             moments.record(&mut ctx.rec, light.rsm, chains, light.raw.rsm_light_dir(), light.texel_footprint(), feat);
             moment_mips.record(&mut ctx.rec, self.rsm_size, chains);
             // This RSM's share of num_lights (split over lights and cube faces by reflected
@@ -177,8 +191,10 @@ impl Method for Vsgl {
                 k: self.k,
                 bisection_steps: self.bisection_steps,
                 light_offset: light.raw.position,
+                importance: reweighted.is_some(),
             };
-            gen.record(&mut ctx.rec, light.rsm, chains, &settings, &buf);
+            let pdf = reweighted.as_ref().unwrap_or(&light.rsm.pyramid);
+            gen.record_with_pdf(&mut ctx.rec, "vsgl_gen", light.rsm, pdf, chains, &settings, &buf);
             vis.build_maps(ctx, &buf, light.budget, VSGL_RECORD_WORDS)?;
             let target = shading_out.target(ctx.indirect);
             shading.record(&mut ctx.rec, ctx.frame_uniforms, &buf, light.budget, self.interleave, self.diffuse, self.lighting, self.kernel == Kernel::Node, ctx.gbuffer, target, feat, ctx.size, &vis);

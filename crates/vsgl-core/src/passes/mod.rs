@@ -3,6 +3,9 @@
 //! Shared targets live in `crate::frame`, GPU plumbing in `crate::gpu`.
 
 pub mod aov_pack;
+pub mod brsm_importance;
+pub mod brsm_mix;
+pub mod brsm_view_gbuffer;
 pub mod denoise;
 pub mod direct;
 pub mod ism;
@@ -33,6 +36,9 @@ macro_rules! passes_from_device {
 
 passes_from_device!(
     aov_pack::AovPackPass,
+    brsm_importance::BrsmImportancePass,
+    brsm_mix::BrsmMixPass,
+    brsm_view_gbuffer::BrsmViewPass,
     denoise::DenoisePass,
     direct::DirectPass,
     ism::IsmPass,

@@ -28,12 +28,17 @@ impl MomentMipsPass {
     }
 
     pub fn record(&self, rec: &mut Recorder<'_>, rsm_size: u32, chains: &MomentChains) {
+        self.record_as(rec, "moment_mips", rsm_size, chains);
+    }
+
+    /// As [`Self::record`], timed as `label`.
+    pub fn record_as(&self, rec: &mut Recorder<'_>, label: &str, rsm_size: u32, chains: &MomentChains) {
         let (offsets, _) = crate::frame::pyramid_layout(rsm_size);
         for level in 1..offsets.len() {
             let dst_size = rsm_size >> level;
             let uniform = rec.uniform("moment_mips_level_uniform_buffer", &LevelRaw { src_offset: offsets[level - 1], dst_offset: offsets[level], dst_size, chain_len: chains.chain_len, chains: chains.count, _pad: [0; 3] });
             rec.compute(
-                "moment_mips",
+                label,
                 &self.pipeline,
                 &[&[uniform.as_entire_binding(), chains.buffer.as_entire_binding()]],
                 (groups(dst_size, WORKGROUP), groups(dst_size, WORKGROUP), 1),

@@ -29,14 +29,20 @@ impl PdfMipsPass {
     }
 
     pub fn record(&self, rec: &mut Recorder<'_>, rsm: &Rsm) {
-        let (offsets, _) = crate::frame::pyramid_layout(rsm.size);
+        self.record_pyramid(rec, "pdf_mips", rsm.size, &rsm.pyramid);
+    }
+
+    /// Sums the levels above 0 of any pyramid of side `size` in the RSM layout, timed as
+    /// `label` (bidirectional importance sums its view grid and its re-weighted pyramid too).
+    pub fn record_pyramid(&self, rec: &mut Recorder<'_>, label: &str, size: u32, pyramid: &wgpu::Buffer) {
+        let (offsets, _) = crate::frame::pyramid_layout(size);
         for level in 1..offsets.len() {
-            let dst_size = rsm.size >> level;
+            let dst_size = size >> level;
             let uniform = rec.uniform("pdf_mips_level_uniform_buffer", &LevelRaw { src_offset: offsets[level - 1], dst_offset: offsets[level], dst_size, _pad: 0 });
             rec.compute(
-                "pdf_mips",
+                label,
                 &self.pipeline,
-                &[&[uniform.as_entire_binding(), rsm.pyramid.as_entire_binding()]],
+                &[&[uniform.as_entire_binding(), pyramid.as_entire_binding()]],
                 (groups(dst_size, WORKGROUP), groups(dst_size, WORKGROUP), 1),
             );
         }

@@ -66,7 +66,7 @@ impl VplSamplePass {
     }
 
     #[allow(clippy::too_many_arguments)]
-    fn dispatch(&self, rec: &mut Recorder<'_>, label: &str, pipeline: &wgpu::ComputePipeline, params: SampleParamsRaw, light: wgpu::BindingResource<'_>, rsm: &Rsm, out: &wgpu::Buffer) {
+    fn dispatch(&self, rec: &mut Recorder<'_>, label: &str, pipeline: &wgpu::ComputePipeline, params: SampleParamsRaw, light: wgpu::BindingResource<'_>, rsm: &Rsm, pdf: &wgpu::Buffer, out: &wgpu::Buffer) {
         let uniform = rec.uniform("vpl_sample_params_uniform_buffer", &params);
         rec.compute(
             label,
@@ -74,7 +74,7 @@ impl VplSamplePass {
             &[&[
                 uniform.as_entire_binding(),
                 light,
-                rsm.pyramid.as_entire_binding(),
+                pdf.as_entire_binding(),
                 rsm.level_offsets.as_entire_binding(),
                 rsm.gbuffer.position.as_entire_binding(),
                 rsm.gbuffer.normal.as_entire_binding(),
@@ -86,9 +86,11 @@ impl VplSamplePass {
         );
     }
 
-    /// `count` VPLs with p ∝ Φ·(R_d + R_s), estimator weights 1/(N p).
+    /// `count` VPLs with p ∝ `pdf` (level 0 of a pyramid in the layout of `rsm.pyramid`: that
+    /// pyramid itself, Φ·(R_d + R_s), or the bidirectional importance of `brsm_mix`),
+    /// estimator weights 1/(N p).
     #[allow(clippy::too_many_arguments)]
-    pub fn record_importance(&self, rec: &mut Recorder<'_>, light: wgpu::BindingResource<'_>, rsm: &Rsm, count: u32, sampling: Sampling, seed: u32, out: &wgpu::Buffer, features: ShaderFeatures) {
+    pub fn record_importance(&self, rec: &mut Recorder<'_>, light: wgpu::BindingResource<'_>, rsm: &Rsm, pdf: &wgpu::Buffer, count: u32, sampling: Sampling, seed: u32, out: &wgpu::Buffer, features: ShaderFeatures) {
         let gpu = rec.gpu;
         let params = SampleParamsRaw {
             count,
@@ -99,7 +101,7 @@ impl VplSamplePass {
             first: 0,
             _pad: [0; 2],
         };
-        self.dispatch(rec, "vpl_sample", &self.importance.get(gpu, &features.specular_flags()), params, light, rsm, out);
+        self.dispatch(rec, "vpl_sample", &self.importance.get(gpu, &features.specular_flags()), params, light, rsm, pdf, out);
     }
 
     /// Texels `first .. first + count` as VPLs of weight Φ·R.
@@ -108,6 +110,6 @@ impl VplSamplePass {
         let gpu = rec.gpu;
         let params = SampleParamsRaw { count, levels: rsm.levels, rsm_size: rsm.size, mode: 0, seed: 0, first, _pad: [0; 2] };
         // Reported as its own variant in `frame.passes`, timed as `vpl_sample`.
-        self.dispatch(rec, "vpl_sample[every_texel]", &self.every_texel.get(gpu, &features.specular_flags()), params, light, rsm, out);
+        self.dispatch(rec, "vpl_sample[every_texel]", &self.every_texel.get(gpu, &features.specular_flags()), params, light, rsm, &rsm.pyramid, out);
     }
 }

@@ -65,7 +65,8 @@ struct GenParamsRaw {
     light_offset: [f32; 3],
     k: f32,
     planes: u32,
-    _pad: [u32; 3],
+    importance: u32,
+    _pad: [u32; 2],
 }
 
 /// What one generation dispatch needs besides the RSM.
@@ -78,6 +79,9 @@ pub struct GenSettings {
     pub k: f32,
     pub bisection_steps: u32,
     pub light_offset: [f32; 3],
+    /// The sampling pyramid is a density other than the moments' weight (bidirectional
+    /// importance, `brsm_mix`): kernel masses and estimator densities are read from it.
+    pub importance: bool,
 }
 
 pub struct VsglGenPass {
@@ -90,8 +94,15 @@ impl VsglGenPass {
         Ok(Self { pipeline: gpu.compute_pipeline("vsgl_gen_pipeline", &module, "main") })
     }
 
-    #[allow(clippy::too_many_arguments)]
+    /// VSGLs sampled by the RSM's own weight pyramid.
     pub fn record(&self, rec: &mut Recorder<'_>, rsm: &Rsm, chains: &MomentChains, s: &GenSettings, out: &wgpu::Buffer) {
+        self.record_with_pdf(rec, "vsgl_gen", rsm, &rsm.pyramid, chains, s, out);
+    }
+
+    /// VSGLs sampled by `pdf`, a pyramid in the layout of `rsm.pyramid` (`s.importance` says
+    /// whether it differs from the moments' weight), timed as `label`.
+    #[allow(clippy::too_many_arguments)]
+    pub fn record_with_pdf(&self, rec: &mut Recorder<'_>, label: &str, rsm: &Rsm, pdf: &wgpu::Buffer, chains: &MomentChains, s: &GenSettings, out: &wgpu::Buffer) {
         let params = GenParamsRaw {
             count: s.count,
             levels: rsm.levels,
@@ -104,15 +115,16 @@ impl VsglGenPass {
             light_offset: s.light_offset,
             k: s.k,
             planes: u32::from(chains.has_planes()),
-            _pad: [0; 3],
+            importance: s.importance as u32,
+            _pad: [0; 2],
         };
         let uniform = rec.uniform("vsgl_gen_params_uniform_buffer", &params);
         rec.compute(
-            "vsgl_gen",
+            label,
             &self.pipeline,
             &[&[
                 uniform.as_entire_binding(),
-                rsm.pyramid.as_entire_binding(),
+                pdf.as_entire_binding(),
                 rsm.level_offsets.as_entire_binding(),
                 chains.buffer.as_entire_binding(),
                 out.as_entire_binding(),

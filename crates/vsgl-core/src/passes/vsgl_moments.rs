@@ -33,11 +33,17 @@ impl VsglMomentsPass {
 
     /// `light_dir`: [`LightRaw::rsm_light_dir`](crate::frame::uniforms::LightRaw::rsm_light_dir) of the RSM's light.
     pub fn record(&self, rec: &mut Recorder<'_>, rsm: &Rsm, chains: &MomentChains, light_dir: [f32; 4], texel_footprint: [f32; 4], features: ShaderFeatures) {
+        self.record_as(rec, "vsgl_moments", rsm, chains, light_dir, texel_footprint, features);
+    }
+
+    /// As [`Self::record`], timed as `label`. `texel_footprint`: `LightRsm::texel_footprint`, or
+    /// zeros for point texels.
+    pub fn record_as(&self, rec: &mut Recorder<'_>, label: &str, rsm: &Rsm, chains: &MomentChains, light_dir: [f32; 4], texel_footprint: [f32; 4], features: ShaderFeatures) {
         let gpu = rec.gpu;
         let pipeline = self.pipelines.get(gpu, &features.specular_flags());
         let uniform = rec.uniform("vsgl_moments_params_uniform_buffer", &MomentParamsRaw { rsm_size: rsm.size, chain_len: chains.chain_len, planes: u32::from(chains.has_planes()), _pad: 0, light_dir, texel_footprint });
         rec.compute(
-            "vsgl_moments",
+            label,
             &pipeline,
             &[&[
                 uniform.as_entire_binding(),

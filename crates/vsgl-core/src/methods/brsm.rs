@@ -1,0 +1,91 @@
+//! Bidirectional RSM importance (`importance="brsm"`, issue 18 item 6) [Tok15 §4.3; Tok16 §5
+//! setup and Table 1]: VSGLs generated on the camera's G-buffer estimate what each RSM texel
+//! adds to the view, and the RSM's VPLs or VSGLs are then sampled from that importance instead
+//! of from the reflected power Φ·(R_d + R_s) alone. Shared by `vpl` and `vsgl`; the steps,
+//! each its own timed pass (docs/rendering.md, "Bidirectional RSM importance"):
+//!
+//! once per frame (the view's VSGLs): `brsm_view_gbuffer` (the camera G-buffer onto a square
+//! grid, the papers' additional G-buffer), `brsm_view_moments`, `brsm_view_mips` (weight and
+//! moment pyramids), `brsm_view_vsgl_gen` (integral kernel, K = 1, stratified);
+//!
+//! per RSM: `brsm_importance` (the importance map), then the re-weighted pyramid:
+//! `brsm_pdf_mips` (its total), `brsm_mix` (mixed with the RSM's weights), `brsm_pdf_mips`.
+
+use super::options::Options;
+use super::rsm_lights::LightRsm;
+use super::FrameContext;
+use crate::error::Result;
+use crate::frame::{pyramid_layout, MomentChains};
+use crate::passes::brsm_importance::BrsmImportancePass;
+use crate::passes::brsm_mix::BrsmMixPass;
+use crate::passes::brsm_view_gbuffer::{view_grid, view_grid_side, BrsmViewPass};
+use crate::passes::moment_mips::MomentMipsPass;
+use crate::passes::pdf_mips::PdfMipsPass;
+use crate::passes::vsgl_gen::{GenSettings, Kernel, VsglGenPass, VSGL_BYTES};
+use crate::passes::vsgl_moments::VsglMomentsPass;
+
+/// `importance=`: where the RSM's sampling density comes from.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Importance {
+    /// Φ·(R_d + R_s) of each texel (the papers' default).
+    Rsm,
+    /// Bidirectional: Φ·R of each texel shaded by `view_lights` VSGLs of the camera's view.
+    Brsm { view_lights: u32 },
+}
+
+impl Importance {
+    pub fn from_options(o: &Options) -> Result<Self> {
+        Ok(match o.str("importance")? {
+            "brsm" => Importance::Brsm { view_lights: o.u32("importance_lights")? },
+            _ => Importance::Rsm,
+        })
+    }
+}
+
+/// The view's VSGLs of one frame, from which each RSM's importance is estimated.
+pub struct ViewImportance {
+    vsgls: wgpu::Buffer,
+    count: u32,
+}
+
+impl ViewImportance {
+    /// Builds `count` VSGLs of the camera's view (seeded by `seed`, as the frame's own
+    /// sampling is, so estimates of different seeds stay independent).
+    pub fn new(ctx: &mut FrameContext<'_>, count: u32, seed: u32) -> Result<Self> {
+        let p = ctx.passes;
+        let (view, pdf_mips, moments, moment_mips, gen) =
+            (p.get::<BrsmViewPass>()?, p.get::<PdfMipsPass>()?, p.get::<VsglMomentsPass>()?, p.get::<MomentMipsPass>()?, p.get::<VsglGenPass>()?);
+        let features = ctx.features;
+        let side = view_grid_side(ctx.size);
+        let rec = &mut ctx.rec;
+        let grid = view_grid(rec, side, features.specular);
+        view.record(rec, ctx.gbuffer, ctx.size, &grid, features);
+        pdf_mips.record_pyramid(rec, "brsm_view_mips", side, &grid.pyramid);
+        let chains = MomentChains::labelled(rec, "brsm_view_moment_chain_buffer", side, false);
+        // The eye is the grid's "light": positions relative to it (light_dir w = 0).
+        moments.record_as(rec, "brsm_view_moments", &grid, &chains, [0.0; 4], [0.0; 4], features);
+        moment_mips.record_as(rec, "brsm_view_mips", side, &chains);
+        let vsgls = rec.storage("brsm_view_vsgl_buffer", count as u64 * VSGL_BYTES);
+        // The 2016 paper's generation (integral kernel, K = 1, 12 bisection steps, Fibonacci
+        // centres); positions relative to the frame origin, the eye.
+        let settings = GenSettings { count, stratified: true, seed, kernel: Kernel::Integral, k: 1.0, bisection_steps: 12, light_offset: [0.0; 3], importance: false };
+        gen.record_with_pdf(rec, "brsm_view_vsgl_gen", &grid, &grid.pyramid, &chains, &settings, &vsgls);
+        Ok(Self { vsgls, count })
+    }
+
+    /// The re-weighted sampling pyramid of `light`'s RSM (whose own weight pyramid is already
+    /// summed): the importance map mixed with the RSM's weights (`brsm_mix`), summed.
+    pub fn pyramid(&self, ctx: &mut FrameContext<'_>, light: &LightRsm<'_>) -> Result<wgpu::Buffer> {
+        let p = ctx.passes;
+        let (importance, mix, pdf_mips) = (p.get::<BrsmImportancePass>()?, p.get::<BrsmMixPass>()?, p.get::<PdfMipsPass>()?);
+        let size = light.rsm.size;
+        let rec = &mut ctx.rec;
+        // Every texel of level 0 is written by brsm_importance, the levels above by pdf_mips.
+        let pyramid = rec.storage_written("brsm_pdf_pyramid_buffer", pyramid_layout(size).1 as u64 * 4);
+        importance.record(rec, light.light.as_entire_binding(), light.rsm, &self.vsgls, self.count, &pyramid, ctx.features);
+        pdf_mips.record_pyramid(rec, "brsm_pdf_mips", size, &pyramid);
+        mix.record(rec, light.rsm, &pyramid);
+        pdf_mips.record_pyramid(rec, "brsm_pdf_mips", size, &pyramid);
+        Ok(pyramid)
+    }
+}

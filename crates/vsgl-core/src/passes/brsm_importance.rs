@@ -1,0 +1,52 @@
+//! The importance map of bidirectional RSM importance (compute,
+//! `wgsl/passes/brsm_importance.wgsl`): every RSM texel shaded by the view's VSGLs with its own
+//! BRDF, an estimate of what it adds to the image.
+
+use crate::error::Result;
+use crate::frame::Rsm;
+use crate::gpu::{groups, Gpu, PipelineVariants, Recorder};
+use crate::plan::ShaderFeatures;
+
+const WORKGROUP: u32 = 8;
+
+#[repr(C)]
+#[derive(Clone, Copy, bytemuck::Pod, bytemuck::Zeroable)]
+struct ImportanceParamsRaw {
+    rsm_size: u32,
+    count: u32,
+    _pad: [u32; 2],
+}
+
+pub struct BrsmImportancePass {
+    pipelines: PipelineVariants,
+}
+
+impl BrsmImportancePass {
+    pub fn new(gpu: &Gpu) -> Result<Self> {
+        Ok(Self { pipelines: PipelineVariants::new(gpu, "passes/brsm_importance.wgsl", "main")? })
+    }
+
+    /// Writes level 0 of `importance` (a pyramid in the layout of `rsm.pyramid`) from the
+    /// `count` view VSGLs in `view_vsgls`; `light`: the RSM's light as its passes bind it.
+    #[allow(clippy::too_many_arguments)]
+    pub fn record(&self, rec: &mut Recorder<'_>, light: wgpu::BindingResource<'_>, rsm: &Rsm, view_vsgls: &wgpu::Buffer, count: u32, importance: &wgpu::Buffer, features: ShaderFeatures) {
+        let gpu = rec.gpu;
+        let pipeline = self.pipelines.get(gpu, &features.specular_flags());
+        let uniform = rec.uniform("brsm_importance_params_uniform_buffer", &ImportanceParamsRaw { rsm_size: rsm.size, count, _pad: [0; 2] });
+        rec.compute(
+            "brsm_importance",
+            &pipeline,
+            &[&[
+                uniform.as_entire_binding(),
+                light,
+                rsm.gbuffer.position.as_entire_binding(),
+                rsm.gbuffer.normal.as_entire_binding(),
+                rsm.flux_diffuse.as_entire_binding(),
+                rsm.flux_specular.as_entire_binding(),
+                view_vsgls.as_entire_binding(),
+                importance.as_entire_binding(),
+            ]],
+            (groups(rsm.size, WORKGROUP), groups(rsm.size, WORKGROUP), 1),
+        );
+    }
+}

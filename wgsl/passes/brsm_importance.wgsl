@@ -1,0 +1,121 @@
+// The importance map of bidirectional RSM importance (compute) [Tok15 §4.3, Fig. 6: "VSGLs are
+// also used for the importance estimation"]: for every RSM texel i, an estimate of what it adds
+// to the image, from the view's VSGLs (brsm_view_gbuffer.wgsl → vsgl_gen.wgsl).
+//
+// What is evaluated (derived for vsgl from the adjoint reading in brsm_view_gbuffer.wgsl): texel i is a
+// VPL of radiant intensity I_i(ω) = Φ_i [R_d,i/π + R_s,i f_s,i(ω_l, ω)/R_s,i] cos_i(ω); its
+// contribution to the image, summed over pixels j and rgb, is
+//   q_i = Σ_j I_i(ω_ij) Ψ_j(ω_ji)/d_ij²,   Ψ_j(ω) = f_j(ω, ω_o,j) cos_j(ω),
+// and by reciprocity (f_i(ω_l, ω) = f_i(ω, ω_l)) this is texel i *shaded* by the view's
+// importance emitters Ψ_j with its own BRDF, "viewed" from the light direction ω_l:
+//   q_i = Σ_rgb [ Φ R_d,i · (1/π)∫ L_Ψ(ω) cos_i dω  +  Φ R_s,i · ∫ L_Ψ(ω) f_s,i(ω, ω_l)/R_s,i cos_i dω ],
+// L_Ψ the incoming "importance radiance" at y_i. The view's VSGLs approximate the Ψ_j as SG
+// emitters (their powers are the summed pixel reflectances), so each lobe's incoming SG is
+// vsgl_incoming_radiance (Tok15 Eq. 5), the diffuse integral vsgl_diffuse_accurate (clamped
+// cosine kept inside: no leak from below the texel's horizon) and the specular one
+// vsgl_specular with ω_o = ω_l (the SG–ASG product with the texel's GGX lobe). No visibility
+// (the papers' "4096 VSGLs without shadow maps"), so q_i overestimates occluded texels; the
+// sampling density stays a valid one (brsm_mix.wgsl mixes in the RSM's own weights), so this
+// costs variance only, never bias.
+#include "common/constants.wgsl"
+#include "common/math.wgsl"
+#include "common/sg.wgsl"
+#include "common/ggx.wgsl"
+#include "common/vsgl.wgsl"
+#include "common/vsgl_record.wgsl"
+#include "common/frame.wgsl"
+#include "common/gbuffer.wgsl"
+#include "common/plan.wgsl"
+
+struct ImportanceParams {
+    rsm_size: u32,
+    // View VSGLs.
+    count: u32,
+    _pad0: u32,
+    _pad1: u32,
+}
+
+const WORKGROUP: u32 = 8u;
+const TILE: u32 = 64u; // = WORKGROUP², one view VSGL loaded per thread
+
+@group(0) @binding(0) var<uniform> params: ImportanceParams;
+@group(0) @binding(1) var<storage, read> light: LightRaw;
+@group(0) @binding(2) var<storage, read> rsm_position: array<vec4f>;
+@group(0) @binding(3) var<storage, read> rsm_normal: array<vec4f>;
+@group(0) @binding(4) var<storage, read> rsm_flux_diffuse: array<vec4f>;
+@group(0) @binding(5) var<storage, read> rsm_flux_specular: array<vec4f>;
+@group(0) @binding(6) var<storage, read> view_vsgls: array<VsglRaw>;
+// Level 0 of the importance pyramid: q_i per texel.
+@group(0) @binding(7) var<storage, read_write> importance: array<f32>;
+
+var<workgroup> tile: array<VsglRaw, TILE>;
+
+@compute @workgroup_size(WORKGROUP, WORKGROUP, 1)
+fn main(@builtin(global_invocation_id) gid: vec3u, @builtin(local_invocation_index) local: u32) {
+    let n_side = params.rsm_size;
+    let inside = gid.x < n_side && gid.y < n_side;
+    let i = gid.y * n_side + gid.x;
+    var lit = false;
+    var y = vec3f(0.0);
+    var normal = vec3f(0.0, 0.0, 1.0);
+    var alpha = 1.0;
+    var to_light = vec3f(0.0, 0.0, 1.0);
+    var fd = vec3f(0.0);
+    var fs = vec3f(0.0);
+    if (inside) {
+        let pos = rsm_position[i];
+        fd = rsm_flux_diffuse[i].rgb;
+        if (HAS_SPECULAR) {
+            fs = rsm_flux_specular[i].rgb;
+        }
+        lit = pos.w != GBUFFER_BACKGROUND && (fd.r + fd.g + fd.b + fs.r + fs.g + fs.b) > 0.0;
+        // RSM positions are relative to the RSM's origin, `light.position` (relative to the
+        // frame origin, as the view VSGLs are): vpl_sample.wgsl's write_vpl.
+        y = pos.xyz + light.position;
+        let nr = rsm_normal[i];
+        normal = nr.xyz;
+        alpha = ggx_alpha_from_roughness(nr.w);
+        to_light = safe_normalize(-pos.xyz, normal);
+        if (light.kind == LIGHT_KIND_DIRECTIONAL) {
+            to_light = -light.direction;
+        }
+    }
+    var diffuse = vec3f(0.0);
+    var specular = vec3f(0.0);
+    // Every thread takes part in the tile loads and barriers, lit or not.
+    for (var tile_start = 0u; tile_start < params.count; tile_start += TILE) {
+        let m = tile_start + local;
+        if (m < params.count) {
+            tile[local] = view_vsgls[m];
+        }
+        workgroupBarrier();
+        let n_tile = min(TILE, params.count - tile_start);
+        if (lit) {
+            for (var t = 0u; t < n_tile; t++) {
+                let v = tile[t];
+                let position = VsglPosition(v.mean, v.variance);
+                // Each lobe: incoming SG per unit power (amplitude 1/A(λ)) times its rgb power,
+                // as vsgl_shading.wgsl shades the light's VSGLs.
+                if (any(v.diffuse_power > vec3f(0.0))) {
+                    let in_d = vsgl_incoming_radiance(Sg(v.diffuse_axis, v.diffuse_sharpness, 1.0 / sg_integral(v.diffuse_sharpness)), position, y);
+                    diffuse += v.diffuse_power * vsgl_diffuse_accurate(in_d, normal);
+                    if (HAS_SPECULAR) {
+                        specular += v.diffuse_power * vsgl_specular(in_d, normal, to_light, alpha);
+                    }
+                }
+                if (HAS_SPECULAR && any(v.specular_power > vec3f(0.0))) {
+                    let in_s = vsgl_incoming_radiance(Sg(v.specular_axis, v.specular_sharpness, 1.0 / sg_integral(v.specular_sharpness)), position, y);
+                    diffuse += v.specular_power * vsgl_diffuse_accurate(in_s, normal);
+                    specular += v.specular_power * vsgl_specular(in_s, normal, to_light, alpha);
+                }
+            }
+        }
+        workgroupBarrier();
+    }
+    if (inside) {
+        let q = fd * diffuse + fs * specular;
+        // Finite and ≥ 0 by construction; the clamp keeps one overflowing texel from making the
+        // pyramid's total infinite.
+        importance[i] = select(0.0, min(q.r + q.g + q.b, FLT_MAX), lit);
+    }
+}
