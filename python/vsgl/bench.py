@@ -46,6 +46,8 @@ import vsgl
 from vsgl import metrics
 
 STOCHASTIC = {"vpl", "vsgl"}
+# The `sampling=` values of vpl and vsgl (--sampling sweeps them).
+SAMPLINGS = ("stratified", "random", "metropolis")
 
 #: Defaults of the settings that decide the run time, on a GPU.
 GPU_DEFAULTS: dict[str, Any] = {
@@ -119,6 +121,8 @@ class Row:
     block_rmse_indirect: float | None = None
     # vsgl's kernel mass K when --K sweeps it (None: the method's default, 1).
     K: float | None = None
+    # vpl's and vsgl's `sampling=` when --sampling sweeps it (None: the default, "stratified").
+    sampling: str | None = None
     # With --sequence N: metrics.flicker of the indirect AOV over N frames of a moving light
     # (the scene's animation, or its lights slid along x) against the every-texel reference of
     # the same frames; stochastic methods draw seed k in frame k, as a real-time renderer would.
@@ -349,6 +353,7 @@ def run(
     progress=True,
     sequence=0,
     Ks=(None,),
+    samplings=(None,),
 ) -> Report:
     """Runs the sweep and returns a :class:`Report`; with ``out`` also writes CSV, JSON and plots.
 
@@ -372,6 +377,8 @@ def run(
         raise ValueError("seeds: expected at least one seed")
     if not Ks or any(K is not None and not (isinstance(K, (int, float)) and np.isfinite(K) and K > 0) for K in Ks):
         raise ValueError(f"Ks: expected kernel masses K > 0 (or None for the default), got {list(Ks)}")
+    if not samplings or any(s not in (None, *SAMPLINGS) for s in samplings):
+        raise ValueError(f"samplings: expected values from {', '.join(SAMPLINGS)} (or None for the default), got {list(samplings)}")
     if isinstance(sequence, bool) or not isinstance(sequence, int) or sequence < 0 or sequence == 1:
         raise ValueError(f"sequence: expected 0 (off) or a number of frames >= 2, got {sequence!r}")
     # The adapter decides the defaults; a tiny renderer finds it (~0.1 s) before the real one.
@@ -434,13 +441,14 @@ def run(
                 for r in rsm_sizes:
                     for k in (kernels if m == "vsgl" else (None,)):
                         for K in (Ks if m == "vsgl" else (None,)):
-                            configs.append((m, n, r, k, K))
+                            for s in samplings:
+                                configs.append((m, n, r, k, K, s))
         elif m in ("reference", "vsgl2"):
             # Deterministic and without a light count: one configuration per RSM size.
             for r in rsm_sizes:
-                configs.append((m, None, r, None, None))
+                configs.append((m, None, r, None, None, None))
         else:
-            configs.append((m, None, None, None, None))
+            configs.append((m, None, None, None, None, None))
     # Plans alternate inside one configuration so both see the same machine state.
     configs = [(*c, plan) for c in configs for plan in plans]
     # Per row (by its index in report.rows): its SeedErrors, for the equal-time comparisons.
@@ -455,8 +463,13 @@ def run(
         ref_error = report.reference_rel_error[scene_name]
         ref_has_light = bool(np.any(ref.indirect != 0))
         bar = _progress(len(configs), progress)
-        for method, n, rsm, kernel, K, plan in configs:
+        for method, n, rsm, kernel, K, sampling, plan in configs:
             settings: dict[str, Any] = {"plan": plan}
+            if sampling is not None:
+                settings["sampling"] = sampling
+            # Metropolis chains start afresh for each configuration (they are kept from frame to
+            # frame of the renderer otherwise), so rows do not depend on their order.
+            renderer.reset_chains()
             if n is not None:
                 settings["num_lights"] = n
             if rsm is not None:
@@ -520,6 +533,7 @@ def run(
                 rsm_size=rsm,
                 kernel=kernel,
                 K=K,
+                sampling=sampling,
                 seeds=len(run_seeds),
                 total_ms_median=statistics.median(totals),
                 total_ms_min=min(totals),
@@ -612,6 +626,8 @@ def _sequence_frames(renderer, scene_name, scene_lights, add_lights, frames, met
     scene = _lit_scene(scene_name, scene_lights, add_lights)
     _, changes = _sequence_changes(scene, frames)
     quiet = {k: v for k, v in settings.items() if k not in ("aovs", "seed")}
+    # sampling="metropolis": the sequence starts from fresh chains, kept through its frames.
+    renderer.reset_chains()
     out = []
     for k, change in enumerate(changes):
         if "time" in change:
@@ -689,12 +705,12 @@ def _kernel_label(kernel: str | None, K: float | None) -> str | None:
 
 
 def _label(r: Row) -> str:
-    k = _kernel_label(r.kernel, r.K)
+    k = " ".join(x for x in (_kernel_label(r.kernel, r.K), r.sampling) if x)
     return r.method + (f"[{k}]" if k else "")
 
 
 def _brief(r: Row) -> dict[str, Any]:
-    return {"method": r.method, "kernel": _kernel_label(r.kernel, r.K), "num_lights": r.num_lights, "rsm_size": r.rsm_size, "total_ms": r.total_ms_median,
+    return {"method": r.method, "kernel": _kernel_label(r.kernel, r.K), "sampling": r.sampling, "num_lights": r.num_lights, "rsm_size": r.rsm_size, "total_ms": r.total_ms_median,
             "relmse_indirect_debiased": r.relmse_indirect_debiased, "interval": r.relmse_indirect_debiased_interval,
             "reference_too_noisy": r.reference_too_noisy}
 
@@ -728,7 +744,7 @@ def _equal_time(rows: list[Row], seed_stats: dict[int, metrics.SeedErrors]) -> l
 
 def _plan_ratios(rows: list[Row]) -> list[dict[str, Any]]:
     """Pairs each "auto" row with the "full" row of the same configuration."""
-    key = lambda r: (r.scene, r.method, r.num_lights, r.rsm_size, r.kernel, r.K)  # noqa: E731
+    key = lambda r: (r.scene, r.method, r.num_lights, r.rsm_size, r.kernel, r.K, r.sampling)  # noqa: E731
     full = {key(r): r for r in rows if r.plan == "full"}
     out = []
     for r in rows:
@@ -771,13 +787,15 @@ def table(report: Report) -> str:
         lines.append(f"flicker   metrics.flicker of indirect over {report.sequence} frames against the reference's frames "
                      f"(seed k in frame k for vpl and vsgl; {moves})")
     flick = bool(report.sequence)
-    head = (f"{'scene':<16}{'plan':<6}{'method':<10}{'N':>6}{'rsm':>6}{'kernel':>14}{'total ms':>11}{'IQR':>20}{'RMSE ind.':>12}{'± seeds':>10}"
+    # The sampling column only when --sampling swept it.
+    samp = any(r.sampling is not None for r in report.rows)
+    head = (f"{'scene':<16}{'plan':<6}{'method':<10}{'N':>6}{'rsm':>6}{'kernel':>14}{format('sampling', '>12') if samp else ''}{'total ms':>11}{'IQR':>20}{'RMSE ind.':>12}{'± seeds':>10}"
             f"{'rel ind.':>10}{'bias':>9}{'noise':>9}{'debiased':>11}{'90%':>20}{'SSIM':>7}{format('flicker', '>9') if flick else ''}  flag")
     lines += [head, "-" * len(head)]
     for r in report.rows:
         lines.append(
             f"{r.scene:<16}{r.plan:<6}{r.method:<10}{r.num_lights or '-':>6}{r.rsm_size or '-':>6}{_kernel_label(r.kernel, r.K) or '-':>14}"
-            f"{r.total_ms_median:>11.3f}{f'[{r.total_ms_q1:.3f},{r.total_ms_q3:.3f}]':>20}"
+            f"{format(r.sampling or '-', '>12') if samp else ''}{r.total_ms_median:>11.3f}{f'[{r.total_ms_q1:.3f},{r.total_ms_q3:.3f}]':>20}"
             f"{r.rmse_indirect:>12.5g}{r.rmse_indirect_std:>10.2g}{_num(r.rel_rmse_indirect, '.4g'):>10}{_num(r.bias, '.3g'):>9}{_num(r.noise, '.3g'):>9}"
             f"{_num(r.relmse_indirect_debiased, '.4g'):>11}{_interval(r.relmse_indirect_debiased_interval):>20}{_num(r.ssim_image, '.3f'):>7}"
             f"{format(_num(r.flicker_indirect, '.4g'), '>9') if flick else ''}  {'; '.join(r.notes)}"
@@ -820,7 +838,7 @@ def _equal_time_line(e: dict[str, Any], last_budget_ms: float | None = None) -> 
 
 
 CSV_COLUMNS = [
-    "scene", "plan", "method", "num_lights", "rsm_size", "kernel", "K", "seeds", "total_ms_median", "total_ms_q1", "total_ms_q3", "total_ms_min", "total_ms_max",
+    "scene", "plan", "method", "num_lights", "rsm_size", "kernel", "K", "sampling", "seeds", "total_ms_median", "total_ms_q1", "total_ms_q3", "total_ms_min", "total_ms_max",
     "rmse_indirect", "rmse_indirect_std", "rmse_image", "relmse_indirect", "relmse_image", "flip_image", "rel_rmse_indirect", "bias", "noise",
     "relmse_indirect_debiased", "relmse_indirect_debiased_lo", "relmse_indirect_debiased_hi", "reference_rel_error", "reference_too_noisy",
     "ssim_image", "block_rmse_indirect", "flicker_indirect", "notes", "passes_ms",
@@ -853,7 +871,7 @@ def _plots(report: Report, out: pathlib.Path) -> None:
     title = f"{report.adapter['name']}, {report.size[0]}x{report.size[1]}"
     series: dict[tuple, list[Row]] = {}
     for r in report.rows:
-        series.setdefault((r.scene, r.method, r.rsm_size, _kernel_label(r.kernel, r.K)), []).append(r)
+        series.setdefault((r.scene, r.method, r.rsm_size, " ".join(x for x in (_kernel_label(r.kernel, r.K), r.sampling) if x) or None), []).append(r)
     fig, ax = plt.subplots(figsize=(6, 4.5))
     for (scene, method, rsm, kernel), rows in series.items():
         rows = [r for r in rows if r.rel_rmse_indirect]
@@ -928,6 +946,9 @@ def main(argv: list[str] | None = None) -> int:
     p.add_argument("--rsm-sizes", type=_ints, default=None, help="comma-separated RSM sides (default: 256; 128 on a CPU adapter)")
     p.add_argument("--K", type=lambda t: [float(x) for x in t.split(",")], default=None, metavar="K1,K2,...",
                    help="vsgl kernel masses K to sweep, e.g. 1,2,4 (default: the method's, 1); larger K is smoother in space and time")
+    p.add_argument("--sampling", type=_strs, default=None, metavar="S1,S2,...",
+                   help=f"vpl and vsgl sampling to sweep, from {','.join(SAMPLINGS)} (default: the methods', stratified); "
+                        "metropolis keeps Markov chains through each configuration's frames and its --sequence")
     p.add_argument("--kernels", type=_strs, default=["integral"], help="VSGL kernels: integral, density (default: integral)")
     p.add_argument("--interleave", type=int, default=8, help="VSGL interleaving (default: 8)")
     p.add_argument("--visibility", default="none", choices=["none", "raytrace", "ism"],
@@ -974,7 +995,7 @@ def main(argv: list[str] | None = None) -> int:
         scenes=a.scene, methods=a.methods, lights=a.lights, size=size, rsm_sizes=a.rsm_sizes, kernels=a.kernels,
         seeds=None if a.seeds is None else tuple(range(a.seeds)), frames=a.frames, warmup=a.warmup, warmup_seconds=a.warmup_seconds, reference=a.reference, reference_rsm=a.reference_rsm,
         reference_spp=a.reference_spp, reference_strategy=a.reference_strategy, add_lights=add_lights, scene_lights=not a.no_scene_lights, interleave=a.interleave, vpl_interleave=a.vpl_interleave, visibility=a.visibility, plans=tuple(a.plans), adapter=a.adapter, out=a.out, progress=not a.no_progress,
-        sequence=a.sequence, Ks=tuple(a.K) if a.K else (None,),
+        sequence=a.sequence, Ks=tuple(a.K) if a.K else (None,), samplings=tuple(a.sampling) if a.sampling else (None,),
     )
     print(table(report))
     print(f"wrote     {os.path.join(a.out, 'bench.csv')}, bench.json, bench.txt and plots (with matplotlib)")

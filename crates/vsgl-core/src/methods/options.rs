@@ -238,7 +238,11 @@ pub mod common {
         help: "side of each light's reflective shadow map in texels",
         note: "",
     };
-    pub const SAMPLING: OptionSpec = choice("sampling", &["stratified", "random"], "how RSM texels are drawn: stratified or independent random numbers");
+    pub const SAMPLING: OptionSpec = choice(
+        "sampling",
+        &["stratified", "random", "metropolis"],
+        "how RSM texels are drawn: hierarchical warping of a stratified lattice or of independent random numbers, or \"metropolis\": Markov chains kept across the frames of a Renderer, one Metropolis-Hastings step per frame (temporally coherent)",
+    );
     pub const SEED: OptionSpec = int("seed", 0, u32::MAX as i64, 0, "seed of the random numbers (same seed, same image)");
     pub const VPL_CLAMP: OptionSpec = OptionSpec {
         name: "vpl_clamp",

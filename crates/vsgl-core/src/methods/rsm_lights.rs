@@ -80,6 +80,10 @@ pub struct LightRsm<'a> {
     /// A storage buffer holding this light alone (what the RSM passes bind).
     pub light: &'a wgpu::Buffer,
     pub rsm: &'a Rsm,
+    /// The RSM's view (projection, image-plane axes, anchor-relative ray origin).
+    pub view: &'a crate::frame::uniforms::FrameUniforms,
+    /// Index of the view among all lights' views, in order (what `metropolis` keys chains by).
+    pub slot: usize,
 }
 
 /// What renders one RSM: the shared targets and the three passes.
@@ -184,7 +188,10 @@ pub fn for_each_light(ctx: &mut FrameContext<'_>, s: &RsmSettings, mut per_light
         let rows: Vec<String> = budgets.iter().map(|b| b.iter().map(u32::to_string).collect::<Vec<_>>().join("+")).collect();
         ctx.settings.push(("virtual_lights_per_light".into(), rows.join(";")));
     }
+    let mut first_slot = 0;
     for (index, (light_views, light_budgets)) in views.iter().zip(&budgets).enumerate() {
+        let slot_base = first_slot;
+        first_slot += light_views.len();
         let raw = rsm_light(ctx, index);
         let raw = &raw;
         let light = ctx.rec.storage_init("light_rsm_storage_buffer", bytemuck::bytes_of(raw));
@@ -202,7 +209,7 @@ pub fn for_each_light(ctx: &mut FrameContext<'_>, s: &RsmSettings, mut per_light
             }
             passes.record(ctx, "rsm", view, &light);
             if !dark {
-                per_light(ctx, &LightRsm { budget, raw, light: &light, rsm: &passes.rsm })?;
+                per_light(ctx, &LightRsm { budget, raw, light: &light, rsm: &passes.rsm, view, slot: slot_base + view_index })?;
             }
             if capture {
                 // Read back before the next view overwrites the shared RSM buffers; a point

@@ -3,6 +3,7 @@
 //! Stamminger 2005 for the RSM), optionally interleaved and denoised like `vsgl`.
 
 use super::interleaved::InterleavedShading;
+use super::metropolis::MetropolisSampling;
 use super::rsm_lights::{check_rsm_size, for_each_light, RsmSettings};
 use super::{options::common, DirectLight, FrameContext, Method, MethodInfo, OptionSpec, Options};
 use super::visibility::{VirtualLightVisibility, VisibilityMode, VPL_RECORD_WORDS};
@@ -55,7 +56,11 @@ struct Vpl {
 
 /// `sampling=` as the sampling pass takes it.
 pub(super) fn sampling(o: &Options) -> Result<Sampling> {
-    Ok(if o.str("sampling")? == "random" { Sampling::Random } else { Sampling::Stratified })
+    Ok(match o.str("sampling")? {
+        "random" => Sampling::Random,
+        "metropolis" => Sampling::Metropolis,
+        _ => Sampling::Stratified,
+    })
 }
 
 impl Vpl {
@@ -93,7 +98,14 @@ impl Method for Vpl {
             pdf_mips.record(&mut ctx.rec, light.rsm);
             // This RSM's share of num_lights (split over lights and cube faces by reflected
             // power, `power_budgets`); the buffer holds num_lights, the largest share.
-            sample.record_importance(&mut ctx.rec, light.light.as_entire_binding(), light.rsm, light.budget, self.sampling, self.seed, &vpls, feat);
+            let samples = match self.sampling {
+                Sampling::Metropolis => {
+                    let m = MetropolisSampling { method: INFO.name, num_lights: self.num_lights, rsm_size: self.rsm_size, seed: self.seed };
+                    Some(m.step(ctx, light)?)
+                }
+                _ => None,
+            };
+            sample.record_importance(&mut ctx.rec, light.light.as_entire_binding(), light.rsm, light.budget, self.sampling, self.seed, &vpls, feat, samples.as_ref());
             vis.build_maps(ctx, &vpls, light.budget, VPL_RECORD_WORDS)?;
             let target = shading_out.target(ctx.indirect);
             shading.record(&mut ctx.rec, ctx.frame_uniforms, &vpls, light.budget, self.interleave, min_distance2, ctx.gbuffer, target, feat, ctx.size, &vis);

@@ -3,6 +3,7 @@
 //! interleaving and a geometry-aware filter.
 
 use super::interleaved::InterleavedShading;
+use super::metropolis::MetropolisSampling;
 use super::rsm_lights::{check_rsm_size, for_each_light, RsmSettings};
 use super::visibility::{VirtualLightVisibility, VisibilityMode, VSGL_RECORD_WORDS};
 use super::{options::common, DirectLight, FrameContext, Method, MethodInfo, OptionKind, OptionSpec, OptionValue, Options};
@@ -116,6 +117,12 @@ impl Vsgl {
 
 }
 
+impl Vsgl {
+    fn metropolis(&self) -> MetropolisSampling {
+        MetropolisSampling { method: INFO.name, num_lights: self.num_lights, rsm_size: self.rsm_size, seed: self.seed }
+    }
+}
+
 impl Method for Vsgl {
     fn check(&self, gpu: &Gpu) -> Result<()> {
         check_rsm_size(gpu, self.rsm_size)?;
@@ -144,10 +151,15 @@ impl Method for Vsgl {
             moment_mips.record(&mut ctx.rec, self.rsm_size, chains);
             // This RSM's share of num_lights (split over lights and cube faces by reflected
             // power, `power_budgets`).
+            let samples = match self.sampling {
+                Sampling::Metropolis => Some(self.metropolis().step(ctx, light)?),
+                _ => None,
+            };
             let buf = ctx.rec.storage("vsgl_buffer", light.budget as u64 * VSGL_BYTES);
             let settings = GenSettings {
                 count: light.budget,
-                stratified: self.sampling == Sampling::Stratified,
+                sampling: self.sampling,
+                samples: samples.as_ref(),
                 seed: self.seed,
                 kernel: self.kernel,
                 k: self.k,

@@ -4,6 +4,7 @@
 use crate::error::Result;
 use crate::frame::{MomentChains, Rsm};
 use crate::gpu::{groups, Gpu, Recorder};
+use crate::passes::vpl_sample::Sampling;
 
 const WORKGROUP: u32 = 64;
 
@@ -55,7 +56,7 @@ struct GenParamsRaw {
     count: u32,
     levels: u32,
     rsm_size: u32,
-    stratified: u32,
+    sampling: u32,
     seed: u32,
     kernel: u32,
     bisection_steps: u32,
@@ -65,10 +66,12 @@ struct GenParamsRaw {
 }
 
 /// What one generation dispatch needs besides the RSM.
-#[derive(Clone, Copy, Debug)]
-pub struct GenSettings {
+#[derive(Clone, Copy)]
+pub struct GenSettings<'a> {
     pub count: u32,
-    pub stratified: bool,
+    pub sampling: Sampling,
+    /// The Metropolis chains' positions, read for [`Sampling::Metropolis`] only.
+    pub samples: Option<&'a wgpu::Buffer>,
     pub seed: u32,
     pub kernel: Kernel,
     pub k: f32,
@@ -87,12 +90,12 @@ impl VsglGenPass {
     }
 
     #[allow(clippy::too_many_arguments)]
-    pub fn record(&self, rec: &mut Recorder<'_>, rsm: &Rsm, chains: &MomentChains, s: &GenSettings, out: &wgpu::Buffer) {
+    pub fn record(&self, rec: &mut Recorder<'_>, rsm: &Rsm, chains: &MomentChains, s: &GenSettings<'_>, out: &wgpu::Buffer) {
         let params = GenParamsRaw {
             count: s.count,
             levels: rsm.levels,
             rsm_size: rsm.size,
-            stratified: s.stratified as u32,
+            sampling: match s.sampling { Sampling::Random => 0, Sampling::Stratified => 1, Sampling::Metropolis => 2 },
             seed: s.seed,
             kernel: match s.kernel { Kernel::Density => 0, Kernel::Integral => 1, Kernel::Node => 2 },
             bisection_steps: s.bisection_steps,
@@ -110,6 +113,8 @@ impl VsglGenPass {
                 rsm.level_offsets.as_entire_binding(),
                 chains.buffer.as_entire_binding(),
                 out.as_entire_binding(),
+                // Unread unless sampling 2: the RSM positions stand in (read-only vec4f).
+                s.samples.unwrap_or(&rsm.gbuffer.position).as_entire_binding(),
             ]],
             (groups(s.count, WORKGROUP), 1, 1),
         );
