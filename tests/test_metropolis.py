@@ -41,7 +41,9 @@ def test_chain_states_have_the_warp_density(small):
     m = w.size
     expected = m * np.sum(w**2) / np.sum(w) ** 2
     small.reset_chains()
-    n, frames, burn = 256, 24, 8
+    # Long enough for a wrong acceptance ratio to show: the chains start exact, so a broken
+    # step has to drift them away first (inverted ratio: 3.9 → 3.1 by frame 40).
+    n, frames, burn = 1024, 40, 24
     per_frame = []
     for k in range(frames):
         v = small.render(scene, method="vsgl", rsm_size=RSM, num_lights=n, sampling="metropolis", seed=k, aovs=[]).vsgls()
