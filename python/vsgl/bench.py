@@ -48,6 +48,10 @@ from vsgl import metrics
 STOCHASTIC = {"vpl", "vsgl"}
 # The `sampling=` values of vpl and vsgl (--sampling sweeps them).
 SAMPLINGS = ("stratified", "random", "metropolis")
+# sampling="metropolis": each seed's error frame comes from fresh chains stepped this many
+# frames first (other seeds), so seeds are independent and the chains have left their
+# stratified start (the warp's lattice) for the unstratified equilibrium they render at.
+METROPOLIS_BURN_IN = 16
 
 #: Defaults of the settings that decide the run time, on a GPU.
 GPU_DEFAULTS: dict[str, Any] = {
@@ -503,6 +507,10 @@ def run(
             for seed in run_seeds:
                 if method in STOCHASTIC:
                     settings["seed"] = seed
+                if sampling == "metropolis":
+                    renderer.reset_chains()
+                    for j in range(METROPOLIS_BURN_IN):
+                        renderer.render(scene, method=method, aovs=[], **{**quiet, "seed": (seed + 1) * 1_000_003 + j})
                 for _ in range(warmup):
                     renderer.render(scene, method=method, **settings)
                 if sm_clock is not None:
@@ -823,7 +831,8 @@ def _equal_time_line(e: dict[str, Any], last_budget_ms: float | None = None) -> 
         return f"equal time {e['scene']}: {e['why']}"
 
     def who(b: dict[str, Any]) -> str:
-        name = b["method"] + (f"[{b['kernel']}]" if b["kernel"] else "") + (f" N={b['num_lights']}" if b["num_lights"] else "")
+        variant = " ".join(x for x in (b["kernel"], b.get("sampling")) if x)
+        name = b["method"] + (f"[{variant}]" if variant else "") + (f" N={b['num_lights']}" if b["num_lights"] else "")
         return f"{name} {b['relmse_indirect_debiased']:.4g} {_interval(b['interval'])}"
 
     budget = f"<= {e['budget_ms']:.3f} ms" if last_budget_ms in (None, e["budget_ms"]) else f"<= {e['budget_ms']:.3f} to {last_budget_ms:.3f} ms"
