@@ -15,6 +15,8 @@
 // from the warp, an exact sample of p) when it falls outside the RSM, behind the view, onto a
 // texel of weight 0, or off the surface the texel sees (farther than one texel footprint from
 // the plane of that texel: the surface moved, or something now occludes the point).
+// chain_space="rsm" keeps the continuous RSM position instead (it moves with the light's
+// view; density 0 only on a texel of weight 0).
 //
 // The step, from x (the reprojected state, p(x) > 0), with a proposal kernel that is a fixed
 // mixture of two kernels, each of which keeps p invariant on its own (detailed balance), so
@@ -52,7 +54,9 @@ struct StepParams {
     // Random-walk half-width r in texels.
     radius: f32,
     up: vec3f,
-    _pad0: f32,
+    // 1: chain_space="rsm": a state is (s.x, s.y, 0, 1), the continuous RSM position, kept
+    // as is from frame to frame (no reprojection, no surface test).
+    rsm_space: u32,
     forward: vec3f,
     _pad1: f32,
     view_origin: vec3f,
@@ -149,6 +153,9 @@ fn reproject(state: vec4f) -> Reprojected {
     if (state.w != 1.0) {
         return Reprojected(vec2f(0.0), 0.0);
     }
+    if (params.rsm_space != 0u) {
+        return Reprojected(state.xy, target_density(state.xy));
+    }
     let d = state.xyz - params.view_origin;
     let proj = project(d);
     let p = target_density(proj.s);
@@ -210,7 +217,11 @@ fn main(@builtin(global_invocation_id) gid: vec3u) {
     s = clamp(s, vec2f(0.0), vec2f(n * ONE_MINUS_ULP));
     if (moved) {
         // The new state's world point; a rejected move keeps the stored point bit for bit.
-        state = vec4f(surface_point(s) + params.view_origin, 1.0);
+        if (params.rsm_space != 0u) {
+            state = vec4f(s, 0.0, 1.0);
+        } else {
+            state = vec4f(surface_point(s) + params.view_origin, 1.0);
+        }
         chains[i] = state;
     }
     samples[i] = vec4f(s, target_density(s), 0.0);

@@ -860,7 +860,8 @@ impl PyRenderer {
     /// - "vpl": num_lights VPLs (in all, split over lights by reflected power)
     ///   importance-sampled from rsm_size² reflective shadow maps. shadow_size, num_lights,
     ///   rsm_size, sampling ("stratified" | "random" | "metropolis": Markov chains kept across
-    ///   frames, one step per frame, see reset_chains), seed, vpl_clamp (minimum VPL distance as a fraction of the scene size; 0 = unbiased),
+    ///   frames, one step per frame, see reset_chains), chain_space ("world" | "rsm": where a
+    ///   metropolis chain's state lives between frames), seed, vpl_clamp (minimum VPL distance as a fraction of the scene size; 0 = unbiased),
     ///   interleave (default 1), denoise, visibility ("none" | "ism" | "raytrace"), ism_size,
     ///   ism_points, ism_points_per_map, ism_bias, ism_pcf (imperfect shadow maps, with
     ///   visibility="ism"), capture_rsm.

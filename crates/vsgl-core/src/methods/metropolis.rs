@@ -20,10 +20,26 @@ pub const JUMP_PROBABILITY: f32 = 1.0 / 32.0;
 /// so a chain's move covers the same part of the light's view at every RSM size.
 pub const STEP_FRACTION: f32 = 1.0 / 32.0;
 
+/// Where a chain's state lives between frames (`chain_space=`).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum ChainSpace {
+    /// The surface point, reprojected into each frame's RSM (stays put when the light moves).
+    World,
+    /// The continuous RSM position (moves with the light's view).
+    Rsm,
+}
+
+impl ChainSpace {
+    pub fn from_options(o: &super::Options) -> Result<Self> {
+        Ok(if o.str("chain_space")? == "rsm" { ChainSpace::Rsm } else { ChainSpace::World })
+    }
+}
+
 /// What the chains were made for; any change starts them afresh from the warp.
 #[derive(Clone, Debug, PartialEq, Eq)]
 struct ChainKey {
     method: &'static str,
+    space: ChainSpace,
     num_lights: u32,
     rsm_size: u32,
     /// RSM views of each light, in order (1 spot or directional, 6 point).
@@ -53,6 +69,7 @@ pub struct MetropolisSampling {
     pub num_lights: u32,
     pub rsm_size: u32,
     pub seed: u32,
+    pub space: ChainSpace,
 }
 
 impl MetropolisSampling {
@@ -60,7 +77,7 @@ impl MetropolisSampling {
         let views = ctx.scene.lights.iter().map(|l| if matches!(l, Light::Point(_)) { 6 } else { 1 }).collect();
         let g = ctx.gpu_scene;
         let geometry = (g.raster_vertex_count, g.anchor.to_array().map(f64::to_bits), ctx.extent.to_bits());
-        ChainKey { method: self.method, num_lights: self.num_lights, rsm_size: self.rsm_size, views, geometry }
+        ChainKey { method: self.method, space: self.space, num_lights: self.num_lights, rsm_size: self.rsm_size, views, geometry }
     }
 
     /// Steps the chains of `light`'s view (made afresh first if the key changed) and returns the
@@ -97,6 +114,7 @@ impl MetropolisSampling {
             kept,
             seed: self.seed,
             stratified: true,
+            rsm_space: self.space == ChainSpace::Rsm,
             jump: JUMP_PROBABILITY,
             radius: (STEP_FRACTION * self.rsm_size as f32).max(1.0),
             view: light.view,

@@ -3,7 +3,7 @@
 //! Stamminger 2005 for the RSM), optionally interleaved and denoised like `vsgl`.
 
 use super::interleaved::InterleavedShading;
-use super::metropolis::MetropolisSampling;
+use super::metropolis::{ChainSpace, MetropolisSampling};
 use super::rsm_lights::{check_rsm_size, for_each_light, RsmSettings};
 use super::{options::common, DirectLight, FrameContext, Method, MethodInfo, OptionSpec, Options};
 use super::visibility::{VirtualLightVisibility, VisibilityMode, VPL_RECORD_WORDS};
@@ -28,6 +28,7 @@ const OPTIONS: &[OptionSpec] = &[
     common::NUM_LIGHTS,
     common::RSM_SIZE,
     common::SAMPLING,
+    common::CHAIN_SPACE,
     common::SEED,
     common::VPL_CLAMP,
     common::interleave(1),
@@ -47,6 +48,7 @@ struct Vpl {
     num_lights: u32,
     rsm_size: u32,
     sampling: Sampling,
+    chain_space: ChainSpace,
     seed: u32,
     vpl_clamp: f32,
     interleave: u32,
@@ -71,6 +73,7 @@ impl Vpl {
             num_lights: o.u32("num_lights")?,
             rsm_size: o.u32("rsm_size")?,
             sampling: sampling(o)?,
+            chain_space: ChainSpace::from_options(o)?,
             seed: o.u32("seed")?,
             vpl_clamp: o.f32("vpl_clamp")?,
             interleave: o.u32("interleave")?,
@@ -100,7 +103,7 @@ impl Method for Vpl {
             // power, `power_budgets`); the buffer holds num_lights, the largest share.
             let samples = match self.sampling {
                 Sampling::Metropolis => {
-                    let m = MetropolisSampling { method: INFO.name, num_lights: self.num_lights, rsm_size: self.rsm_size, seed: self.seed };
+                    let m = MetropolisSampling { method: INFO.name, num_lights: self.num_lights, rsm_size: self.rsm_size, seed: self.seed, space: self.chain_space };
                     Some(m.step(ctx, light)?)
                 }
                 _ => None,

@@ -3,7 +3,7 @@
 //! interleaving and a geometry-aware filter.
 
 use super::interleaved::InterleavedShading;
-use super::metropolis::MetropolisSampling;
+use super::metropolis::{ChainSpace, MetropolisSampling};
 use super::rsm_lights::{check_rsm_size, for_each_light, RsmSettings};
 use super::visibility::{VirtualLightVisibility, VisibilityMode, VSGL_RECORD_WORDS};
 use super::{options::common, DirectLight, FrameContext, Method, MethodInfo, OptionKind, OptionSpec, OptionValue, Options};
@@ -33,6 +33,7 @@ const OPTIONS: &[OptionSpec] = &[
     common::NUM_LIGHTS,
     common::RSM_SIZE,
     common::SAMPLING,
+    common::CHAIN_SPACE,
     common::SEED,
     OptionSpec {
         name: "kernel",
@@ -73,6 +74,7 @@ struct Vsgl {
     num_lights: u32,
     rsm_size: u32,
     sampling: Sampling,
+    chain_space: ChainSpace,
     seed: u32,
     kernel: Kernel,
     k: f32,
@@ -100,6 +102,7 @@ impl Vsgl {
             num_lights: o.u32("num_lights")?,
             rsm_size: o.u32("rsm_size")?,
             sampling: super::vpl::sampling(o)?,
+            chain_space: ChainSpace::from_options(o)?,
             seed: o.u32("seed")?,
             kernel: match o.str("kernel")? {
                 "density" => Kernel::Density,
@@ -119,7 +122,7 @@ impl Vsgl {
 
 impl Vsgl {
     fn metropolis(&self) -> MetropolisSampling {
-        MetropolisSampling { method: INFO.name, num_lights: self.num_lights, rsm_size: self.rsm_size, seed: self.seed }
+        MetropolisSampling { method: INFO.name, num_lights: self.num_lights, rsm_size: self.rsm_size, seed: self.seed, space: self.chain_space }
     }
 }
 

@@ -27,7 +27,7 @@ struct StepParamsRaw {
     right: [f32; 3],
     radius: f32,
     up: [f32; 3],
-    _pad0: f32,
+    rsm_space: u32,
     forward: [f32; 3],
     _pad1: f32,
     view_origin: [f32; 3],
@@ -42,6 +42,8 @@ pub struct StepSettings<'a> {
     pub kept: u32,
     pub seed: u32,
     pub stratified: bool,
+    /// States are RSM positions (`chain_space="rsm"`), not world points.
+    pub rsm_space: bool,
     /// Probability of the independence (warp) move.
     pub jump: f32,
     /// Random-walk half-width in texels.
@@ -77,7 +79,7 @@ impl MetropolisStepPass {
             right: v3(s.view.cam_right),
             radius: s.radius,
             up: v3(s.view.cam_up),
-            _pad0: 0.0,
+            rsm_space: s.rsm_space as u32,
             forward: v3(s.view.cam_forward),
             _pad1: 0.0,
             view_origin: s.view_origin,
