@@ -86,7 +86,7 @@ impl MetropolisSampling {
         let key = self.key(ctx);
         let views: usize = key.views.iter().sum();
         let stride = (self.num_lights as u64).div_ceil(16) * 16;
-        let limit = ctx.gpu.limits.max_storage_buffer_binding_size as u64;
+        let limit = ctx.gpu.limits.max_storage_buffer_binding_size;
         if stride * STATE_BYTES > limit {
             return Err(Error::invalid("num_lights", format!("{} Metropolis chains ({} bytes) exceed this adapter's storage binding limit of {limit} bytes", self.num_lights, stride * STATE_BYTES)));
         }
