@@ -193,3 +193,25 @@ def test_chain_states_stay_put_in_the_world_when_the_light_moves(make_renderer, 
         assert kept_on_floor >= 10 and unmoved == 0, (kept_on_floor, unmoved, predicted)
     else:
         assert unmoved >= 10 and kept_on_floor == 0, (kept_on_floor, unmoved, predicted)
+
+
+def test_chains_restart_when_the_lights_view_set_changes(small):
+    """A spot light replaced by a point light (one RSM view → six): fresh chains, so the frame
+    equals the warp's with the same seed bit for bit; replacing the spot by a moved spot keeps
+    them (the frame differs from the warp's)."""
+    scene = vsgl.scenes.cornell_box()
+    spot = scene.lights[0]
+    opts = dict(method="vsgl", rsm_size=RSM, num_lights=48, aovs=[])
+    small.reset_chains()
+    for k in range(3):
+        small.render(scene, sampling="metropolis", seed=k, **opts)
+    moved = vsgl.SpotLight(position=(0.05, spot.position[1], 0.0), direction=(0, -1, 0), intensity=spot.intensity,
+                           inner_cone_deg=spot.inner_cone_deg, outer_cone_deg=spot.outer_cone_deg)
+    scene.lights = [moved]
+    kept = small.render(scene, sampling="metropolis", seed=5, **opts).vsgls()
+    assert not np.array_equal(kept["center"], small.render(scene, seed=5, **opts).vsgls()["center"])
+    scene.lights = [vsgl.PointLight(position=(0.0, 1.5, 0.0), intensity=3.0)]
+    got = small.render(scene, sampling="metropolis", seed=6, **opts).vsgls()
+    warp = small.render(scene, seed=6, **opts).vsgls()
+    for field in ("center", "pdf", "diffuse_power"):
+        np.testing.assert_array_equal(got[field], warp[field], err_msg=field)
