@@ -51,6 +51,12 @@ import vsgl
 from vsgl import metrics
 
 STOCHASTIC = {"vpl", "vsgl"}
+# The `sampling=` values of vpl and vsgl (--sampling sweeps them).
+SAMPLINGS = ("stratified", "random", "metropolis")
+# sampling="metropolis": each seed's error frame comes from fresh chains stepped this many
+# frames first (other seeds), so seeds are independent and the chains have left their
+# stratified start (the warp's lattice) for the unstratified equilibrium they render at.
+METROPOLIS_BURN_IN = 16
 
 #: Defaults of the settings that decide the run time, on a GPU.
 GPU_DEFAULTS: dict[str, Any] = {
@@ -129,6 +135,8 @@ class Row:
     # The RSM sampling density of vpl and vsgl, "rsm" or "brsm" (bidirectional importance,
     # --importance); None for the methods that sample nothing.
     importance: str | None = None
+    # vpl's and vsgl's `sampling=` when --sampling sweeps it (None: the default, "stratified").
+    sampling: str | None = None
     # With --sequence N: metrics.flicker of the indirect AOV over N frames of a moving light
     # (the scene's animation, or its lights slid along x) against the every-texel reference of
     # the same frames; stochastic methods draw seed k in frame k, as a real-time renderer would.
@@ -361,6 +369,7 @@ def run(
     Ks=(None,),
     lightings=(None,),
     importances=("rsm",),
+    samplings=(None,),
 ) -> Report:
     """Runs the sweep and returns a :class:`Report`; with ``out`` also writes CSV, JSON and plots.
 
@@ -389,6 +398,8 @@ def run(
     bad_importance = [i for i in importances if i not in ("rsm", "brsm")]
     if bad_importance or not importances:
         raise ValueError(f"importances: expected a non-empty list of \"rsm\" and \"brsm\", got {list(importances)}")
+    if not samplings or any(s not in (None, *SAMPLINGS) for s in samplings):
+        raise ValueError(f"samplings: expected values from {', '.join(SAMPLINGS)} (or None for the default), got {list(samplings)}")
     if isinstance(sequence, bool) or not isinstance(sequence, int) or sequence < 0 or sequence == 1:
         raise ValueError(f"sequence: expected 0 (off) or a number of frames >= 2, got {sequence!r}")
     # The adapter decides the defaults; a tiny renderer finds it (~0.1 s) before the real one.
@@ -453,14 +464,18 @@ def run(
                         for K in (Ks if m == "vsgl" else (None,)):
                             for li in (lightings if m == "vsgl" else (None,)):
                                 for imp in importances:
-                                    configs.append((m, n, r, k, K, li, imp))
+                                    for s in samplings:
+                                        # brsm and metropolis do not combine (the chains sample
+                                        # the RSM's own weights): the render refuses it.
+                                        if not (imp == "brsm" and s == "metropolis"):
+                                            configs.append((m, n, r, k, K, li, imp, s))
         elif m in ("reference", "vsgl2"):
             # Deterministic and without a light count: one configuration per RSM size.
             for r in rsm_sizes:
                 for li in (lightings if m == "vsgl2" else (None,)):
-                    configs.append((m, None, r, None, None, li, None))
+                    configs.append((m, None, r, None, None, li, None, None))
         else:
-            configs.append((m, None, None, None, None, None, None))
+            configs.append((m, None, None, None, None, None, None, None))
     # Plans alternate inside one configuration so both see the same machine state.
     configs = [(*c, plan) for c in configs for plan in plans]
     # Per row (by its index in report.rows): its SeedErrors, for the equal-time comparisons.
@@ -475,8 +490,13 @@ def run(
         ref_error = report.reference_rel_error[scene_name]
         ref_has_light = bool(np.any(ref.indirect != 0))
         bar = _progress(len(configs), progress)
-        for method, n, rsm, kernel, K, lighting, importance, plan in configs:
+        for method, n, rsm, kernel, K, lighting, importance, sampling, plan in configs:
             settings: dict[str, Any] = {"plan": plan}
+            if sampling is not None:
+                settings["sampling"] = sampling
+            # Metropolis chains start afresh for each configuration (they are kept from frame to
+            # frame of the renderer otherwise), so rows do not depend on their order.
+            renderer.reset_chains()
             if n is not None:
                 settings["num_lights"] = n
             if rsm is not None:
@@ -515,6 +535,10 @@ def run(
             for seed in run_seeds:
                 if method in STOCHASTIC:
                     settings["seed"] = seed
+                if sampling == "metropolis":
+                    renderer.reset_chains()
+                    for j in range(METROPOLIS_BURN_IN):
+                        renderer.render(scene, method=method, aovs=[], **{**quiet, "seed": (seed + 1) * 1_000_003 + j})
                 for _ in range(warmup):
                     renderer.render(scene, method=method, **settings)
                 if sm_clock is not None:
@@ -547,6 +571,7 @@ def run(
                 K=K,
                 lighting=lighting,
                 importance=importance,
+                sampling=sampling,
                 seeds=len(run_seeds),
                 total_ms_median=statistics.median(totals),
                 total_ms_min=min(totals),
@@ -639,6 +664,8 @@ def _sequence_frames(renderer, scene_name, scene_lights, add_lights, frames, met
     scene = _lit_scene(scene_name, scene_lights, add_lights)
     _, changes = _sequence_changes(scene, frames)
     quiet = {k: v for k, v in settings.items() if k not in ("aovs", "seed")}
+    # sampling="metropolis": the sequence starts from fresh chains, kept through its frames.
+    renderer.reset_chains()
     out = []
     for k, change in enumerate(changes):
         if "time" in change:
@@ -721,12 +748,12 @@ def _method_label(r: Row) -> str:
 
 
 def _label(r: Row) -> str:
-    k = _kernel_label(r.kernel, r.K)
+    k = " ".join(x for x in (_kernel_label(r.kernel, r.K), r.sampling) if x)
     return _method_label(r) + (f"[{k}]" if k else "") + ("+brsm" if r.importance == "brsm" else "")
 
 
 def _brief(r: Row) -> dict[str, Any]:
-    return {"method": _method_label(r), "kernel": _kernel_label(r.kernel, r.K), "importance": r.importance, "num_lights": r.num_lights, "rsm_size": r.rsm_size, "total_ms": r.total_ms_median,
+    return {"method": _method_label(r), "kernel": _kernel_label(r.kernel, r.K), "importance": r.importance, "sampling": r.sampling, "num_lights": r.num_lights, "rsm_size": r.rsm_size, "total_ms": r.total_ms_median,
             "relmse_indirect_debiased": r.relmse_indirect_debiased, "interval": r.relmse_indirect_debiased_interval,
             "reference_too_noisy": r.reference_too_noisy}
 
@@ -760,7 +787,7 @@ def _equal_time(rows: list[Row], seed_stats: dict[int, metrics.SeedErrors]) -> l
 
 def _plan_ratios(rows: list[Row]) -> list[dict[str, Any]]:
     """Pairs each "auto" row with the "full" row of the same configuration."""
-    key = lambda r: (r.scene, r.method, r.num_lights, r.rsm_size, r.kernel, r.K, r.lighting, r.importance)  # noqa: E731
+    key = lambda r: (r.scene, r.method, r.num_lights, r.rsm_size, r.kernel, r.K, r.lighting, r.importance, r.sampling)  # noqa: E731
     full = {key(r): r for r in rows if r.plan == "full"}
     out = []
     for r in rows:
@@ -803,13 +830,15 @@ def table(report: Report) -> str:
         lines.append(f"flicker   metrics.flicker of indirect over {report.sequence} frames against the reference's frames "
                      f"(seed k in frame k for vpl and vsgl; {moves})")
     flick = bool(report.sequence)
-    head = (f"{'scene':<16}{'plan':<6}{'method':<16}{'N':>6}{'rsm':>6}{'kernel':>14}{'imp.':>6}{'total ms':>11}{'IQR':>20}{'RMSE ind.':>12}{'± seeds':>10}"
+    # The sampling column only when --sampling swept it.
+    samp = any(r.sampling is not None for r in report.rows)
+    head = (f"{'scene':<16}{'plan':<6}{'method':<16}{'N':>6}{'rsm':>6}{'kernel':>14}{'imp.':>6}{format('sampling', '>12') if samp else ''}{'total ms':>11}{'IQR':>20}{'RMSE ind.':>12}{'± seeds':>10}"
             f"{'rel ind.':>10}{'bias':>9}{'noise':>9}{'debiased':>11}{'90%':>20}{'SSIM':>7}{format('flicker', '>9') if flick else ''}  flag")
     lines += [head, "-" * len(head)]
     for r in report.rows:
         lines.append(
             f"{r.scene:<16}{r.plan:<6}{_method_label(r):<16}{r.num_lights or '-':>6}{r.rsm_size or '-':>6}{_kernel_label(r.kernel, r.K) or '-':>14}"
-            f"{r.importance or '-':>6}{r.total_ms_median:>11.3f}{f'[{r.total_ms_q1:.3f},{r.total_ms_q3:.3f}]':>20}"
+            f"{r.importance or '-':>6}{format(r.sampling or '-', '>12') if samp else ''}{r.total_ms_median:>11.3f}{f'[{r.total_ms_q1:.3f},{r.total_ms_q3:.3f}]':>20}"
             f"{r.rmse_indirect:>12.5g}{r.rmse_indirect_std:>10.2g}{_num(r.rel_rmse_indirect, '.4g'):>10}{_num(r.bias, '.3g'):>9}{_num(r.noise, '.3g'):>9}"
             f"{_num(r.relmse_indirect_debiased, '.4g'):>11}{_interval(r.relmse_indirect_debiased_interval):>20}{_num(r.ssim_image, '.3f'):>7}"
             f"{format(_num(r.flicker_indirect, '.4g'), '>9') if flick else ''}  {'; '.join(r.notes)}"
@@ -837,7 +866,8 @@ def _equal_time_line(e: dict[str, Any], last_budget_ms: float | None = None) -> 
         return f"equal time {e['scene']}: {e['why']}"
 
     def who(b: dict[str, Any]) -> str:
-        name = b["method"] + (f"[{b['kernel']}]" if b["kernel"] else "") + (f" N={b['num_lights']}" if b["num_lights"] else "")
+        variant = " ".join(x for x in (b["kernel"], b.get("sampling")) if x)
+        name = b["method"] + (f"[{variant}]" if variant else "") + (f" N={b['num_lights']}" if b["num_lights"] else "")
         return f"{name} {b['relmse_indirect_debiased']:.4g} {_interval(b['interval'])}"
 
     budget = f"<= {e['budget_ms']:.3f} ms" if last_budget_ms in (None, e["budget_ms"]) else f"<= {e['budget_ms']:.3f} to {last_budget_ms:.3f} ms"
@@ -852,7 +882,7 @@ def _equal_time_line(e: dict[str, Any], last_budget_ms: float | None = None) -> 
 
 
 CSV_COLUMNS = [
-    "scene", "plan", "method", "num_lights", "rsm_size", "kernel", "K", "lighting", "importance", "seeds", "total_ms_median", "total_ms_q1", "total_ms_q3", "total_ms_min", "total_ms_max",
+    "scene", "plan", "method", "num_lights", "rsm_size", "kernel", "K", "lighting", "importance", "sampling", "seeds", "total_ms_median", "total_ms_q1", "total_ms_q3", "total_ms_min", "total_ms_max",
     "rmse_indirect", "rmse_indirect_std", "rmse_image", "relmse_indirect", "relmse_image", "flip_image", "rel_rmse_indirect", "bias", "noise",
     "relmse_indirect_debiased", "relmse_indirect_debiased_lo", "relmse_indirect_debiased_hi", "reference_rel_error", "reference_too_noisy",
     "ssim_image", "block_rmse_indirect", "flicker_indirect", "notes", "passes_ms",
@@ -885,7 +915,7 @@ def _plots(report: Report, out: pathlib.Path) -> None:
     title = f"{report.adapter['name']}, {report.size[0]}x{report.size[1]}"
     series: dict[tuple, list[Row]] = {}
     for r in report.rows:
-        series.setdefault((r.scene, _method_label(r), r.rsm_size, _kernel_label(r.kernel, r.K), r.importance), []).append(r)
+        series.setdefault((r.scene, _method_label(r), r.rsm_size, " ".join(x for x in (_kernel_label(r.kernel, r.K), r.sampling) if x) or None, r.importance), []).append(r)
     fig, ax = plt.subplots(figsize=(6, 4.5))
     for (scene, method, rsm, kernel, importance), rows in series.items():
         rows = [r for r in rows if r.rel_rmse_indirect]
@@ -964,6 +994,9 @@ def main(argv: list[str] | None = None) -> int:
                    help="SG lighting forms of vsgl and vsgl2 to sweep: asg (the papers'), accurate (filtered-NDF specular, clamped-cosine diffuse) (default: the methods' own, asg)")
     p.add_argument("--importance", type=_strs, default=["rsm"], metavar="rsm,brsm",
                    help="RSM sampling densities of vpl and vsgl to compare: rsm (reflected power), brsm (bidirectional importance from the camera's view); default: rsm")
+    p.add_argument("--sampling", type=_strs, default=None, metavar="S1,S2,...",
+                   help=f"vpl and vsgl sampling to sweep, from {','.join(SAMPLINGS)} (default: the methods', stratified); "
+                        "metropolis keeps Markov chains through each configuration's frames and its --sequence")
     p.add_argument("--kernels", type=_strs, default=["integral"], help="VSGL kernels: integral, density (default: integral)")
     p.add_argument("--interleave", type=int, default=8, help="VSGL interleaving (default: 8)")
     p.add_argument("--visibility", default="none", choices=["none", "raytrace", "ism"],
@@ -1011,6 +1044,7 @@ def main(argv: list[str] | None = None) -> int:
         seeds=None if a.seeds is None else tuple(range(a.seeds)), frames=a.frames, warmup=a.warmup, warmup_seconds=a.warmup_seconds, reference=a.reference, reference_rsm=a.reference_rsm,
         reference_spp=a.reference_spp, reference_strategy=a.reference_strategy, add_lights=add_lights, scene_lights=not a.no_scene_lights, interleave=a.interleave, vpl_interleave=a.vpl_interleave, visibility=a.visibility, plans=tuple(a.plans), adapter=a.adapter, out=a.out, progress=not a.no_progress,
         sequence=a.sequence, Ks=tuple(a.K) if a.K else (None,), lightings=tuple(a.lighting) if a.lighting else (None,), importances=tuple(a.importance),
+        samplings=tuple(a.sampling) if a.sampling else (None,),
     )
     print(table(report))
     print(f"wrote     {os.path.join(a.out, 'bench.csv')}, bench.json, bench.txt and plots (with matplotlib)")

@@ -2,8 +2,10 @@
 // `importance`: N VPLs with probability p(s) ∝ Φ·(R_d + R_s) [Tok15 §4.2 default importance] by
 // hierarchical sample warping down the weight pyramid [Clarberg et al. 2005]; sample points are
 // a Fibonacci lattice [Tok16, stratified centres] or seeded random numbers, both shifted per
-// seed (Cranley–Patterson rotation) so seeds give independent estimates. The estimator weight
-// of a VPL is Φ·R / (N p(s)).
+// seed (Cranley–Patterson rotation) so seeds give independent estimates; or, for
+// sampling="metropolis", the texels of the Metropolis–Hastings chains' states (`samples`,
+// written by passes/metropolis_step.wgsl, distributed ∝ the same weights at equilibrium).
+// The estimator weight of a VPL is Φ·R / (N p(s)), with p of this frame's RSM.
 // `every_texel`: texels [first, first + count) as VPLs with weight Φ·R (the reference).
 #include "common/constants.wgsl"
 #include "common/frame.wgsl"
@@ -16,7 +18,7 @@ struct SampleParams {
     // Pyramid levels (RSM side N = 2^(levels − 1)).
     levels: u32,
     rsm_size: u32,
-    // 0 = stratified (Fibonacci lattice), 1 = random.
+    // 0 = stratified (Fibonacci lattice), 1 = random, 2 = the Metropolis chains' `samples`.
     mode: u32,
     seed: u32,
     // First texel (every_texel) .
@@ -37,6 +39,8 @@ const WORKGROUP: u32 = 64u;
 @group(0) @binding(6) var<storage, read> rsm_flux_diffuse: array<vec4f>;
 @group(0) @binding(7) var<storage, read> rsm_flux_specular: array<vec4f>;
 @group(0) @binding(8) var<storage, read_write> vpls: array<Vpl>;
+// mode 2: per VPL (continuous RSM position in texels, p); otherwise any buffer, unread.
+@group(0) @binding(9) var<storage, read> samples: array<vec4f>;
 
 fn write_vpl(out_index: u32, texel: u32, scale: f32) {
     let pos = rsm_position[texel].xyz;
@@ -69,8 +73,12 @@ fn importance(@builtin(global_invocation_id) gid: vec3u) {
     if (i >= params.count) {
         return;
     }
-    let warped = warp_descend(warp_sample_point(i, params.count, params.mode == 0u, params.seed), params.rsm_size, params.levels);
-    let xy = warped.texel;
+    var xy: vec2u;
+    if (params.mode == 2u) {
+        xy = min(vec2u(samples[i].xy), vec2u(params.rsm_size - 1u));
+    } else {
+        xy = warp_descend(warp_sample_point(i, params.count, params.mode == 0u, params.seed), params.rsm_size, params.levels).texel;
+    }
     let texel = xy.y * params.rsm_size + xy.x;
     let total = pyramid[level_offsets[params.levels - 1u]];
     let w = pyramid[texel];

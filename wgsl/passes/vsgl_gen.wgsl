@@ -1,6 +1,8 @@
 // VSGL generation by filtered importance sampling of the mipmapped RSM (compute), one thread per
 // VSGL [Tok15 §4.2; Tok16 §3–4, Algorithm 1]:
-//  1. kernel centre x_i ∝ p by hierarchical sample warping (stratified: Fibonacci lattice);
+//  1. kernel centre x_i ∝ p by hierarchical sample warping (stratified: Fibonacci lattice), or
+//     for sampling="metropolis" the state of Markov chain i (`samples`, written by
+//     passes/metropolis_step.wgsl; ∝ p at equilibrium), with p of this frame's RSM;
 //  2. kernel level l_i:
 //     "density"  [Tok15 §4.2]: l = l_top − ½ log2(N p(x_i)),
 //     "integral" [Tok16 Eq. 3, Algorithm 1]: solve (4^l/M) p̄(x_i, l) = K/N by bisection;
@@ -34,7 +36,8 @@ struct GenParams {
     count: u32,
     levels: u32,
     rsm_size: u32,
-    stratified: u32,
+    // 0 = warp random points, 1 = warp the Fibonacci lattice, 2 = the chains' `samples`.
+    sampling: u32,
     seed: u32,
     // 0 = density (2015), 1 = integral (2016 bisection), 2 = quadtree node.
     kernel: u32,
@@ -59,6 +62,8 @@ const WORKGROUP: u32 = 64u;
 @group(0) @binding(2) var<storage, read> level_offsets: array<u32>;
 @group(0) @binding(3) var<storage, read> moments: array<vec4f>;
 @group(0) @binding(4) var<storage, read_write> vsgls: array<VsglRaw>;
+// sampling 2: per VSGL (continuous RSM position in texels, p); otherwise any buffer, unread.
+@group(0) @binding(5) var<storage, read> samples: array<vec4f>;
 
 fn moment_texel(chain: u32, level: u32, xy: vec2i) -> vec4f {
     let side = i32(params.rsm_size >> level);
@@ -141,7 +146,14 @@ fn main(@builtin(global_invocation_id) gid: vec3u) {
         vsgls[i] = out;
         return;
     }
-    let warped = warp_descend(warp_sample_point(i, params.count, params.stratified == 1u, params.seed), params.rsm_size, params.levels);
+    var warped: WarpResult;
+    if (params.sampling == 2u) {
+        let at = samples[i].xy;
+        let texel = min(vec2u(at), vec2u(params.rsm_size - 1u));
+        warped = WarpResult(texel, at - vec2f(texel));
+    } else {
+        warped = warp_descend(warp_sample_point(i, params.count, params.sampling == 1u, params.seed), params.rsm_size, params.levels);
+    }
     let s = vec2f(warped.texel) + warped.offset;
     let w_texel = pyramid[warped.texel.y * params.rsm_size + warped.texel.x];
     // Density of the centre on the unit square: p = M·w(texel)/W.

@@ -831,6 +831,12 @@ impl PyRenderer {
     fn clear_scene_cache(&self) {
         self.inner.clear_scene_cache();
     }
+    /// Forgets the Markov chains of sampling="metropolis" (kept from render to render, one per
+    /// virtual light per RSM view): the next such frame starts them afresh, as a new Renderer
+    /// would, so a replayed seed sequence gives the same frames.
+    fn reset_chains(&self) {
+        self.inner.reset_chains();
+    }
     /// The adapter in use: name, backend, device type, driver, timestamp support.
     #[getter]
     fn adapter<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyDict>> {
@@ -854,8 +860,10 @@ impl PyRenderer {
     ///
     /// - "direct": direct light only. shadow_size.
     /// - "vpl": num_lights VPLs (in all, split over lights by reflected power)
-    ///   importance-sampled from rsm_size² reflective shadow maps. shadow_size, num_lights, rsm_size, sampling ("stratified" | "random"),
-    ///   seed, vpl_clamp (minimum VPL distance as a fraction of the scene size; 0 = unbiased),
+    ///   importance-sampled from rsm_size² reflective shadow maps. shadow_size, num_lights,
+    ///   rsm_size, sampling ("stratified" | "random" | "metropolis": Markov chains kept across
+    ///   frames, one step per frame, see reset_chains), chain_space ("world" | "rsm": where a
+    ///   metropolis chain's state lives between frames), seed, vpl_clamp (minimum VPL distance as a fraction of the scene size; 0 = unbiased),
     ///   interleave (default 1), denoise, visibility ("none" | "ism" | "raytrace"), ism_size,
     ///   ism_points, ism_points_per_map, ism_bias, ism_pcf (imperfect shadow maps, with
     ///   visibility="ism"), importance ("rsm" | "brsm": bidirectional RSM importance from

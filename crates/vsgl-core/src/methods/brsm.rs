@@ -21,6 +21,7 @@ use crate::passes::brsm_mix::BrsmMixPass;
 use crate::passes::brsm_view_gbuffer::{view_grid, view_grid_side, BrsmViewPass};
 use crate::passes::moment_mips::MomentMipsPass;
 use crate::passes::pdf_mips::PdfMipsPass;
+use crate::passes::vpl_sample::Sampling;
 use crate::passes::vsgl_gen::{GenSettings, Kernel, VsglGenPass, VSGL_BYTES};
 use crate::passes::vsgl_moments::VsglMomentsPass;
 
@@ -36,6 +37,14 @@ pub enum Importance {
 impl Importance {
     pub fn from_options(o: &Options) -> Result<Self> {
         Ok(match o.str("importance")? {
+            // The Metropolis chains target the RSM's own weights (metropolis_step.wgsl), while
+            // the estimators would divide by the importance density: biased, so refused.
+            "brsm" if o.str("sampling")? == "metropolis" => {
+                return Err(crate::error::Error::invalid(
+                    "importance",
+                    "importance=\"brsm\" does not combine with sampling=\"metropolis\" (the chains sample the RSM's own weights, not the view's importance): choose one",
+                ))
+            }
             "brsm" => Importance::Brsm { view_lights: o.u32("importance_lights")? },
             _ => Importance::Rsm,
         })
@@ -68,7 +77,7 @@ impl ViewImportance {
         let vsgls = rec.storage("brsm_view_vsgl_buffer", count as u64 * VSGL_BYTES);
         // The 2016 paper's generation (integral kernel, K = 1, 12 bisection steps, Fibonacci
         // centres); positions relative to the frame origin, the eye.
-        let settings = GenSettings { count, stratified: true, seed, kernel: Kernel::Integral, k: 1.0, bisection_steps: 12, light_offset: [0.0; 3], importance: false };
+        let settings = GenSettings { count, sampling: Sampling::Stratified, samples: None, seed, kernel: Kernel::Integral, k: 1.0, bisection_steps: 12, light_offset: [0.0; 3], importance: false };
         gen.record_with_pdf(rec, "brsm_view_vsgl_gen", &grid, &grid.pyramid, &chains, &settings, &vsgls);
         Ok(Self { vsgls, count })
     }

@@ -9,6 +9,7 @@
 pub mod options;
 mod brsm;
 mod interleaved;
+pub mod metropolis;
 mod rsm_lights;
 
 mod direct;
@@ -194,6 +195,8 @@ pub struct FrameContext<'a> {
     pub power_staging: &'a mut Option<wgpu::Buffer>,
     /// `plan="full"`: leave nothing out, even where a rule proves it unneeded.
     pub plan_full: bool,
+    /// The Metropolis–Hastings chains of `sampling="metropolis"`, kept by the renderer.
+    pub chains: &'a mut Option<metropolis::MetropolisChains>,
 }
 
 impl FrameContext<'_> {

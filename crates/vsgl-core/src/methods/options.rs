@@ -271,7 +271,16 @@ pub mod common {
         let side = (2.0 * (num_lights as f64).sqrt()).ceil() as u32;
         side.next_power_of_two().clamp(256, 1024)
     }
-    pub const SAMPLING: OptionSpec = choice("sampling", &["stratified", "random"], "how RSM texels are drawn: stratified or independent random numbers");
+    pub const SAMPLING: OptionSpec = choice(
+        "sampling",
+        &["stratified", "random", "metropolis"],
+        "how RSM texels are drawn: hierarchical warping of a stratified lattice or of independent random numbers, or \"metropolis\": Markov chains kept across the frames of a Renderer, one Metropolis-Hastings step per frame (temporally coherent)",
+    );
+    pub const CHAIN_SPACE: OptionSpec = choice(
+        "chain_space",
+        &["world", "rsm"],
+        "with sampling=\"metropolis\", where a chain's state lives between frames: \"world\" (the surface point, reprojected into each frame's RSM: it stays put when the light moves, and restarts when it leaves the light's view or its surface) or \"rsm\" (the RSM position: it moves with the light's view)",
+    );
     pub const SEED: OptionSpec = int("seed", 0, u32::MAX as i64, 0, "seed of the random numbers (same seed, same image)");
     pub const VPL_CLAMP: OptionSpec = OptionSpec {
         name: "vpl_clamp",

@@ -82,6 +82,8 @@ pub struct LightRsm<'a> {
     pub rsm: &'a Rsm,
     /// The RSM's view (`rsm_views`): what gives a texel its footprint (`texel_footprint`).
     pub view: &'a crate::frame::uniforms::FrameUniforms,
+    /// Index of the view among all lights' views, in order (what `metropolis` keys chains by).
+    pub slot: usize,
 }
 
 impl LightRsm<'_> {
@@ -208,7 +210,10 @@ pub fn for_each_light(ctx: &mut FrameContext<'_>, s: &RsmSettings, mut per_light
         let rows: Vec<String> = budgets.iter().map(|b| b.iter().map(u32::to_string).collect::<Vec<_>>().join("+")).collect();
         ctx.settings.push(("virtual_lights_per_light".into(), rows.join(";")));
     }
+    let mut first_slot = 0;
     for (index, (light_views, light_budgets)) in views.iter().zip(&budgets).enumerate() {
+        let slot_base = first_slot;
+        first_slot += light_views.len();
         let raw = rsm_light(ctx, index);
         let raw = &raw;
         let light = ctx.rec.storage_init("light_rsm_storage_buffer", bytemuck::bytes_of(raw));
@@ -226,7 +231,7 @@ pub fn for_each_light(ctx: &mut FrameContext<'_>, s: &RsmSettings, mut per_light
             }
             passes.record(ctx, "rsm", view, &light);
             if !dark {
-                per_light(ctx, &LightRsm { budget, raw, light: &light, rsm: &passes.rsm, view })?;
+                per_light(ctx, &LightRsm { budget, raw, light: &light, rsm: &passes.rsm, view, slot: slot_base + view_index })?;
             }
             if capture {
                 // Read back before the next view overwrites the shared RSM buffers; a point

@@ -4,6 +4,7 @@
 
 use super::brsm::{Importance, ViewImportance};
 use super::interleaved::InterleavedShading;
+use super::metropolis::{ChainSpace, MetropolisSampling};
 use super::rsm_lights::{check_rsm_size, for_each_light, RsmSettings};
 use super::{options::common, DirectLight, FrameContext, Method, MethodInfo, OptionSpec, Options};
 use super::visibility::{VirtualLightVisibility, VisibilityMode, VPL_RECORD_WORDS};
@@ -28,6 +29,7 @@ const OPTIONS: &[OptionSpec] = &[
     common::NUM_LIGHTS,
     common::RSM_SIZE,
     common::SAMPLING,
+    common::CHAIN_SPACE,
     common::SEED,
     common::VPL_CLAMP,
     common::interleave(1),
@@ -49,6 +51,7 @@ struct Vpl {
     num_lights: u32,
     rsm_size: u32,
     sampling: Sampling,
+    chain_space: ChainSpace,
     seed: u32,
     vpl_clamp: f32,
     interleave: u32,
@@ -59,7 +62,11 @@ struct Vpl {
 
 /// `sampling=` as the sampling pass takes it.
 pub(super) fn sampling(o: &Options) -> Result<Sampling> {
-    Ok(if o.str("sampling")? == "random" { Sampling::Random } else { Sampling::Stratified })
+    Ok(match o.str("sampling")? {
+        "random" => Sampling::Random,
+        "metropolis" => Sampling::Metropolis,
+        _ => Sampling::Stratified,
+    })
 }
 
 impl Vpl {
@@ -71,6 +78,7 @@ impl Vpl {
             num_lights: o.u32("num_lights")?,
             rsm_size: o.u32("rsm_size")?,
             sampling: sampling(o)?,
+            chain_space: ChainSpace::from_options(o)?,
             seed: o.u32("seed")?,
             vpl_clamp: o.f32("vpl_clamp")?,
             interleave: o.u32("interleave")?,
@@ -109,7 +117,14 @@ impl Method for Vpl {
             let pdf = reweighted.as_ref().unwrap_or(&light.rsm.pyramid);
             // This RSM's share of num_lights (split over lights and cube faces by reflected
             // power, `power_budgets`); the buffer holds num_lights, the largest share.
-            sample.record_importance(&mut ctx.rec, light.light.as_entire_binding(), light.rsm, pdf, light.budget, self.sampling, self.seed, &vpls, feat);
+            let samples = match self.sampling {
+                Sampling::Metropolis => {
+                    let m = MetropolisSampling { method: INFO.name, num_lights: self.num_lights, rsm_size: self.rsm_size, seed: self.seed, space: self.chain_space };
+                    Some(m.step(ctx, light)?)
+                }
+                _ => None,
+            };
+            sample.record_importance(&mut ctx.rec, light.light.as_entire_binding(), light.rsm, pdf, light.budget, self.sampling, self.seed, &vpls, feat, samples.as_ref());
             vis.build_maps(ctx, &vpls, light.budget, VPL_RECORD_WORDS)?;
             let target = shading_out.target(ctx.indirect);
             shading.record(&mut ctx.rec, ctx.frame_uniforms, &vpls, light.budget, self.interleave, min_distance2, ctx.gbuffer, target, feat, ctx.size, &vis);

@@ -4,6 +4,7 @@
 
 use super::brsm::{Importance, ViewImportance};
 use super::interleaved::InterleavedShading;
+use super::metropolis::{ChainSpace, MetropolisSampling};
 use super::rsm_lights::{check_rsm_size, for_each_light, RsmSettings};
 use super::visibility::{VirtualLightVisibility, VisibilityMode, VSGL_RECORD_WORDS};
 use super::{options::common, DirectLight, FrameContext, Method, MethodInfo, OptionKind, OptionSpec, OptionValue, Options};
@@ -33,6 +34,7 @@ const OPTIONS: &[OptionSpec] = &[
     common::NUM_LIGHTS,
     common::RSM_SIZE,
     common::SAMPLING,
+    common::CHAIN_SPACE,
     common::SEED,
     OptionSpec {
         name: "kernel",
@@ -76,6 +78,7 @@ struct Vsgl {
     num_lights: u32,
     rsm_size: u32,
     sampling: Sampling,
+    chain_space: ChainSpace,
     seed: u32,
     kernel: Kernel,
     k: f32,
@@ -126,6 +129,7 @@ impl Vsgl {
             num_lights: o.u32("num_lights")?,
             rsm_size: o.u32("rsm_size")?,
             sampling: super::vpl::sampling(o)?,
+            chain_space: ChainSpace::from_options(o)?,
             seed: o.u32("seed")?,
             kernel: match o.str("kernel")? {
                 "density" => Kernel::Density,
@@ -143,6 +147,12 @@ impl Vsgl {
         })
     }
 
+}
+
+impl Vsgl {
+    fn metropolis(&self) -> MetropolisSampling {
+        MetropolisSampling { method: INFO.name, num_lights: self.num_lights, rsm_size: self.rsm_size, seed: self.seed, space: self.chain_space }
+    }
 }
 
 impl Method for Vsgl {
@@ -182,10 +192,15 @@ impl Method for Vsgl {
             moment_mips.record(&mut ctx.rec, self.rsm_size, chains);
             // This RSM's share of num_lights (split over lights and cube faces by reflected
             // power, `power_budgets`).
+            let samples = match self.sampling {
+                Sampling::Metropolis => Some(self.metropolis().step(ctx, light)?),
+                _ => None,
+            };
             let buf = ctx.rec.storage("vsgl_buffer", light.budget as u64 * VSGL_BYTES);
             let settings = GenSettings {
                 count: light.budget,
-                stratified: self.sampling == Sampling::Stratified,
+                sampling: self.sampling,
+                samples: samples.as_ref(),
                 seed: self.seed,
                 kernel: self.kernel,
                 k: self.k,

@@ -10,6 +10,7 @@ pub mod denoise;
 pub mod direct;
 pub mod ism;
 pub mod material;
+pub mod metropolis_step;
 pub mod moment_mips;
 pub mod pathtrace;
 pub mod pdf_mips;
@@ -43,6 +44,7 @@ passes_from_device!(
     direct::DirectPass,
     ism::IsmPass,
     material::MaterialPass,
+    metropolis_step::MetropolisStepPass,
     moment_mips::MomentMipsPass,
     pathtrace::PathTracePass,
     pdf_mips::PdfMipsPass,

@@ -45,6 +45,8 @@ pub enum Sampling {
     Stratified,
     /// Seeded random numbers.
     Random,
+    /// The states of Metropolis–Hastings chains kept across frames (`methods::metropolis`).
+    Metropolis,
 }
 
 pub struct VplSamplePass {
@@ -59,6 +61,7 @@ impl VplSamplePass {
         let mut bindings = vec![uniform_binding()];
         bindings.extend([storage_binding(true); 7]);
         bindings.push(storage_binding(false));
+        bindings.push(storage_binding(true));
         Ok(Self {
             importance: PipelineVariants::from_module(module.clone(), "passes/vpl_sample.wgsl", "importance", Some(bindings.clone())),
             every_texel: PipelineVariants::from_module(module, "passes/vpl_sample.wgsl", "every_texel", Some(bindings)),
@@ -66,7 +69,7 @@ impl VplSamplePass {
     }
 
     #[allow(clippy::too_many_arguments)]
-    fn dispatch(&self, rec: &mut Recorder<'_>, label: &str, pipeline: &wgpu::ComputePipeline, params: SampleParamsRaw, light: wgpu::BindingResource<'_>, rsm: &Rsm, pdf: &wgpu::Buffer, out: &wgpu::Buffer) {
+    fn dispatch(&self, rec: &mut Recorder<'_>, label: &str, pipeline: &wgpu::ComputePipeline, params: SampleParamsRaw, light: wgpu::BindingResource<'_>, rsm: &Rsm, pdf: &wgpu::Buffer, out: &wgpu::Buffer, samples: Option<&wgpu::Buffer>) {
         let uniform = rec.uniform("vpl_sample_params_uniform_buffer", &params);
         rec.compute(
             label,
@@ -81,6 +84,8 @@ impl VplSamplePass {
                 rsm.flux_diffuse.as_entire_binding(),
                 rsm.flux_specular.as_entire_binding(),
                 out.as_entire_binding(),
+                // Unread unless mode 2: the RSM positions stand in (read-only vec4f).
+                samples.unwrap_or(&rsm.gbuffer.position).as_entire_binding(),
             ]],
             (groups(params.count, WORKGROUP), 1, 1),
         );
@@ -88,20 +93,21 @@ impl VplSamplePass {
 
     /// `count` VPLs with p ∝ `pdf` (level 0 of a pyramid in the layout of `rsm.pyramid`: that
     /// pyramid itself, Φ·(R_d + R_s), or the bidirectional importance of `brsm_mix`),
-    /// estimator weights 1/(N p).
+    /// estimator weights 1/(N p); `samples` (the Metropolis chains' positions) is read for
+    /// [`Sampling::Metropolis`] only.
     #[allow(clippy::too_many_arguments)]
-    pub fn record_importance(&self, rec: &mut Recorder<'_>, light: wgpu::BindingResource<'_>, rsm: &Rsm, pdf: &wgpu::Buffer, count: u32, sampling: Sampling, seed: u32, out: &wgpu::Buffer, features: ShaderFeatures) {
+    pub fn record_importance(&self, rec: &mut Recorder<'_>, light: wgpu::BindingResource<'_>, rsm: &Rsm, pdf: &wgpu::Buffer, count: u32, sampling: Sampling, seed: u32, out: &wgpu::Buffer, features: ShaderFeatures, samples: Option<&wgpu::Buffer>) {
         let gpu = rec.gpu;
         let params = SampleParamsRaw {
             count,
             levels: rsm.levels,
             rsm_size: rsm.size,
-            mode: match sampling { Sampling::Stratified => 0, Sampling::Random => 1 },
+            mode: match sampling { Sampling::Stratified => 0, Sampling::Random => 1, Sampling::Metropolis => 2 },
             seed,
             first: 0,
             _pad: [0; 2],
         };
-        self.dispatch(rec, "vpl_sample", &self.importance.get(gpu, &features.specular_flags()), params, light, rsm, pdf, out);
+        self.dispatch(rec, "vpl_sample", &self.importance.get(gpu, &features.specular_flags()), params, light, rsm, pdf, out, samples);
     }
 
     /// Texels `first .. first + count` as VPLs of weight Φ·R.
@@ -110,6 +116,6 @@ impl VplSamplePass {
         let gpu = rec.gpu;
         let params = SampleParamsRaw { count, levels: rsm.levels, rsm_size: rsm.size, mode: 0, seed: 0, first, _pad: [0; 2] };
         // Reported as its own variant in `frame.passes`, timed as `vpl_sample`.
-        self.dispatch(rec, "vpl_sample[every_texel]", &self.every_texel.get(gpu, &features.specular_flags()), params, light, rsm, &rsm.pyramid, out);
+        self.dispatch(rec, "vpl_sample[every_texel]", &self.every_texel.get(gpu, &features.specular_flags()), params, light, rsm, &rsm.pyramid, out, None);
     }
 }

@@ -4,6 +4,7 @@
 use crate::error::Result;
 use crate::frame::{MomentChains, Rsm};
 use crate::gpu::{groups, Gpu, Recorder};
+use crate::passes::vpl_sample::Sampling;
 
 const WORKGROUP: u32 = 64;
 
@@ -57,7 +58,7 @@ struct GenParamsRaw {
     count: u32,
     levels: u32,
     rsm_size: u32,
-    stratified: u32,
+    sampling: u32,
     seed: u32,
     kernel: u32,
     bisection_steps: u32,
@@ -70,10 +71,12 @@ struct GenParamsRaw {
 }
 
 /// What one generation dispatch needs besides the RSM.
-#[derive(Clone, Copy, Debug)]
-pub struct GenSettings {
+#[derive(Clone, Copy)]
+pub struct GenSettings<'a> {
     pub count: u32,
-    pub stratified: bool,
+    pub sampling: Sampling,
+    /// The Metropolis chains' positions, read for [`Sampling::Metropolis`] only.
+    pub samples: Option<&'a wgpu::Buffer>,
     pub seed: u32,
     pub kernel: Kernel,
     pub k: f32,
@@ -95,19 +98,19 @@ impl VsglGenPass {
     }
 
     /// VSGLs sampled by the RSM's own weight pyramid.
-    pub fn record(&self, rec: &mut Recorder<'_>, rsm: &Rsm, chains: &MomentChains, s: &GenSettings, out: &wgpu::Buffer) {
+    pub fn record(&self, rec: &mut Recorder<'_>, rsm: &Rsm, chains: &MomentChains, s: &GenSettings<'_>, out: &wgpu::Buffer) {
         self.record_with_pdf(rec, "vsgl_gen", rsm, &rsm.pyramid, chains, s, out);
     }
 
     /// VSGLs sampled by `pdf`, a pyramid in the layout of `rsm.pyramid` (`s.importance` says
     /// whether it differs from the moments' weight), timed as `label`.
     #[allow(clippy::too_many_arguments)]
-    pub fn record_with_pdf(&self, rec: &mut Recorder<'_>, label: &str, rsm: &Rsm, pdf: &wgpu::Buffer, chains: &MomentChains, s: &GenSettings, out: &wgpu::Buffer) {
+    pub fn record_with_pdf(&self, rec: &mut Recorder<'_>, label: &str, rsm: &Rsm, pdf: &wgpu::Buffer, chains: &MomentChains, s: &GenSettings<'_>, out: &wgpu::Buffer) {
         let params = GenParamsRaw {
             count: s.count,
             levels: rsm.levels,
             rsm_size: rsm.size,
-            stratified: s.stratified as u32,
+            sampling: match s.sampling { Sampling::Random => 0, Sampling::Stratified => 1, Sampling::Metropolis => 2 },
             seed: s.seed,
             kernel: match s.kernel { Kernel::Density => 0, Kernel::Integral => 1, Kernel::Node => 2 },
             bisection_steps: s.bisection_steps,
@@ -128,6 +131,8 @@ impl VsglGenPass {
                 rsm.level_offsets.as_entire_binding(),
                 chains.buffer.as_entire_binding(),
                 out.as_entire_binding(),
+                // Unread unless sampling 2: the RSM positions stand in (read-only vec4f).
+                s.samples.unwrap_or(&rsm.gbuffer.position).as_entire_binding(),
             ]],
             (groups(s.count, WORKGROUP), 1, 1),
         );

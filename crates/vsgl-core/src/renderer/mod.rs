@@ -53,6 +53,8 @@ pub struct Renderer {
 #[derive(Default)]
 struct FrameState {
     resources: FrameResources,
+    /// `sampling="metropolis"`: the Markov chains, one per virtual light per RSM view.
+    chains: Option<crate::methods::metropolis::MetropolisChains>,
 }
 
 /// Idle readback slots kept beyond this many are dropped (more exist only while several
@@ -266,6 +268,12 @@ impl Renderer {
         Ok((gscene, false))
     }
 
+    /// Forgets the Metropolis–Hastings chains of `sampling="metropolis"`: the next such frame
+    /// starts them afresh from the warp, as a new renderer would.
+    pub fn reset_chains(&self) {
+        crate::methods::metropolis::reset(&mut self.frame_state.lock().unwrap_or_else(|e| e.into_inner()).chains);
+    }
+
     /// Drops the cached scene upload (its GPU memory is freed once no frame uses it).
     pub fn clear_scene_cache(&self) {
         *self.scene_cache.lock().unwrap_or_else(|e| e.into_inner()) = None;
@@ -299,7 +307,7 @@ impl Renderer {
 
         // What the renderer keeps from frame to frame: targets, buffers, the timer's queries.
         let mut state = self.frame_state.lock().unwrap_or_else(|e| e.into_inner());
-        let FrameState { resources } = &mut *state;
+        let FrameState { resources, chains } = &mut *state;
         let timer = &mut slot.timer;
         timer.reset();
         resources.begin_frame();
@@ -395,6 +403,7 @@ impl Renderer {
             stop: job.opts.stop.as_ref(),
             power_staging: &mut slot.power_staging,
             plan_full: job.opts.plan == "full",
+            chains,
         };
         job.method.record(&mut ctx)?;
         let FrameContext { mut rec, skipped: method_skipped, vsgls, captured_rsm, stderr, settings: method_settings, .. } = ctx;
