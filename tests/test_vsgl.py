@@ -9,6 +9,7 @@ import numpy as np
 import pytest
 
 import vsgl
+from rsm_model import spot_texel_footprint_variance
 
 # Constants of wgsl/common/sg.wgsl (the f64 twin in crates/vsgl-core/src/verify/oracle reads them too).
 LAMBERT_LOBE_SG_SHARPNESS = 2.2925
@@ -180,16 +181,8 @@ def test_gpu_vsgls_equal_a_float64_generation_from_the_same_rsm(renderer):
     mean_d = _toksvig_mean(n.reshape(-1, 3), np.full(n.shape[0] * n.shape[1], LAMBERT_LOBE_SG_SHARPNESS)).reshape(n.shape)
     mean_s = _toksvig_mean(refl.reshape(-1, 3), lam_s.reshape(-1)).reshape(n.shape)
     zero = np.where(lit[..., None], 1.0, 0.0)
-    # Each texel's own positional variance (issue 18, item 2): a cross-section a² = Δω·d² with
-    # Δω = t²(2/N)²cos³α of the spot's square RSM (t = tan of the outer cone), stretched by
-    # 1/cos θ on the surface: (a²/12)(1 + 1/max(cos θ, 0.1)²).
-    side = y.shape[0]
-    t = np.tan(np.radians(light.outer_cone_deg))
-    d2 = np.maximum(np.sum(y * y, -1), 1e-300)
-    axis = np.asarray(light.direction, np.float64) / np.linalg.norm(light.direction)
-    cos_axis = np.abs(np.sum(y * axis, -1)) / np.sqrt(d2)
-    cross_section = t * t * (2.0 / side) ** 2 * cos_axis**3 * d2
-    footprint = cross_section * (1 + 1 / np.maximum(np.abs(c), 0.1) ** 2) / 12
+    # Each texel's own positional variance (issue 18, item 2).
+    footprint = spot_texel_footprint_variance(y, n, light, y.shape[0])
     chains = [
         np.concatenate([fd, w[..., None]], -1) * zero,
         np.concatenate([fs, wd[..., None]], -1) * zero,

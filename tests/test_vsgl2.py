@@ -11,6 +11,7 @@ import numpy as np
 import pytest
 
 import vsgl
+from rsm_model import spot_texel_footprint_variance
 from vsgl import bench
 from scene_builders import write_quads
 
@@ -26,17 +27,20 @@ def _rmse(a, b):
     return float(np.sqrt(np.mean((np.asarray(a, np.float64) - np.asarray(b, np.float64)) ** 2)))
 
 
-def _cpu_vsgl2(frame: vsgl.Frame) -> dict[str, dict[str, np.ndarray | float]]:
+def _cpu_vsgl2(frame: vsgl.Frame, light: vsgl.SpotLight) -> dict[str, dict[str, np.ndarray | float]]:
     """The two VSGLs in float64 from the frame's RSM readback (positions relative to the light):
     the same per-texel lobes as vsgl_moments.wgsl, summed over every texel."""
+    side = frame.rsm("position").shape[1]
     y = frame.rsm("position").astype(np.float64).reshape(-1, 3)
     n = frame.rsm("normal").astype(np.float64).reshape(-1, 3)
+    # Each texel's own positional variance (issue 18, item 2), added to ‖y‖² as the GPU does.
+    footprint = spot_texel_footprint_variance(y, n, light, side)
     alpha = np.maximum(frame.rsm("roughness").astype(np.float64).reshape(-1) ** 2, GGX_ALPHA_MIN)
     fd = frame.rsm("flux_diffuse").astype(np.float64).reshape(-1, 3)
     fs = frame.rsm("flux_specular").astype(np.float64).reshape(-1, 3)
     wd, ws = fd.sum(-1), fs.sum(-1)
     lit = (wd + ws) > 0
-    y, n, alpha, fd, fs, wd, ws = y[lit], n[lit], alpha[lit], fd[lit], fs[lit], wd[lit], ws[lit]
+    y, n, alpha, fd, fs, wd, ws, footprint = y[lit], n[lit], alpha[lit], fd[lit], fs[lit], wd[lit], ws[lit], footprint[lit]
     to_light = -y / np.linalg.norm(y, axis=-1, keepdims=True)
     c = np.sum(to_light * n, -1)
     refl = 2 * c[:, None] * n - to_light
@@ -51,7 +55,7 @@ def _cpu_vsgl2(frame: vsgl.Frame) -> dict[str, dict[str, np.ndarray | float]]:
         xi = (w[:, None] * mean).sum(0) / total
         r = np.linalg.norm(xi)
         mu = (w[:, None] * y).sum(0) / total
-        second = float((w * np.sum(y * y, -1)).sum() / total)
+        second = float((w * (np.sum(y * y, -1) + footprint)).sum() / total)
         out[name] = dict(
             power=flux.sum(0),
             axis=xi / r,
@@ -90,7 +94,7 @@ def test_two_vsgls_equal_a_float64_sum_of_the_same_rsm(renderer, rsm_size, reduc
     assert set(f.timings_ms) >= {"vsgl2_reduce", "vsgl_shading"}
     v = f.vsgls()
     assert len(v) == 2
-    cpu = _cpu_vsgl2(f)
+    cpu = _cpu_vsgl2(f, light)
     offset = np.array(light.position) - np.array(cam.eye)
     worst = {}
     for i, lobe in enumerate(("diffuse", "specular")):

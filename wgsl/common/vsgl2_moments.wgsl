@@ -4,10 +4,10 @@
 // specular lobes of all RSM texels (VPLs), each with its own positional Gaussian.
 // Per texel (positions y relative to the light, as in vsgl_moments.wgsl), with
 // w_d = Φ·R_d and w_s = Φ·R_s summed over rgb:
-//   diffuse_power      = (Φ·R_d rgb, w_d ‖y‖²)
+//   diffuse_power      = (Φ·R_d rgb, w_d (‖y‖² + v))   v: the texel's footprint variance
 //   diffuse_direction  = (w_d ξ̄_d, w_d)        ξ̄_d: Toksvig mean direction of the Lambert SG
 //   diffuse_position   = (w_d y, 0)
-//   specular_power     = (Φ·R_s rgb, w_s ‖y‖²)
+//   specular_power     = (Φ·R_s rgb, w_s (‖y‖² + v))
 //   specular_direction = (w_s ξ̄_s, w_s)        ξ̄_s: Toksvig mean direction of the GGX lobe SG
 //   specular_position  = (w_s y, 0)
 // = 6 vec4 per texel: the poster's three RGBA32F buffers per VSGL; and one shared by both,
@@ -46,6 +46,8 @@ struct ReduceParams {
     _pad1: f32,
     // (direction, 1) for a directional light, 0 otherwise (rsm_lobe_means).
     light_dir: vec4f,
+    // LightRsm::texel_footprint (rsm_texel_footprint_variance).
+    texel_footprint: vec4f,
 }
 
 struct Moments2 {
@@ -112,7 +114,8 @@ fn texel_moments(xy: vec2u) -> Moments2 {
     let lobes = rsm_lobe_means(y, normal, rsm_normal[i].w, params.light_dir);
     let mean_d = lobes.diffuse;
     let mean_s = lobes.specular;
-    let y2 = dot(y, y);
+    // Each texel's own extent is part of the cluster's positional variance (issue 18, item 2).
+    let y2 = dot(y, y) + rsm_texel_footprint_variance(y, normal, params.light_dir, params.texel_footprint);
     return Moments2(
         vec4f(fd, wd * y2),
         vec4f(wd * mean_d, wd),

@@ -32,32 +32,6 @@ struct MomentParams {
     texel_footprint: vec4f,
 }
 
-// A texel is not a point but a patch of the surface (issue 18, item 2). Its cross-section
-// perpendicular to the light is a square of side a, a² = Δω·d² (perspective, Δω the texel's
-// solid angle, as in rsm_flux.wgsl) or (2R/N)² (orthographic); on a surface tilted by θ to the
-// light it is stretched by 1/cos θ along one axis. A uniform a × a/cos θ rectangle has
-// positional variance (a² + a²/cos²θ)/12 (summed over its two axes), which the texel adds to
-// Σw‖y‖² so that a single-texel cluster is an area light of the texel's size, not a point.
-// cos θ is floored at 0.1: a grazing texel's footprint is long, but not unbounded.
-const FOOTPRINT_COS_MIN: f32 = 0.1;
-
-fn texel_footprint_variance(y: vec3f, normal: vec3f) -> f32 {
-    var cross_section: f32;
-    var to_light: vec3f;
-    if (params.light_dir.w != 0.0) {
-        cross_section = params.texel_footprint.w;
-        to_light = -params.light_dir.xyz;
-    } else {
-        let d2 = dot(y, y);
-        let inv_d = inverseSqrt(max(d2, FLT_MIN));
-        let cos_axis = abs(dot(y, params.texel_footprint.xyz)) * inv_d;
-        cross_section = params.texel_footprint.w * cos_axis * cos_axis * cos_axis * d2;
-        to_light = -y * inv_d;
-    }
-    let cos_surface = max(abs(dot(normal, to_light)), FOOTPRINT_COS_MIN);
-    return cross_section * (1.0 + 1.0 / (cos_surface * cos_surface)) / 12.0;
-}
-
 const WORKGROUP: u32 = 8u;
 
 @group(0) @binding(0) var<uniform> params: MomentParams;
@@ -98,7 +72,7 @@ fn main(@builtin(global_invocation_id) gid: vec3u) {
     moments[i] = vec4f(fd.rgb, w);
     moments[stride + i] = vec4f(fs, wd);
     moments[2u * stride + i] = vec4f(wd * mean_d, ws);
-    moments[3u * stride + i] = vec4f(ws * mean_s, w * (dot(y, y) + texel_footprint_variance(y, normal)));
+    moments[3u * stride + i] = vec4f(ws * mean_s, w * (dot(y, y) + rsm_texel_footprint_variance(y, normal, params.light_dir, params.texel_footprint)));
     moments[4u * stride + i] = vec4f(w * y, 0.0);
     if (params.planes == 1u) {
         moments[5u * stride + i] = vec4f(w * normal, w * dot(y, normal));

@@ -51,7 +51,7 @@ fn time_sample(gpu: &Gpu, reduce: &Vsgl2Reduce, rsm: &Rsm, out: &wgpu::Buffer, r
     let mut resources = FrameResources::default();
     let mut rec = Recorder::new(gpu, &mut timer, &mut resources);
     for _ in 0..repeats {
-        reduce.record(&mut rec, rsm, [0.0; 3], [0.0; 4], out, features, reduction).expect("record the reduction");
+        reduce.record(&mut rec, rsm, [0.0; 3], [0.0; 4], [0.0; 4], out, features, reduction).expect("record the reduction");
     }
     let commands = rec.finish().finish();
     let start = Instant::now();

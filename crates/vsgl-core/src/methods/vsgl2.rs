@@ -78,7 +78,7 @@ impl Method for Vsgl2 {
         let lit = for_each_light(ctx, &rsm, |ctx, light| {
             let feat = ctx.features;
             let buf = ctx.rec.storage("vsgl2_buffer", VSGL2_COUNT as u64 * VSGL_BYTES);
-            reduce.record(&mut ctx.rec, light.rsm, light.raw.position, light.raw.rsm_light_dir(), &buf, feat, reduction)?;
+            reduce.record(&mut ctx.rec, light.rsm, light.raw.position, light.raw.rsm_light_dir(), light.texel_footprint(), &buf, feat, reduction)?;
             vis.build_maps(ctx, &buf, VSGL2_COUNT, VSGL_RECORD_WORDS)?;
             shading.record(&mut ctx.rec, ctx.frame_uniforms, &buf, VSGL2_COUNT, 1, self.diffuse, self.lighting, false, ctx.gbuffer, ctx.indirect, feat, ctx.size, &vis);
             if ctx.vsgls.is_none() {

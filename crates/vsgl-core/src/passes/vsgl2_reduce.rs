@@ -32,6 +32,7 @@ struct ReduceParamsRaw {
     light_offset: [f32; 3],
     _pad1: f32,
     light_dir: [f32; 4],
+    texel_footprint: [f32; 4],
 }
 
 /// How the workgroups of the reduction add their values.
@@ -129,9 +130,10 @@ impl Vsgl2Reduce {
 
     /// Records the reduction of `rsm` into `out` (two VSGL records, means relative to the
     /// frame origin: `light_offset` is the light's position relative to it; `light_dir` is
-    /// [`LightRaw::rsm_light_dir`](crate::frame::uniforms::LightRaw::rsm_light_dir)).
+    /// [`LightRaw::rsm_light_dir`](crate::frame::uniforms::LightRaw::rsm_light_dir);
+    /// `texel_footprint`: `LightRsm::texel_footprint` of the RSM).
     #[allow(clippy::too_many_arguments)]
-    pub fn record(&self, rec: &mut Recorder<'_>, rsm: &Rsm, light_offset: [f32; 3], light_dir: [f32; 4], out: &wgpu::Buffer, features: ShaderFeatures, reduction: Vsgl2Reduction) -> Result<()> {
+    pub fn record(&self, rec: &mut Recorder<'_>, rsm: &Rsm, light_offset: [f32; 3], light_dir: [f32; 4], texel_footprint: [f32; 4], out: &wgpu::Buffer, features: ShaderFeatures, reduction: Vsgl2Reduction) -> Result<()> {
         let gpu = rec.gpu;
         let pipelines = self.pipelines(gpu, reduction)?;
         let (tiles, merge) = (pipelines.tiles.get(gpu, &features.specular_flags()), pipelines.merge.get(gpu, &features.specular_flags()));
@@ -140,7 +142,7 @@ impl Vsgl2Reduce {
         let a = rec.storage("vsgl2_partial_a_buffer", p * PARTIAL_BYTES);
         let b = rec.storage("vsgl2_partial_b_buffer", p.div_ceil(MERGE_SPAN as u64) * PARTIAL_BYTES);
         let params = |rec: &mut Recorder<'_>, count: u64, finish: bool| {
-            let raw = ReduceParamsRaw { rsm_size: n, count: count as u32, finish: finish as u32, _pad0: 0, light_offset, _pad1: 0.0, light_dir };
+            let raw = ReduceParamsRaw { rsm_size: n, count: count as u32, finish: finish as u32, _pad0: 0, light_offset, _pad1: 0.0, light_dir, texel_footprint };
             rec.uniform("vsgl2_reduce_params_uniform_buffer", &raw)
         };
         let dispatch = |u: &wgpu::Buffer, input: &wgpu::Buffer, output: &wgpu::Buffer, pipeline: &wgpu::ComputePipeline, rec: &mut Recorder<'_>, workgroups: (u32, u32, u32)| {

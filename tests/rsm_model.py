@@ -1,0 +1,22 @@
+"""Float64 models of what an RSM texel stands for, shared by the tests that re-generate VSGLs
+from a captured RSM (test_vsgl.py, test_vsgl2.py)."""
+
+from __future__ import annotations
+
+import numpy as np
+
+import vsgl
+
+
+def spot_texel_footprint_variance(y: np.ndarray, normal: np.ndarray, light: vsgl.SpotLight, side: int) -> np.ndarray:
+    """Each texel's own positional variance (issue 18, item 2) for a spot light's square RSM of
+    ``side`` texels: a cross-section a² = Δω·d², Δω = t²(2/N)²cos³α (t = tan of the outer cone,
+    α the angle to the spot's axis), stretched by 1/cos θ on the surface:
+    (a²/12)(1 + 1/max(cos θ, 0.1)²). ``y``: texel positions relative to the light, (..., 3)."""
+    t = np.tan(np.radians(light.outer_cone_deg))
+    d2 = np.maximum(np.sum(y * y, -1), 1e-300)
+    axis = np.asarray(light.direction, np.float64) / np.linalg.norm(light.direction)
+    cos_axis = np.abs(np.sum(y * axis, -1)) / np.sqrt(d2)
+    cross_section = t * t * (2.0 / side) ** 2 * cos_axis**3 * d2
+    cos_surface = np.abs(np.sum(-y * normal, -1)) / np.sqrt(d2)
+    return cross_section * (1 + 1 / np.maximum(cos_surface, 0.1) ** 2) / 12
