@@ -37,4 +37,12 @@ PY
 # then error, flicker and time on the animated built-ins.
 timeout 240 python3 scripts/gpu_visibility_temporal.py --size 1920x1080 --frames 20 --warm-seconds 3 2>&1 | tail -30
 timeout 200 python3 -m vsgl bench --scene cave_flashlight,glossy_cornell --methods vpl,vsgl,vsgl2 --K 1,2,4 --sequence 30 \
+  --sampling stratified,metropolis \
   --size 960x540 --lights 1024 --rsm-sizes 256 --seeds 2 --frames 5 --no-progress --out "$OUT/bench_issue19" 2>&1 | tail -30
+# Issue 18 (a second call): kernels, the 2024 lighting and bidirectional importance against the
+# bidirectional path tracer, N from 256 to 65536 (RSM grown with N as documented), equal time.
+timeout 420 python3 -m vsgl bench --scene caustics_ring,glossy_cornell,cornell_box --methods vsgl,vpl \
+  --kernels integral,node --lighting asg,accurate --importance rsm,brsm --lights 256,1024,4096,16384,65536 \
+  --size 960x540 --rsm-sizes 512 --seeds 3 --frames 5 --warmup-seconds 2 --visibility raytrace \
+  --reference pathtrace --reference-strategy bidirectional --reference-spp 4096 \
+  --no-progress --out "$OUT/bench_issue18" 2>&1 | tail -60

@@ -997,7 +997,7 @@ def main(argv: list[str] | None = None) -> int:
     p.add_argument("--sampling", type=_strs, default=None, metavar="S1,S2,...",
                    help=f"vpl and vsgl sampling to sweep, from {','.join(SAMPLINGS)} (default: the methods', stratified); "
                         "metropolis keeps Markov chains through each configuration's frames and its --sequence")
-    p.add_argument("--kernels", type=_strs, default=["integral"], help="VSGL kernels: integral, density (default: integral)")
+    p.add_argument("--kernels", type=_strs, default=["integral"], help="VSGL kernels: integral, density, node (default: integral)")
     p.add_argument("--interleave", type=int, default=8, help="VSGL interleaving (default: 8)")
     p.add_argument("--visibility", default="none", choices=["none", "raytrace", "ism"],
                    help="visibility of the virtual lights of vpl, vsgl, vsgl2 and reference (default: none, the papers' unshadowed setting); the every-texel reference then traces its shadow rays")
