@@ -58,12 +58,21 @@ def test_a_png_folder_holds_every_tiled_frame(tiny, tmp_path):
     files = sorted(out.glob("*.png"))
     assert len(files) == FRAMES and result["size"] == (2 * W + 1, H)
     vpl, vsgl_frames = rendered(tiny, "vpl"), rendered(tiny, "vsgl")
+    # Two methods compared: each tile carries its name in a black box at its top-left, 7 rows
+    # (5-row glyphs and a margin) by 4·len + 1 columns at this height (scale 1).
     for k, f in enumerate(files):
         image = read_png(f)
         assert image.shape == (H, 2 * W + 1, 4)
-        np.testing.assert_array_equal(image[:, :W], vpl[k])
         assert (image[:, W] == 255).all(), "the separator column"
-        np.testing.assert_array_equal(image[:, W + 1:], vsgl_frames[k])
+        for tile_image, raw, name, white in ((image[:, :W], vpl[k], "vpl", 24), (image[:, W + 1:], vsgl_frames[k], "vsgl", 32)):
+            box_w = 4 * len(name) + 1
+            outside = np.ones((H, W), bool)
+            outside[:7, :box_w] = False
+            np.testing.assert_array_equal(tile_image[outside], raw[outside])
+            box = tile_image[:7, :box_w, :3]
+            assert set(np.unique(box)) <= {0, 255}
+            # Lit pixels of the glyphs (v 9, p 8, l 7: 24; v 9, s 7, g 9, l 7: 32): the name, drawn.
+            assert int((box == 255).all(-1).sum()) == white, name
         assert b"vpl | vsgl" in f.read_bytes()
     # The sweep moves the light: consecutive frames differ.
     assert not np.array_equal(read_png(files[0]), read_png(files[1]))
@@ -107,7 +116,7 @@ def test_video_round_trip(tiny, tmp_path, suffix, tolerance, methods):
     if suffix == ".mp4":
         pytest.importorskip("imageio_ffmpeg", reason="imageio-ffmpeg not installed (pip install vsgl[video])")
     path = tmp_path / f"out{suffix}"
-    result = video.animate(tiny, vsgl.scenes.cave_flashlight(), methods, frames=FRAMES, fps=FPS, output=str(path), options=OPTIONS)
+    result = video.animate(tiny, vsgl.scenes.cave_flashlight(), methods, frames=FRAMES, fps=FPS, output=str(path), options=OPTIONS, labels=False)
     decoded = np.asarray(iio.imread(path))[..., :3].astype(np.float64)
     w, h = result["size"]
     if suffix == ".mp4":

@@ -26,6 +26,47 @@ import numpy as np
 VIDEO_EXTRA_HINT = "pip install vsgl[video]"
 SEPARATOR = 255  # a white 1-pixel column between tiles
 
+# A 3×5 pixel font for the method names drawn on compared tiles (no font package needed): each
+# glyph is five rows of three bits, most significant bit on the left. Characters without a glyph
+# are drawn as a filled box, so a name never loses a letter silently.
+_GLYPHS: dict[str, tuple[int, ...]] = {
+    "a": (2, 5, 7, 5, 5), "b": (6, 5, 6, 5, 6), "c": (3, 4, 4, 4, 3), "d": (6, 5, 5, 5, 6),
+    "e": (7, 4, 6, 4, 7), "f": (7, 4, 6, 4, 4), "g": (3, 4, 5, 5, 3), "h": (5, 5, 7, 5, 5),
+    "i": (7, 2, 2, 2, 7), "j": (1, 1, 1, 5, 2), "k": (5, 5, 6, 5, 5), "l": (4, 4, 4, 4, 7),
+    "m": (5, 7, 7, 5, 5), "n": (6, 5, 5, 5, 5), "o": (2, 5, 5, 5, 2), "p": (6, 5, 6, 4, 4),
+    "q": (2, 5, 5, 6, 3), "r": (6, 5, 6, 5, 5), "s": (3, 4, 2, 1, 6), "t": (7, 2, 2, 2, 2),
+    "u": (5, 5, 5, 5, 7), "v": (5, 5, 5, 5, 2), "w": (5, 5, 7, 7, 5), "x": (5, 5, 2, 5, 5),
+    "y": (5, 5, 2, 2, 2), "z": (7, 1, 2, 4, 7), "0": (7, 5, 5, 5, 7), "1": (2, 6, 2, 2, 7),
+    "2": (6, 1, 2, 4, 7), "3": (6, 1, 2, 1, 6), "4": (5, 5, 7, 1, 1), "5": (7, 4, 6, 1, 6),
+    "6": (3, 4, 7, 5, 7), "7": (7, 1, 2, 2, 2), "8": (7, 5, 7, 5, 7), "9": (7, 5, 7, 1, 6),
+    "_": (0, 0, 0, 0, 7), "-": (0, 0, 7, 0, 0), " ": (0, 0, 0, 0, 0),
+}
+
+
+def label_box(text: str, height: int) -> tuple[int, int, int]:
+    """(box height, box width, scale) of the label :func:`draw_label` draws on a tile of
+    ``height`` rows: glyphs scaled by max(1, height // 90), one glyph column apart, a 1-unit
+    margin."""
+    scale = max(1, height // 90)
+    return (5 + 2) * scale, (4 * len(text) + 1) * scale, scale
+
+
+def draw_label(image: np.ndarray, text: str) -> np.ndarray:
+    """A copy of the (H, W, 4) uint8 ``image`` with ``text`` in white on a black box in its
+    top-left corner (clipped to the image)."""
+    out = image.copy()
+    box_h, box_w, scale = label_box(text, image.shape[0])
+    out[:box_h, :box_w, :3] = 0
+    out[:box_h, :box_w, 3] = 255
+    for i, ch in enumerate(text.lower()):
+        rows = _GLYPHS.get(ch, (7, 7, 7, 7, 7))
+        for r, bits in enumerate(rows):
+            for c in range(3):
+                if bits >> (2 - c) & 1:
+                    y0, x0 = (1 + r) * scale, (1 + 4 * i + c) * scale
+                    out[y0:y0 + scale, x0:x0 + scale, :3] = 255
+    return out
+
 
 def frame_times(frames: int, fps: float) -> list[float]:
     """The time of each frame, k / fps seconds; raises ValueError naming the argument."""
@@ -95,9 +136,10 @@ def output_kind(output: str) -> str:
 
 
 def render_tiles(renderer, scene, methods: Sequence[str], times: Sequence[float], options: dict[str, Any] | None = None,
-                 progress: Callable[[int, int], None] | None = None) -> list[np.ndarray]:
+                 progress: Callable[[int, int], None] | None = None, labels: bool = False) -> list[np.ndarray]:
     """The ``ldr`` frames of ``scene`` at ``times`` for each method, tiled left to right: one
-    (H, W·M + M − 1, 4) uint8 array per time. ``options`` go only to the methods that take them."""
+    (H, W·M + M − 1, 4) uint8 array per time. ``options`` go only to the methods that take them;
+    ``labels`` draws each method's name on its tile (:func:`draw_label`)."""
     import vsgl
 
     if not methods:
@@ -114,7 +156,7 @@ def render_tiles(renderer, scene, methods: Sequence[str], times: Sequence[float]
         mine = {k: v for k, v in options.items() if k in takes and v is not None}
         images = []
         for frame in renderer.render_sequence(scene, [{"time": t} for t in times], method=m, aovs=["ldr"], **mine):
-            images.append(frame.aov("ldr"))
+            images.append(draw_label(frame.aov("ldr"), m) if labels else frame.aov("ldr"))
             done += 1
             if progress is not None:
                 progress(done, total)
@@ -172,16 +214,21 @@ def animate(
     output: str,
     options: dict[str, Any] | None = None,
     progress: Callable[[int, int], None] | None = None,
+    labels: bool | None = None,
 ) -> dict[str, Any]:
     """Renders ``frames`` frames of ``scene`` at ``fps`` with each method of ``methods``, tiles
     them left to right and writes ``output``. ``options`` are render options, each passed only
-    to the methods that take it. Checks the output kind (and the optional packages it needs)
-    before rendering. Returns {"files": [...], "frames", "size": (W, H), "methods"}.
+    to the methods that take it. ``labels``: draw each method's name on its tile, as the papers'
+    figures do (default: when more than one method is compared). Checks the output kind (and the
+    optional packages it needs) before rendering. Returns {"files": [...], "frames", "size":
+    (W, H), "methods"}.
     """
     kind = output_kind(output)
     iio = None if kind == "png-folder" else _imageio(kind)
     times = frame_times(frames, fps)
-    tiles = render_tiles(renderer, scene, methods, times, options, progress)
+    if labels is None:
+        labels = len(methods) > 1
+    tiles = render_tiles(renderer, scene, methods, times, options, progress, labels=labels)
     label = "tiles left to right: " + " | ".join(methods)
     files: list[str] = []
     if kind == "png-folder":
