@@ -2,8 +2,9 @@
 
 Frames are rendered with ``Renderer.render_sequence`` (one ``{"time": k / fps}`` per frame,
 which poses the scene's animations) and read back as the GPU-tone-mapped ``ldr`` AOV (sRGB
-uint8). Several methods (``--compare vpl,vsgl,reference``) are tiled left to right with a
-1-pixel white separator; their order is printed and stored in each PNG's ``Comment``.
+uint8). Several methods (``--compare vpl,vsgl,reference``) are tiled left to right, each
+labelled with its name (:func:`draw_label`), with a 1-pixel white separator; their order is also
+printed and stored in each PNG's ``Comment``.
 
 In a notebook, :func:`clip` returns a :class:`Clip` that plays the frames inline (PNG data
 URIs and a timer; no package needed).
