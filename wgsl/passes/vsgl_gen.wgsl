@@ -128,6 +128,15 @@ fn kernel_mass(s: vec2f, level: f32, total: f32) -> f32 {
     return exp2(2.0 * level) * moment_trilinear(0u, s, level).w / total;
 }
 
+// A cluster's texel-averaged moment of `chain`: "node" reads its quadtree node exactly at the
+// integer `level`; the filtered kernels read trilinearly at centre `s` and the continuous level.
+fn cluster_moment(chain: u32, level: f32, node: vec2u, s: vec2f) -> vec4f {
+    if (params.kernel == 2u) {
+        return moment_texel(chain, u32(level), vec2i(node));
+    }
+    return moment_trilinear(chain, s, level);
+}
+
 @compute @workgroup_size(WORKGROUP, 1, 1)
 fn main(@builtin(global_invocation_id) gid: vec3u) {
     let i = gid.x;
@@ -195,32 +204,14 @@ fn main(@builtin(global_invocation_id) gid: vec3u) {
         level = 0.5 * (lo + hi);
     }
 
-    var a: vec4f;
-    var b: vec4f;
-    var c: vec4f;
-    var d: vec4f;
-    var e: vec4f;
+    let a = cluster_moment(0u, level, node, s);
+    let b = cluster_moment(1u, level, node, s);
+    let c = cluster_moment(2u, level, node, s);
+    let d = cluster_moment(3u, level, node, s);
+    let e = cluster_moment(4u, level, node, s);
     var f = vec4f(0.0);
-    if (params.kernel == 2u) {
-        let l = u32(level);
-        let at = vec2i(node);
-        a = moment_texel(0u, l, at);
-        b = moment_texel(1u, l, at);
-        c = moment_texel(2u, l, at);
-        d = moment_texel(3u, l, at);
-        e = moment_texel(4u, l, at);
-        if (params.planes == 1u) {
-            f = moment_texel(5u, l, at);
-        }
-    } else {
-        a = moment_trilinear(0u, s, level);
-        b = moment_trilinear(1u, s, level);
-        c = moment_trilinear(2u, s, level);
-        d = moment_trilinear(3u, s, level);
-        e = moment_trilinear(4u, s, level);
-        if (params.planes == 1u) {
-            f = moment_trilinear(5u, s, level);
-        }
+    if (params.planes == 1u) {
+        f = cluster_moment(5u, level, node, s);
     }
     // Cluster total of a texel-averaged moment f̄_texel: Eq. 5 gives W·f̄/(N·w̄); Eq. 4 gives
     // M·f̄/max(N p, 1).
