@@ -21,7 +21,8 @@ def test_public_names_exist():
         assert hasattr(vsgl, name), name
     assert issubclass(vsgl.SceneError, vsgl.VsglError)
     assert issubclass(vsgl.NoAdapterError, vsgl.VsglError)
-    assert vsgl.scenes.names() == ["cornell_box", "glossy_cornell", "caustics_ring", "cave_flashlight", "diffuse_cornell"]
+    assert vsgl.scenes.names() == ["cornell_box", "glossy_cornell", "caustics_ring", "cave_flashlight", "diffuse_cornell",
+                                   "mirror_panel"]
 
 
 def test_unknown_method_lists_valid_ones(renderer):

@@ -6,6 +6,8 @@
 - ``cave_flashlight``: an enclosed room lit only by a narrow spot light, glossy floor.
 - ``diffuse_cornell``: the Cornell box with purely Lambertian materials (no specular
   reflectance at all, ``KHR_materials_specular`` factor 0): a frame leaves out every specular lobe.
+- ``mirror_panel``: a polished metal panel (roughness 0.02) tilted 45° under a narrow spot, which
+  throws the beam onto the wall behind it as a sharp bright patch (a planar caustic).
 
 Two are animated like glTF files (``scene.animations``, ``scene.set_time(t)``): in
 ``cave_flashlight`` the flashlight sweeps 35° left and right over 4 s (``flashlight_sweep``), in
@@ -46,3 +48,7 @@ def cave_flashlight() -> Scene:
 
 def diffuse_cornell() -> Scene:
     return builtin_scene("diffuse_cornell")
+
+
+def mirror_panel() -> Scene:
+    return builtin_scene("mirror_panel")

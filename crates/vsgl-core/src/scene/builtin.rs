@@ -12,7 +12,8 @@ use glam::{DMat4, DQuat, DVec3, Vec3};
 use std::f64::consts::PI;
 
 /// The names accepted by [`by_name`], in the order `vsgl.scenes.names()` lists them.
-pub const NAMES: &[&str] = &["cornell_box", "glossy_cornell", "caustics_ring", "cave_flashlight", "diffuse_cornell"];
+pub const NAMES: &[&str] =
+    &["cornell_box", "glossy_cornell", "caustics_ring", "cave_flashlight", "diffuse_cornell", "mirror_panel"];
 
 /// A built-in scene by name, or `None` for an unknown name.
 pub fn by_name(name: &str) -> Option<Scene> {
@@ -22,6 +23,7 @@ pub fn by_name(name: &str) -> Option<Scene> {
         "caustics_ring" => caustics_ring(),
         "cave_flashlight" => cave_flashlight(),
         "diffuse_cornell" => diffuse_cornell(),
+        "mirror_panel" => mirror_panel(),
         _ => return None,
     })
 }
@@ -251,6 +253,36 @@ pub fn caustics_ring() -> Scene {
     });
     s.add_light(spot(DVec3::new(0.0, 2.2, 2.0), DVec3::new(0.0, 0.0, -0.3), 30.0, 20.0, 30.0));
     s.cameras.push(camera(DVec3::new(0.0, 2.4, -2.2), DVec3::new(0.0, 0.0, 0.0), 45.0));
+    s
+}
+
+/// A polished metal panel (roughness 0.02) tilted 45° on a diffuse floor in front of a diffuse
+/// wall, lit from straight above by a narrow spot: the panel throws the beam sideways onto the
+/// wall as a sharp bright patch (a planar caustic), issue 18's mirror-panel case. Unlike the
+/// ring, every texel of the panel reflects the same way, so the caustic is one coherent lobe
+/// that VSGL clusters of the panel can represent exactly, and the wall around the patch should
+/// stay dark: light that VSGLs spread there is their bias.
+pub fn mirror_panel() -> Scene {
+    let mut s = Scene { source: "builtin:mirror_panel".into(), ..Default::default() };
+    add(&mut s, "floor", Material::dielectric("floor", [0.8, 0.8, 0.8], 1.0), |b| {
+        b.quad(DVec3::new(-3.0, 0.0, 1.5), DVec3::X * 6.0, DVec3::NEG_Z * 3.5)
+    });
+    add(&mut s, "wall", Material::dielectric("wall", [0.8, 0.8, 0.8], 1.0), |b| {
+        b.quad(DVec3::new(-3.0, 0.0, -2.0), DVec3::X * 6.0, DVec3::Y * 2.5)
+    });
+    // The panel's normal (0, 1, −1)/√2 reflects light falling straight down into −z, onto the
+    // wall 1.5 m behind it. Its edges: 0.8 m along x and 0.8 m up the 45° slope.
+    let center = DVec3::new(0.0, 0.5, -0.5);
+    let (across, up_slope) = (DVec3::X * 0.8, DVec3::new(0.0, 1.0, 1.0).normalize() * 0.8);
+    let corner = center - 0.5 * across - 0.5 * up_slope;
+    add(&mut s, "panel", Material::metal("polished_silver", [0.97, 0.96, 0.91], 0.02), |b| {
+        // Front (mirror side, facing up and towards the wall) and back as two one-sided quads,
+        // 1 cm apart so that no ray leaving one face meets the other at distance zero.
+        b.quad(corner, up_slope, across);
+        b.quad(corner - 0.01 * up_slope.cross(across).normalize(), across, up_slope);
+    });
+    s.add_light(spot(DVec3::new(0.0, 2.6, -0.5), center, 30.0, 10.0, 14.0));
+    s.cameras.push(camera(DVec3::new(1.3, 1.4, 1.5), DVec3::new(-0.3, 0.55, -1.3), 50.0));
     s
 }
 
