@@ -1,0 +1,198 @@
+"""Issue 18's acceptance against the converged path tracer: does VSGL error fall with N and stay
+below VPL's, at equal N and at equal time, on the four caustic and glossy scenes?
+
+    .venv/bin/python scripts/issue18_acceptance.py [--scenes ...] [--lights 256,...,65536]
+        [--visibility none|raytrace] [--cache DIR] [--out results.json]
+
+For every scene the ground truth is `pathtrace strategy="bidirectional"` (light tracing + camera
+paths by MIS) at the scene's spp (cached as .npy in --cache; its own error is printed: the
+relRMSE over 4×4-pixel blocks implied by its per-pixel stderr). Every method renders the
+`indirect` AOV at the same size, interleave 1, no denoiser, the RSM side left to the default rule
+(`rsm_size_for`: 256 up to N = 16384, 512 up to 65536), and is scored by
+
+- `block`: relRMSE of 4×4-pixel block means against the truth's (docs/error.md: block means keep
+  the energy and placement of light and drop single-pixel spikes, which decide every per-pixel
+  sum on glossy and caustic scenes);
+- `mean`: the image mean over the truth's;
+- on caustics_ring, `glow`: the mean indirect light on the floor outside the ring (floor points
+  more than 0.7 m from its axis, found from the `normal` and `depth` AOVs and the camera) over
+  the truth's there, the issue's "glow outside the caustic";
+- `s`: wall-clock seconds of the render call (lavapipe: only ratios within one run mean
+  anything; the median of 3 for N ≤ 4096, one run above).
+
+With `--time-rounds R` the times that decide the equal-time table are taken apart from the
+errors: R rounds, each rendering every configuration with N ≤ `--time-max-lights` once, in turn
+(round-robin, so a change in the machine's load during the run falls on every configuration
+alike), and the median over rounds with its min–max spread is reported.
+
+The equal-time table takes every VPL time as a budget and pits the best VSGL configuration
+(any kernel, any N) that fits in it against that VPL. Prints Markdown tables.
+"""
+
+from __future__ import annotations
+
+import argparse
+import json
+import pathlib
+import statistics
+import time
+
+import numpy as np
+
+import vsgl
+
+SPP = {"cornell_box": 1024, "glossy_cornell": 2048, "caustics_ring": 8192, "mirror_panel": 4096}
+VARIANTS = {"vpl": ("vpl", {}), "vsgl": ("vsgl", {}), "vsgl node": ("vsgl", dict(kernel="node"))}
+
+
+def blocks(a: np.ndarray) -> np.ndarray:
+    h, w = a.shape[:2]
+    return a[: h - h % 4, : w - w % 4].reshape(h // 4, 4, w // 4, 4, -1).mean(axis=(1, 3))
+
+
+def block_error(x: np.ndarray, truth: np.ndarray) -> float:
+    xb, tb = blocks(x), blocks(truth)
+    return float(np.sqrt(((xb - tb) ** 2).mean()) / tb.mean())
+
+
+def ground_truth(r: vsgl.Renderer, name: str, scene: vsgl.Scene, spp: int, cache: pathlib.Path) -> tuple[np.ndarray, np.ndarray]:
+    path = cache / f"gt_{name}_{spp}.npy"
+    err_path = cache / f"gt_{name}_{spp}_stderr.npy"
+    if not path.exists():
+        t = time.time()
+        f = r.render(scene, method="pathtrace", strategy="bidirectional", spp=spp, aovs=["indirect", "stderr"])
+        np.save(path, f.aov("indirect").astype(np.float64))
+        np.save(err_path, f.aov("stderr").astype(np.float64))
+        print(f"<!-- {name}: pathtrace {spp} spp took {time.time() - t:.0f} s -->", flush=True)
+    return np.load(path), np.load(err_path)
+
+
+def floor_outside_ring(r: vsgl.Renderer, scene: vsgl.Scene, radius: float = 0.7) -> np.ndarray:
+    """Pixels that see the floor (y = 0) farther than `radius` from the ring's axis."""
+    f = r.render(scene, method="direct", aovs=["normal", "depth"])
+    normal, depth = f.aov("normal"), f.aov("depth")[..., 0]
+    cam = scene.cameras[0]
+    eye, fwd, up = (np.array(v, dtype=np.float64) for v in (cam.eye, cam.forward, cam.up))
+    right = np.cross(fwd, up)
+    right /= np.linalg.norm(right)
+    up = np.cross(right, fwd)
+    h, w = depth.shape
+    t = np.tan(np.radians(cam.fov_y_deg) / 2)
+    ys = (1 - 2 * (np.arange(h) + 0.5) / h) * t
+    xs = (2 * (np.arange(w) + 0.5) / w - 1) * t * w / h
+    dirs = fwd + xs[None, :, None] * right + ys[:, None, None] * up
+    points = eye + dirs * depth[..., None]  # depth is the distance along the view axis
+    on_floor = (normal[..., 1] > 0.99) & (np.abs(points[..., 1]) < 0.01)
+    return on_floor & (np.hypot(points[..., 0], points[..., 2]) > radius)
+
+
+def timed(r: vsgl.Renderer, scene: vsgl.Scene, repeats: int, **kw) -> tuple[np.ndarray, float, dict]:
+    times, frame = [], None
+    for _ in range(repeats):
+        t = time.perf_counter()
+        frame = r.render(scene, aovs=["indirect"], **kw)
+        img = frame.aov("indirect").astype(np.float64)
+        times.append(time.perf_counter() - t)
+    return img, statistics.median(times), dict(frame.settings)
+
+
+def main() -> int:
+    p = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
+    p.add_argument("--scenes", default="cornell_box,glossy_cornell,caustics_ring,mirror_panel")
+    p.add_argument("--lights", default="256,1024,4096,16384,65536")
+    p.add_argument("--variants", default="vpl,vsgl,vsgl node")
+    p.add_argument("--visibility", default="none", choices=["none", "raytrace"])
+    p.add_argument("--size", type=int, default=64)
+    p.add_argument("--brsm", action="store_true", help="also vpl and vsgl with importance='brsm' at N = 1024")
+    p.add_argument("--cache", type=pathlib.Path, default=pathlib.Path("/tmp/vsgl-issue18"))
+    p.add_argument("--out", type=pathlib.Path, default=None)
+    p.add_argument("--time-rounds", type=int, default=0, help="round-robin timing rounds for the equal-time table")
+    p.add_argument("--time-max-lights", type=int, default=16384)
+    a = p.parse_args()
+    a.cache.mkdir(parents=True, exist_ok=True)
+    lights = [int(n) for n in a.lights.split(",")]
+    variants = [v.strip() for v in a.variants.split(",")]
+    r = vsgl.Renderer(a.size, a.size)
+    results = []
+    for name in a.scenes.split(","):
+        scene = vsgl.scenes.load(name)
+        truth, stderr = ground_truth(r, name, scene, SPP[name], a.cache)
+        own = float(np.sqrt((blocks(stderr**2) / 16).mean()) / blocks(truth).mean())
+        glow_mask = floor_outside_ring(r, scene) if name == "caustics_ring" else None
+        print(f"\n### {name} ({a.size}², visibility {a.visibility}; truth: bidirectional pathtrace {SPP[name]} spp, "
+              f"its own block error {own:.3f}, mean {truth.mean():.4g})")
+        if glow_mask is not None:
+            g_err = float(np.sqrt((stderr[glow_mask] ** 2).sum()) / glow_mask.sum())
+            print(f"glow region: {int(glow_mask.sum())} floor pixels outside r = 0.7 m; truth there "
+                  f"{truth[glow_mask].mean():.3g} ± {g_err:.2g}")
+        print("\n| method | " + " | ".join(f"N = {n}" for n in lights) + " |")
+        print("|---|" + "---|" * len(lights))
+        configs = [(v, n, {}) for v in variants for n in lights]
+        if a.brsm:
+            configs += [(v + " brsm", 1024, dict(importance="brsm")) for v in ("vpl", "vsgl")]
+        rows: dict[str, list[str]] = {}
+        for label, n, extra in configs:
+            method, kw = VARIANTS[label.replace(" brsm", "")]
+            kw = dict(kw, **extra, num_lights=n, interleave=1, denoise=False, visibility=a.visibility)
+            if n == lights[0]:
+                r.render(scene, method=method, aovs=["indirect"], **dict(kw, num_lights=64))  # compile the pipelines
+            img, secs, settings = timed(r, scene, 3 if n <= 4096 else 1, method=method, **kw)
+            res = dict(scene=name, variant=label, num_lights=n, visibility=a.visibility, rsm_size=settings.get("rsm_size"),
+                       block=block_error(img, truth), mean=float(img.mean() / truth.mean()), seconds=secs, truth_own_block=own)
+            if glow_mask is not None:
+                res["glow"] = float(img[glow_mask].mean() / truth[glow_mask].mean())
+            results.append(res)
+            cell = f"{res['block']:.3f} ({res['mean']:.2f}×" + (f", glow {res['glow']:.2f}×" if "glow" in res else "") + f"; {secs:.2f} s)"
+            rows.setdefault(label, []).append(cell if not extra else f"N = {n}: {cell}")
+            print(f"<!-- {label} N={n}: {cell} -->", flush=True)
+        for label, cells in rows.items():
+            print(f"| {label} | " + " | ".join(cells) + " |")
+        if a.time_rounds:
+            round_robin_times(r, scene, [x for x in results if x["scene"] == name], a.time_rounds, a.time_max_lights)
+        equal_time(results, name)
+    if a.out:
+        a.out.write_text(json.dumps(results, indent=1))
+    return 0
+
+
+def round_robin_times(r: vsgl.Renderer, scene: vsgl.Scene, results: list[dict], rounds: int, max_lights: int) -> None:
+    """Re-times the configurations with N ≤ max_lights in turn; replaces `seconds` by the median."""
+    todo = [x for x in results if x["num_lights"] <= max_lights]
+    samples: dict[int, list[float]] = {id(x): [] for x in todo}
+    for _ in range(rounds):
+        for x in todo:
+            method, kw = VARIANTS[x["variant"].replace(" brsm", "")]
+            extra = dict(importance="brsm") if "brsm" in x["variant"] else {}
+            _, secs, _ = timed(r, scene, 1, method=method, **kw, **extra, num_lights=x["num_lights"], interleave=1,
+                               denoise=False, visibility=x["visibility"])
+            samples[id(x)].append(secs)
+    print(f"\nTimes, median over {rounds} round-robin rounds [min, max] (s):\n")
+    for x in todo:
+        t = samples[id(x)]
+        x.update(seconds=statistics.median(t), seconds_min=min(t), seconds_max=max(t), time_rounds=rounds)
+        print(f"- {x['variant']} N = {x['num_lights']}: {x['seconds']:.3f} [{min(t):.3f}, {max(t):.3f}]")
+    for x in results:
+        if x["num_lights"] > max_lights:
+            x["seconds_untimed"] = x.pop("seconds")  # one run under other load: not a budget
+
+
+def equal_time(results: list[dict], scene: str) -> None:
+    mine = [r for r in results if r["scene"] == scene and "brsm" not in r["variant"] and "seconds" in r]
+    vpls = sorted((r for r in mine if r["variant"] == "vpl"), key=lambda r: r["seconds"])
+    vsgls = [r for r in mine if r["variant"].startswith("vsgl")]
+    if not vpls or not vsgls:
+        return
+    print(f"\nEqual time on {scene}: every VPL time is a budget; the best VSGL configuration that fits it")
+    print("\n| budget (s) | vpl | best vsgl within it | vsgl below vpl? |\n|---|---|---|---|")
+    for v in vpls:
+        fits = [s for s in vsgls if s["seconds"] <= v["seconds"] * 1.05]
+        if not fits:
+            print(f"| {v['seconds']:.2f} | N = {v['num_lights']}: {v['block']:.3f} | none fits | — |")
+            continue
+        best = min(fits, key=lambda s: s["block"])
+        print(f"| {v['seconds']:.2f} | N = {v['num_lights']}: {v['block']:.3f} | {best['variant']} N = {best['num_lights']}: "
+              f"{best['block']:.3f} ({best['seconds']:.2f} s) | {'yes' if best['block'] < v['block'] else '**no**'} |")
+
+
+if __name__ == "__main__":
+    raise SystemExit(main())
