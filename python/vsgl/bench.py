@@ -465,10 +465,7 @@ def run(
                             for li in (lightings if m == "vsgl" else (None,)):
                                 for imp in importances:
                                     for s in samplings:
-                                        # brsm and metropolis do not combine (the chains sample
-                                        # the RSM's own weights): the render refuses it.
-                                        if not (imp == "brsm" and s == "metropolis"):
-                                            configs.append((m, n, r, k, K, li, imp, s))
+                                        configs.append((m, n, r, k, K, li, imp, s))
         elif m in ("reference", "vsgl2"):
             # Deterministic and without a light count: one configuration per RSM size.
             for r in rsm_sizes:

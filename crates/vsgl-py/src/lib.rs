@@ -686,7 +686,9 @@ impl PyFrame {
     /// One buffer of the first light's reflective shadow map, (N, N, C) float32 ((6N, N, C)
     /// for a point light: its six cube faces +X, −X, +Y, −Y, +Z, −Z stacked), when the
     /// frame was rendered with `capture_rsm=True`: position (relative to the light), normal,
-    /// roughness, flux_diffuse (Φ·R_d), flux_specular (Φ·R_s), weight (Φ·(R_d+R_s) summed).
+    /// roughness, flux_diffuse (Φ·R_d), flux_specular (Φ·R_s), weight (Φ·(R_d+R_s) summed),
+    /// sampling_weight (each texel's unnormalised probability in the pyramid the virtual lights
+    /// were drawn from: weight, or with importance="brsm" the re-weighted q/Q + 0.1·w/W).
     fn rsm<'py>(&self, py: Python<'py>, name: &str) -> PyResult<Bound<'py, PyAny>> {
         let Some((n, buffers)) = &self.inner.rsm else {
             return Err(argument_error("name: this frame kept no RSM; render with capture_rsm=True and a method that uses one"));

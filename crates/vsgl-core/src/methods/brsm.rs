@@ -36,15 +36,9 @@ pub enum Importance {
 
 impl Importance {
     pub fn from_options(o: &Options) -> Result<Self> {
+        // With sampling="metropolis" the chains target the same re-weighted pyramid the
+        // estimators divide by (`MetropolisSampling::step` is given it), so the pair combines.
         Ok(match o.str("importance")? {
-            // The Metropolis chains target the RSM's own weights (metropolis_step.wgsl), while
-            // the estimators would divide by the importance density: biased, so refused.
-            "brsm" if o.str("sampling")? == "metropolis" => {
-                return Err(crate::error::Error::invalid(
-                    "importance",
-                    "importance=\"brsm\" does not combine with sampling=\"metropolis\" (the chains sample the RSM's own weights, not the view's importance): choose one",
-                ))
-            }
             "brsm" => Importance::Brsm { view_lights: o.u32("importance_lights")? },
             _ => Importance::Rsm,
         })
@@ -95,6 +89,7 @@ impl ViewImportance {
         pdf_mips.record_pyramid(rec, "brsm_pdf_mips", size, &pyramid);
         mix.record(rec, light.rsm, &pyramid);
         pdf_mips.record_pyramid(rec, "brsm_pdf_mips", size, &pyramid);
+        ctx.sampling_pyramid = Some(pyramid.clone());
         Ok(pyramid)
     }
 }
