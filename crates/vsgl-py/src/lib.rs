@@ -869,7 +869,9 @@ impl PyRenderer {
     ///   interleave (default 1), denoise, visibility ("none" | "ism" | "raytrace"), ism_size,
     ///   ism_points, ism_points_per_map, ism_bias, ism_pcf (imperfect shadow maps, with
     ///   visibility="ism"), importance ("rsm" | "brsm": bidirectional RSM importance from
-    ///   importance_lights VSGLs of the camera's view), importance_lights, capture_rsm.
+    ///   importance_lights VSGLs of the camera's view; combines with every sampling),
+    ///   importance_lights, importance_interleave (1..16: with "brsm", RSM texel (x, y)
+    ///   evaluates only the view VSGLs of its interleave class, k² times cheaper), capture_rsm.
     /// - "vsgl": num_lights VSGLs (in all) by filtered importance sampling. shadow_size,
     ///   num_lights, rsm_size, sampling, seed, kernel ("integral" | "density" | "node"), K,
     ///   bisection_steps, interleave, denoise, diffuse ("papers" | "accurate" | "sg_product"),
@@ -877,7 +879,7 @@ impl PyRenderer {
     ///   NDF widened by the light's spread, after Tokuyoshi et al. 2024, and the clamped-cosine
     ///   diffuse; docs/rendering.md "SG lighting"),
     ///   visibility, ism_size, ism_points, ism_points_per_map, ism_bias, ism_pcf, importance,
-    ///   importance_lights, capture_rsm.
+    ///   importance_lights, importance_interleave, capture_rsm.
     /// - "vsgl2": two VSGLs per light by a parallel sum. shadow_size, rsm_size (any side
     ///   32..4096), diffuse, lighting, vsgl2_reduction ("auto" | "subgroup" | "shared_memory"),
     ///   visibility, ism_size, ism_points, ism_points_per_map, ism_bias, ism_pcf, capture_rsm.

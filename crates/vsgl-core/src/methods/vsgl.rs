@@ -69,6 +69,7 @@ const OPTIONS: &[OptionSpec] = &[
     common::ISM_PCF,
     common::IMPORTANCE,
     common::IMPORTANCE_LIGHTS,
+    common::IMPORTANCE_INTERLEAVE,
     common::CAPTURE_RSM,
 ];
 
@@ -178,7 +179,7 @@ impl Method for Vsgl {
         // Metropolis chains keep one view seed while they live (`target_seed` says why).
         let view_seed = if self.sampling == Sampling::Metropolis { self.metropolis().target_seed(ctx) } else { self.seed };
         let view = match self.importance {
-            Importance::Brsm { view_lights } => Some(ViewImportance::new(ctx, view_lights, view_seed)?),
+            Importance::Brsm { view_lights, interleave } => Some(ViewImportance::new(ctx, view_lights, interleave, view_seed)?),
             Importance::Rsm => None,
         };
         let lit = for_each_light(ctx, &rsm, |ctx, light| {
