@@ -28,8 +28,10 @@
 // expectation if the classes were random subsets). The scale cancels in q_i/Q (brsm_mix.wgsl)
 // and is kept so that the map stays an estimate of q. Whatever the estimate, the mixture keeps
 // every lit texel samplable, so the VPL and node-VSGL estimators stay unbiased; the cost is a
-// k-periodic pattern in q, i.e. variance (and, for the filtered kernels, which assume f/q
-// smooth over a kernel, bias). k = 1 is the plain mapping, bit for bit.
+// k-periodic pattern in q (variance, and for the filtered kernels, which assume f/q smooth over
+// a kernel, bias), which brsm_importance_filter.wgsl removes by recombining the classes over
+// k×k windows (why it is needed is measured there). With k > 1 this pass writes a scratch
+// buffer the filter reads; k = 1 is the plain mapping, bit for bit, straight into the pyramid.
 #include "common/constants.wgsl"
 #include "common/math.wgsl"
 #include "common/sg.wgsl"
@@ -60,7 +62,7 @@ const TILE: u32 = 64u; // = WORKGROUP², one view VSGL of the class loaded per t
 @group(0) @binding(4) var<storage, read> rsm_flux_diffuse: array<vec4f>;
 @group(0) @binding(5) var<storage, read> rsm_flux_specular: array<vec4f>;
 @group(0) @binding(6) var<storage, read> view_vsgls: array<VsglRaw>;
-// Level 0 of the importance pyramid: q_i per texel.
+// Level 0 of the importance pyramid (k = 1) or the interleaved estimates (k > 1): q_i per texel.
 @group(0) @binding(7) var<storage, read_write> importance: array<f32>;
 
 var<workgroup> tile: array<VsglRaw, TILE>;
