@@ -303,6 +303,20 @@ def test_bench_compares_rsm_and_brsm_importance(tmp_path):
     assert {r["importance"] for r in json.loads((tmp_path / "bench.json").read_text())["rows"]} == {None, "rsm", "brsm"}
 
 
+def test_bench_runs_brsm_with_metropolis_and_an_importance_interleave():
+    """brsm and metropolis combine (the chains follow the re-weighted density), so the sweep no
+    longer skips the pair; --importance-interleave sets the brsm rows' importance_interleave."""
+    with pytest.raises(ValueError, match="importance_interleave: expected an integer 1..16"):
+        bench.run(importance_interleave=0, size=(8, 8), out=None, progress=False)
+    report = bench.run(scenes=["cornell_box"], methods=["vpl"], lights=[32], size=(16, 16), rsm_sizes=[32], seeds=(0,), frames=1, warmup_seconds=0,
+                       reference_rsm=32, importances=("rsm", "brsm"), samplings=("stratified", "metropolis"), importance_interleave=2, out=None, progress=False)
+    assert sorted((r.importance, r.sampling) for r in report.rows) == [("brsm", "metropolis"), ("brsm", "stratified"), ("rsm", "metropolis"), ("rsm", "stratified")]
+    for r in report.rows:
+        assert r.rel_rmse_indirect is not None and np.isfinite(r.rel_rmse_indirect)
+    brsm = next(r for r in report.rows if r.importance == "brsm")
+    assert "brsm_importance_filter" in brsm.passes_ms or not brsm.passes_ms
+
+
 def test_sampling_sweep_reports_error_flicker_and_time_for_warp_and_metropolis(tmp_path):
     """`--sampling stratified,metropolis`: a row per sampling with its own time, error and flicker
     (the cornell box's slid spot; docs/rendering.md, "Metropolis–Hastings sampling", has the

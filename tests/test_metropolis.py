@@ -16,6 +16,7 @@ import numpy as np
 import pytest
 
 import vsgl
+from scene_builders import lit_floor_corner
 
 SIZE = 32
 RSM = 64
@@ -215,3 +216,93 @@ def test_chains_restart_when_the_lights_view_set_changes(small):
     warp = small.render(scene, seed=6, **opts).vsgls()
     for field in ("center", "pdf", "diffuse_power"):
         np.testing.assert_array_equal(got[field], warp[field], err_msg=field)
+
+
+# importance="brsm" with sampling="metropolis": the chains target the re-weighted density the
+# estimators divide by (docs/rendering.md, "Metropolis–Hastings sampling"; the derivation is in
+# wgsl/passes/metropolis_step.wgsl). The scene is one where that density is far from the RSM's
+# own: a wide spot lights an 8 × 8 floor and the camera sees a small patch of wall beside it.
+BRSM = dict(importance="brsm", importance_lights=256)
+
+
+def test_brsm_chain_states_have_the_brsm_density(small, tmp_path):
+    """E_π[p(x)] = M·Σπ²/Π² with π the captured sampling weights (brsm_mix's level 0, the
+    view's VSGLs seeded by the chains' first seed, 0) against the chains' mean p over later
+    frames, as test_chain_states_have_the_warp_density does for the RSM's weights. Chains that
+    targeted the RSM's weights w instead would average M·Σwπ/(WΠ), asserted to be many standard
+    errors away so that this test can tell the two apart."""
+    scene, cam = lit_floor_corner(tmp_path)
+    f = small.render(scene, camera=cam, method="vsgl", rsm_size=RSM, num_lights=4, capture_rsm=True, seed=0, aovs=[], **BRSM)
+    pi = np.asarray(f.rsm("sampling_weight"), np.float64).ravel()
+    w = np.asarray(f.rsm("weight"), np.float64).ravel()
+    m = pi.size
+    expected = m * np.sum(pi**2) / np.sum(pi) ** 2
+    wrong = m * np.sum(w * pi) / (np.sum(w) * np.sum(pi))
+    small.reset_chains()
+    n, frames, burn = 1024, 40, 24
+    per_frame = []
+    for k in range(frames):
+        v = small.render(scene, camera=cam, method="vsgl", rsm_size=RSM, num_lights=n, sampling="metropolis", seed=k, aovs=[], **BRSM).vsgls()
+        per_frame.append(np.asarray(v["pdf"], np.float64))
+    chain_means = np.stack(per_frame[burn:]).mean(axis=0)
+    got = chain_means.mean()
+    stderr = chain_means.std(ddof=1) / np.sqrt(n)
+    print("brsm chain density", got, "expected", expected, "stderr", stderr, "w-target", wrong)
+    assert abs(wrong - expected) > 20 * stderr, (wrong, expected, stderr)
+    assert abs(got - expected) < 4 * stderr, (got, expected, stderr)
+    # The brsm warp itself (independent seeds, stratified), as a check of the closed form: its
+    # view VSGLs are seeded by each frame's seed, so each seed has its own π; seed 0's is the one
+    # captured above.
+    warp = np.asarray(small.render(scene, camera=cam, method="vsgl", rsm_size=RSM, num_lights=n, seed=0, aovs=[], **BRSM).vsgls()["pdf"], np.float64)
+    assert abs(warp.mean() - expected) < 4 * warp.std(ddof=1) / np.sqrt(n), (warp.mean(), expected)
+
+
+def test_brsm_vpl_mean_over_independent_sequences_matches_the_reference(small, tmp_path):
+    """brsm-weighted VPLs from Metropolis chains are unbiased for the every-texel reference on
+    the same RSM: the mean indirect level over independent sequences (fresh chains, disjoint
+    seeds, so each has its own view VSGLs) agrees with it within 4 standard errors. Both clamp
+    the VPL distance at 0.1 of the scene's diagonal (tests/test_brsm.py says why). Chains that
+    targeted the RSM's weights while dividing by the brsm density fail this (docs)."""
+    scene, cam = lit_floor_corner(tmp_path)
+    ref = small.render(scene, camera=cam, method="reference", rsm_size=RSM, vpl_clamp=0.1, aovs=["indirect"]).aov("indirect").astype(np.float64).mean()
+    opts = dict(camera=cam, method="vpl", rsm_size=RSM, num_lights=64, interleave=1, denoise=False, vpl_clamp=0.1, aovs=["indirect"], **BRSM)
+    replicates, frames = 8, 8
+    means = []
+    for r in range(replicates):
+        small.reset_chains()
+        seq = [small.render(scene, sampling="metropolis", seed=1000 * r + k, **opts).aov("indirect").astype(np.float64).mean() for k in range(frames)]
+        means.append(np.mean(seq))
+    means = np.array(means)
+    stderr = means.std(ddof=1) / np.sqrt(replicates)
+    print("brsm metropolis", means.mean(), "reference", ref, "stderr", stderr)
+    assert abs(means.mean() - ref) < 4 * stderr, (means.mean(), ref, stderr)
+
+
+def test_brsm_chains_restart_when_the_importance_changes(small):
+    """Chains at equilibrium for the RSM's weights are not for the brsm density: switching
+    `importance` starts them afresh from the warp, so the first frame equals the stratified
+    warp of the same seed bit for bit."""
+    scene = vsgl.scenes.cornell_box()
+    opts = dict(method="vpl", rsm_size=RSM, num_lights=32, aovs=["indirect"])
+    small.reset_chains()
+    for k in range(3):
+        small.render(scene, sampling="metropolis", seed=k, **opts)
+    switched = small.render(scene, sampling="metropolis", seed=5, **BRSM, **opts).aov("indirect")
+    warp = small.render(scene, seed=5, **BRSM, **opts).aov("indirect")
+    np.testing.assert_array_equal(switched, warp)
+
+
+def test_brsm_target_stays_fixed_while_the_chains_run(small, tmp_path):
+    """Each step keeps this frame's target invariant; a target that changed from frame to frame
+    (view VSGLs seeded by each frame's seed) would leave the chains distributed by the previous
+    frame's density. So the chains' view VSGLs keep the seed they started with: in a static
+    scene a centre that stayed put (a rejected step) has the same density bit for bit in the
+    next frame, whatever that frame's seed."""
+    scene, cam = lit_floor_corner(tmp_path)
+    opts = dict(camera=cam, method="vsgl", rsm_size=RSM, num_lights=256, sampling="metropolis", aovs=[], **BRSM)
+    small.reset_chains()
+    frames = [small.render(scene, seed=k, **opts).vsgls() for k in (0, 1, 2)]
+    for a, b in zip(frames, frames[1:]):
+        stayed = np.all(a["center"] == b["center"], axis=-1)
+        assert stayed.sum() > 16, stayed.sum()
+        np.testing.assert_array_equal(a["pdf"][stayed], b["pdf"][stayed])

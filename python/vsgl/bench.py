@@ -28,7 +28,9 @@ With ``--plans auto,full`` every configuration also runs with the pass plan forc
 
 With ``--importance rsm,brsm`` every vpl and vsgl configuration also runs with bidirectional RSM
 importance (``importance="brsm"``, its rows marked ``brsm``), so the sweep compares the two
-sampling densities at equal light counts and, through ``equal_time``, at equal time.
+sampling densities at equal light counts and, through ``equal_time``, at equal time;
+``--importance-interleave K`` sets the brsm rows' ``importance_interleave``. Every ``--sampling``
+combines with it (Metropolis chains then follow the re-weighted density).
 """
 
 from __future__ import annotations
@@ -370,6 +372,7 @@ def run(
     lightings=(None,),
     importances=("rsm",),
     samplings=(None,),
+    importance_interleave=None,
 ) -> Report:
     """Runs the sweep and returns a :class:`Report`; with ``out`` also writes CSV, JSON and plots.
 
@@ -398,6 +401,8 @@ def run(
     bad_importance = [i for i in importances if i not in ("rsm", "brsm")]
     if bad_importance or not importances:
         raise ValueError(f"importances: expected a non-empty list of \"rsm\" and \"brsm\", got {list(importances)}")
+    if importance_interleave is not None and not (isinstance(importance_interleave, int) and 1 <= importance_interleave <= 16):
+        raise ValueError(f"importance_interleave: expected an integer 1..16 (or None for the default), got {importance_interleave!r}")
     if not samplings or any(s not in (None, *SAMPLINGS) for s in samplings):
         raise ValueError(f"samplings: expected values from {', '.join(SAMPLINGS)} (or None for the default), got {list(samplings)}")
     if isinstance(sequence, bool) or not isinstance(sequence, int) or sequence < 0 or sequence == 1:
@@ -465,10 +470,7 @@ def run(
                             for li in (lightings if m == "vsgl" else (None,)):
                                 for imp in importances:
                                     for s in samplings:
-                                        # brsm and metropolis do not combine (the chains sample
-                                        # the RSM's own weights): the render refuses it.
-                                        if not (imp == "brsm" and s == "metropolis"):
-                                            configs.append((m, n, r, k, K, li, imp, s))
+                                        configs.append((m, n, r, k, K, li, imp, s))
         elif m in ("reference", "vsgl2"):
             # Deterministic and without a light count: one configuration per RSM size.
             for r in rsm_sizes:
@@ -510,6 +512,8 @@ def run(
             if importance == "brsm":
                 # The default, "rsm", is left unsaid so the sweep's rsm rows render as before.
                 settings["importance"] = importance
+                if importance_interleave is not None:
+                    settings["importance_interleave"] = importance_interleave
             if method == "vpl":
                 # 1: every VPL at every pixel (the baseline); 8: the papers' equal-footing
                 # comparison, interleaved and denoised like the VSGLs.
@@ -994,6 +998,8 @@ def main(argv: list[str] | None = None) -> int:
                    help="SG lighting forms of vsgl and vsgl2 to sweep: asg (the papers'), accurate (filtered-NDF specular, clamped-cosine diffuse) (default: the methods' own, asg)")
     p.add_argument("--importance", type=_strs, default=["rsm"], metavar="rsm,brsm",
                    help="RSM sampling densities of vpl and vsgl to compare: rsm (reflected power), brsm (bidirectional importance from the camera's view); default: rsm")
+    p.add_argument("--importance-interleave", type=int, default=None, metavar="K",
+                   help="interleave tile side of the brsm importance map (importance_interleave, 1..16) for the brsm rows (default: the option's default)")
     p.add_argument("--sampling", type=_strs, default=None, metavar="S1,S2,...",
                    help=f"vpl and vsgl sampling to sweep, from {','.join(SAMPLINGS)} (default: the methods', stratified); "
                         "metropolis keeps Markov chains through each configuration's frames and its --sequence")
@@ -1043,7 +1049,7 @@ def main(argv: list[str] | None = None) -> int:
         scenes=a.scene, methods=a.methods, lights=a.lights, size=size, rsm_sizes=a.rsm_sizes, kernels=a.kernels,
         seeds=None if a.seeds is None else tuple(range(a.seeds)), frames=a.frames, warmup=a.warmup, warmup_seconds=a.warmup_seconds, reference=a.reference, reference_rsm=a.reference_rsm,
         reference_spp=a.reference_spp, reference_strategy=a.reference_strategy, add_lights=add_lights, scene_lights=not a.no_scene_lights, interleave=a.interleave, vpl_interleave=a.vpl_interleave, visibility=a.visibility, plans=tuple(a.plans), adapter=a.adapter, out=a.out, progress=not a.no_progress,
-        sequence=a.sequence, Ks=tuple(a.K) if a.K else (None,), lightings=tuple(a.lighting) if a.lighting else (None,), importances=tuple(a.importance),
+        sequence=a.sequence, Ks=tuple(a.K) if a.K else (None,), lightings=tuple(a.lighting) if a.lighting else (None,), importances=tuple(a.importance), importance_interleave=a.importance_interleave,
         samplings=tuple(a.sampling) if a.sampling else (None,),
     )
     print(table(report))

@@ -17,6 +17,21 @@
 // (the papers' "4096 VSGLs without shadow maps"), so q_i overestimates occluded texels; the
 // sampling density stays a valid one (brsm_mix.wgsl mixes in the RSM's own weights), so this
 // costs variance only, never bias.
+//
+// Interleaved (`importance_interleave` = k > 1; the importance map was 91% of a lavapipe frame
+// at 2048 view VSGLs, and Tok15 Table 1's 0.79 ms for it implies a reduced rate): texel (x, y)
+// belongs to class c = (y mod k)·k + (x mod k) and evaluates only the view VSGLs j ≡ c (mod k²),
+// scaled by k² — the pattern of the shading passes' `interleave` (common/interleave.wgsl), with
+// the same deinterleaved workgroups, so one tile load of a class's VSGLs serves WORKGROUP²
+// texels. The view VSGLs' indices follow a stratified lattice over the view, so each class's
+// subset is a coarser stratified sample of the same view and k²·Σ_{j≡c} estimates Σ_j (exact in
+// expectation if the classes were random subsets). The scale cancels in q_i/Q (brsm_mix.wgsl)
+// and is kept so that the map stays an estimate of q. Whatever the estimate, the mixture keeps
+// every lit texel samplable, so the VPL and node-VSGL estimators stay unbiased; the cost is a
+// k-periodic pattern in q (variance, and for the filtered kernels, which assume f/q smooth over
+// a kernel, bias), which brsm_importance_filter.wgsl removes by recombining the classes over
+// k×k windows (why it is needed is measured there). With k > 1 this pass writes a scratch
+// buffer the filter reads; k = 1 is the plain mapping, bit for bit, straight into the pyramid.
 #include "common/constants.wgsl"
 #include "common/math.wgsl"
 #include "common/sg.wgsl"
@@ -26,17 +41,19 @@
 #include "common/frame.wgsl"
 #include "common/gbuffer.wgsl"
 #include "common/plan.wgsl"
+#include "common/interleave.wgsl"
 
 struct ImportanceParams {
     rsm_size: u32,
     // View VSGLs.
     count: u32,
+    // Interleave tile side k (1: every view VSGL at every texel).
+    interleave: u32,
     _pad0: u32,
-    _pad1: u32,
 }
 
 const WORKGROUP: u32 = 8u;
-const TILE: u32 = 64u; // = WORKGROUP², one view VSGL loaded per thread
+const TILE: u32 = 64u; // = WORKGROUP², one view VSGL of the class loaded per thread
 
 @group(0) @binding(0) var<uniform> params: ImportanceParams;
 @group(0) @binding(1) var<storage, read> light: LightRaw;
@@ -45,16 +62,19 @@ const TILE: u32 = 64u; // = WORKGROUP², one view VSGL loaded per thread
 @group(0) @binding(4) var<storage, read> rsm_flux_diffuse: array<vec4f>;
 @group(0) @binding(5) var<storage, read> rsm_flux_specular: array<vec4f>;
 @group(0) @binding(6) var<storage, read> view_vsgls: array<VsglRaw>;
-// Level 0 of the importance pyramid: q_i per texel.
+// Level 0 of the importance pyramid (k = 1) or the interleaved estimates (k > 1): q_i per texel.
 @group(0) @binding(7) var<storage, read_write> importance: array<f32>;
 
 var<workgroup> tile: array<VsglRaw, TILE>;
 
 @compute @workgroup_size(WORKGROUP, WORKGROUP, 1)
-fn main(@builtin(global_invocation_id) gid: vec3u, @builtin(local_invocation_index) local: u32) {
+fn main(@builtin(workgroup_id) wg: vec3u, @builtin(local_invocation_id) lid: vec3u, @builtin(local_invocation_index) local: u32) {
     let n_side = params.rsm_size;
-    let inside = gid.x < n_side && gid.y < n_side;
-    let i = gid.y * n_side + gid.x;
+    let k = params.interleave;
+    let stride = k * k;
+    let ip = interleaved_pixel(wg, lid, vec2u(n_side), k, WORKGROUP);
+    let inside = ip.pixel.x < n_side && ip.pixel.y < n_side;
+    let i = ip.pixel.y * n_side + ip.pixel.x;
     var lit = false;
     var y = vec3f(0.0);
     var normal = vec3f(0.0, 0.0, 1.0);
@@ -82,14 +102,16 @@ fn main(@builtin(global_invocation_id) gid: vec3u, @builtin(local_invocation_ind
     }
     var diffuse = vec3f(0.0);
     var specular = vec3f(0.0);
-    // Every thread takes part in the tile loads and barriers, lit or not.
-    for (var tile_start = 0u; tile_start < params.count; tile_start += TILE) {
+    // The class's view VSGLs are class_index + m·k², m = 0 … class_count − 1 (the same for the
+    // whole workgroup). Every thread takes part in the tile loads and barriers, lit or not.
+    let class_count = class_light_count(ip.class_index, params.count, k);
+    for (var tile_start = 0u; tile_start < class_count; tile_start += TILE) {
         let m = tile_start + local;
-        if (m < params.count) {
-            tile[local] = view_vsgls[m];
+        if (m < class_count) {
+            tile[local] = view_vsgls[ip.class_index + m * stride];
         }
         workgroupBarrier();
-        let n_tile = min(TILE, params.count - tile_start);
+        let n_tile = min(TILE, class_count - tile_start);
         if (lit) {
             for (var t = 0u; t < n_tile; t++) {
                 let v = tile[t];
@@ -115,7 +137,7 @@ fn main(@builtin(global_invocation_id) gid: vec3u, @builtin(local_invocation_ind
     if (inside) {
         let q = fd * diffuse + fs * specular;
         // Finite and ≥ 0 by construction; the clamp keeps one overflowing texel from making the
-        // pyramid's total infinite.
-        importance[i] = select(0.0, min(q.r + q.g + q.b, FLT_MAX), lit);
+        // pyramid's total infinite. × k²: the class's share stands for all view VSGLs.
+        importance[i] = select(0.0, min((q.r + q.g + q.b) * f32(stride), FLT_MAX), lit);
     }
 }

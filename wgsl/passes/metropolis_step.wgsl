@@ -5,9 +5,23 @@
 // a buffer the renderer keeps from frame to frame (methods/metropolis.rs).
 //
 // Target: the density the hierarchical warp samples, on the unit square of the RSM,
-//     p(s) = M·w(texel(s))/W     (w: texel weight, W: total, M: texel count; rsm_warp.wgsl),
+//     p(s) = M·w(texel(s))/W     (w: level 0 of `pyramid`, W: its total, M: texel count;
+//                                 rsm_warp.wgsl),
 // so at equilibrium a chain state is distributed like a warped sample and the estimators that
 // divide by N·p (VPLs: Φ·R/(N p); VSGL kernels [Tok16 Eq. 4–5]) keep their expectations.
+// `pyramid` is the one those estimators read: the RSM's weights w_i = Φ·(R_d + R_s), or with
+// importance="brsm" the re-weighted pyramid of brsm_mix.wgsl, whose level 0 holds
+//     π_i = q_i/Q + ε·w_i/W     (q: the importance map, ε = 0.1; total Π = 1 + ε, or 1 with
+//                                 Q = 0, when π_i = w_i/W),
+// so the target is p(s) = M·π_i/Π = M·(q_i/Q + ε·w_i/W)/(1 + ε): the same density the warp
+// draws brsm samples from and that vpl_sample / vsgl_gen divide by. Why the three must agree:
+// a VPL's estimate is E_x[f(x)/(N·p̂(x))] with x the chain state and p̂ the density divided by;
+// if x ~ p at equilibrium this is ∫f/N·(p/p̂), unbiased only if p̂ = p wherever f ≠ 0 (and p > 0
+// there: π_i ≥ ε·w_i/W > 0 at every texel that reflects light). Targeting w while dividing by
+// π would weight texel i by (w_i/W)/(π_i/Π) — biased towards texels the view ignores. Below,
+// target_density, the acceptance ratio p(y)/p(x) (Π cancels) and the warp of the jumps all
+// read `pyramid`, so they follow π. The target must also stay fixed from frame to frame while
+// the chains run: methods/metropolis.rs seeds the view's VSGLs with the chains' first seed.
 //
 // State: the chain's point on a surface, in world space (relative to a fixed origin of the
 // chain buffer), so it stays put when the light moves. Each frame the point is reprojected into
@@ -66,6 +80,7 @@ struct StepParams {
 const WORKGROUP: u32 = 64u;
 
 @group(0) @binding(0) var<uniform> params: StepParams;
+// The target's weight pyramid (2×2 sums; the RSM's own or brsm's re-weighted one).
 @group(0) @binding(1) var<storage, read> pyramid: array<f32>;
 @group(0) @binding(2) var<storage, read> level_offsets: array<u32>;
 // RSM positions relative to the view origin, and geometric normals.

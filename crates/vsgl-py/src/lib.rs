@@ -686,7 +686,9 @@ impl PyFrame {
     /// One buffer of the first light's reflective shadow map, (N, N, C) float32 ((6N, N, C)
     /// for a point light: its six cube faces +X, −X, +Y, −Y, +Z, −Z stacked), when the
     /// frame was rendered with `capture_rsm=True`: position (relative to the light), normal,
-    /// roughness, flux_diffuse (Φ·R_d), flux_specular (Φ·R_s), weight (Φ·(R_d+R_s) summed).
+    /// roughness, flux_diffuse (Φ·R_d), flux_specular (Φ·R_s), weight (Φ·(R_d+R_s) summed),
+    /// sampling_weight (each texel's unnormalised probability in the pyramid the virtual lights
+    /// were drawn from: weight, or with importance="brsm" the re-weighted q/Q + 0.1·w/W).
     fn rsm<'py>(&self, py: Python<'py>, name: &str) -> PyResult<Bound<'py, PyAny>> {
         let Some((n, buffers)) = &self.inner.rsm else {
             return Err(argument_error("name: this frame kept no RSM; render with capture_rsm=True and a method that uses one"));
@@ -867,7 +869,9 @@ impl PyRenderer {
     ///   interleave (default 1), denoise, visibility ("none" | "ism" | "raytrace"), ism_size,
     ///   ism_points, ism_points_per_map, ism_bias, ism_pcf (imperfect shadow maps, with
     ///   visibility="ism"), importance ("rsm" | "brsm": bidirectional RSM importance from
-    ///   importance_lights VSGLs of the camera's view), importance_lights, capture_rsm.
+    ///   importance_lights VSGLs of the camera's view; combines with every sampling),
+    ///   importance_lights, importance_interleave (1..16: with "brsm", RSM texel (x, y)
+    ///   evaluates only the view VSGLs of its interleave class, k² times cheaper), capture_rsm.
     /// - "vsgl": num_lights VSGLs (in all) by filtered importance sampling. shadow_size,
     ///   num_lights, rsm_size, sampling, seed, kernel ("integral" | "density" | "node"), K,
     ///   bisection_steps, interleave, denoise, diffuse ("papers" | "accurate" | "sg_product"),
@@ -875,7 +879,7 @@ impl PyRenderer {
     ///   NDF widened by the light's spread, after Tokuyoshi et al. 2024, and the clamped-cosine
     ///   diffuse; docs/rendering.md "SG lighting"),
     ///   visibility, ism_size, ism_points, ism_points_per_map, ism_bias, ism_pcf, importance,
-    ///   importance_lights, capture_rsm.
+    ///   importance_lights, importance_interleave, capture_rsm.
     /// - "vsgl2": two VSGLs per light by a parallel sum. shadow_size, rsm_size (any side
     ///   32..4096), diffuse, lighting, vsgl2_reduction ("auto" | "subgroup" | "shared_memory"),
     ///   visibility, ism_size, ism_points, ism_points_per_map, ism_bias, ism_pcf, capture_rsm.

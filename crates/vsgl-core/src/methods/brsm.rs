@@ -8,7 +8,9 @@
 //! grid, the papers' additional G-buffer), `brsm_view_moments`, `brsm_view_mips` (weight and
 //! moment pyramids), `brsm_view_vsgl_gen` (integral kernel, K = 1, stratified);
 //!
-//! per RSM: `brsm_importance` (the importance map), then the re-weighted pyramid:
+//! per RSM: `brsm_importance` (the importance map; with `importance_interleave` k > 1 each
+//! texel evaluates 1/k² of the view VSGLs and `brsm_importance_filter` recombines the classes),
+//! then the re-weighted pyramid:
 //! `brsm_pdf_mips` (its total), `brsm_mix` (mixed with the RSM's weights), `brsm_pdf_mips`.
 
 use super::options::Options;
@@ -17,6 +19,7 @@ use super::FrameContext;
 use crate::error::Result;
 use crate::frame::{pyramid_layout, MomentChains};
 use crate::passes::brsm_importance::BrsmImportancePass;
+use crate::passes::brsm_importance_filter::BrsmImportanceFilterPass;
 use crate::passes::brsm_mix::BrsmMixPass;
 use crate::passes::brsm_view_gbuffer::{view_grid, view_grid_side, BrsmViewPass};
 use crate::passes::moment_mips::MomentMipsPass;
@@ -30,22 +33,17 @@ use crate::passes::vsgl_moments::VsglMomentsPass;
 pub enum Importance {
     /// Φ·(R_d + R_s) of each texel (the papers' default).
     Rsm,
-    /// Bidirectional: Φ·R of each texel shaded by `view_lights` VSGLs of the camera's view.
-    Brsm { view_lights: u32 },
+    /// Bidirectional: Φ·R of each texel shaded by `view_lights` VSGLs of the camera's view,
+    /// each texel evaluating the 1/`interleave`² of them of its interleave class.
+    Brsm { view_lights: u32, interleave: u32 },
 }
 
 impl Importance {
     pub fn from_options(o: &Options) -> Result<Self> {
+        // With sampling="metropolis" the chains target the same re-weighted pyramid the
+        // estimators divide by (`MetropolisSampling::step` is given it), so the pair combines.
         Ok(match o.str("importance")? {
-            // The Metropolis chains target the RSM's own weights (metropolis_step.wgsl), while
-            // the estimators would divide by the importance density: biased, so refused.
-            "brsm" if o.str("sampling")? == "metropolis" => {
-                return Err(crate::error::Error::invalid(
-                    "importance",
-                    "importance=\"brsm\" does not combine with sampling=\"metropolis\" (the chains sample the RSM's own weights, not the view's importance): choose one",
-                ))
-            }
-            "brsm" => Importance::Brsm { view_lights: o.u32("importance_lights")? },
+            "brsm" => Importance::Brsm { view_lights: o.u32("importance_lights")?, interleave: o.u32("importance_interleave")? },
             _ => Importance::Rsm,
         })
     }
@@ -55,12 +53,15 @@ impl Importance {
 pub struct ViewImportance {
     vsgls: wgpu::Buffer,
     count: u32,
+    /// Interleave tile side of the importance map (`importance_interleave`).
+    interleave: u32,
 }
 
 impl ViewImportance {
     /// Builds `count` VSGLs of the camera's view (seeded by `seed`, as the frame's own
-    /// sampling is, so estimates of different seeds stay independent).
-    pub fn new(ctx: &mut FrameContext<'_>, count: u32, seed: u32) -> Result<Self> {
+    /// sampling is, so estimates of different seeds stay independent); each RSM texel will
+    /// evaluate those of its class of the `interleave`² classes.
+    pub fn new(ctx: &mut FrameContext<'_>, count: u32, interleave: u32, seed: u32) -> Result<Self> {
         let p = ctx.passes;
         let (view, pdf_mips, moments, moment_mips, gen) =
             (p.get::<BrsmViewPass>()?, p.get::<PdfMipsPass>()?, p.get::<VsglMomentsPass>()?, p.get::<MomentMipsPass>()?, p.get::<VsglGenPass>()?);
@@ -79,22 +80,30 @@ impl ViewImportance {
         // centres); positions relative to the frame origin, the eye.
         let settings = GenSettings { count, sampling: Sampling::Stratified, samples: None, seed, kernel: Kernel::Integral, k: 1.0, bisection_steps: 12, light_offset: [0.0; 3], importance: false };
         gen.record_with_pdf(rec, "brsm_view_vsgl_gen", &grid, &grid.pyramid, &chains, &settings, &vsgls);
-        Ok(Self { vsgls, count })
+        Ok(Self { vsgls, count, interleave })
     }
 
     /// The re-weighted sampling pyramid of `light`'s RSM (whose own weight pyramid is already
     /// summed): the importance map mixed with the RSM's weights (`brsm_mix`), summed.
     pub fn pyramid(&self, ctx: &mut FrameContext<'_>, light: &LightRsm<'_>) -> Result<wgpu::Buffer> {
         let p = ctx.passes;
-        let (importance, mix, pdf_mips) = (p.get::<BrsmImportancePass>()?, p.get::<BrsmMixPass>()?, p.get::<PdfMipsPass>()?);
+        let (importance, filter, mix, pdf_mips) = (p.get::<BrsmImportancePass>()?, p.get::<BrsmImportanceFilterPass>()?, p.get::<BrsmMixPass>()?, p.get::<PdfMipsPass>()?);
         let size = light.rsm.size;
         let rec = &mut ctx.rec;
-        // Every texel of level 0 is written by brsm_importance, the levels above by pdf_mips.
+        // Every texel of level 0 is written by brsm_importance (k = 1) or brsm_importance_filter
+        // (k > 1, from brsm_importance's interleaved estimates), the levels above by pdf_mips.
         let pyramid = rec.storage_written("brsm_pdf_pyramid_buffer", pyramid_layout(size).1 as u64 * 4);
-        importance.record(rec, light.light.as_entire_binding(), light.rsm, &self.vsgls, self.count, &pyramid, ctx.features);
+        if self.interleave > 1 {
+            let interleaved = rec.storage_written("brsm_interleaved_importance_buffer", size as u64 * size as u64 * 4);
+            importance.record(rec, light.light.as_entire_binding(), light.rsm, &self.vsgls, self.count, self.interleave, &interleaved, ctx.features);
+            filter.record(rec, light.rsm, self.interleave, &interleaved, &pyramid);
+        } else {
+            importance.record(rec, light.light.as_entire_binding(), light.rsm, &self.vsgls, self.count, 1, &pyramid, ctx.features);
+        }
         pdf_mips.record_pyramid(rec, "brsm_pdf_mips", size, &pyramid);
         mix.record(rec, light.rsm, &pyramid);
         pdf_mips.record_pyramid(rec, "brsm_pdf_mips", size, &pyramid);
+        ctx.sampling_pyramid = Some(pyramid.clone());
         Ok(pyramid)
     }
 }

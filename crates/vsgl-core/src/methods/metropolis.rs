@@ -6,6 +6,7 @@
 //! chain's position instead of a warped sample. docs/rendering.md, "Metropolis–Hastings
 //! sampling", has the rules and measurements.
 
+use super::brsm::Importance;
 use super::rsm_lights::LightRsm;
 use super::FrameContext;
 use crate::error::{Error, Result};
@@ -40,6 +41,9 @@ impl ChainSpace {
 struct ChainKey {
     method: &'static str,
     space: ChainSpace,
+    /// The target density's kind (`importance=` and its settings): chains at equilibrium for
+    /// one density are not for another.
+    importance: Importance,
     num_lights: u32,
     rsm_size: u32,
     /// RSM views of each light, in order (1 spot or directional, 6 point).
@@ -61,6 +65,10 @@ pub struct MetropolisChains {
     origin: DVec3,
     /// Chains of each view that hold a state (its share of the previous frame that ran it).
     kept: Vec<u32>,
+    /// The seed of the frame that made the chains: with `importance="brsm"` it seeds the
+    /// view's VSGLs of every frame the chains continue, so a static view keeps one target
+    /// density (`target_seed`).
+    seed: u32,
 }
 
 /// How a method steps its chains.
@@ -70,6 +78,8 @@ pub struct MetropolisSampling {
     pub rsm_size: u32,
     pub seed: u32,
     pub space: ChainSpace,
+    /// Where the target density comes from (`importance=`).
+    pub importance: Importance,
 }
 
 impl MetropolisSampling {
@@ -77,12 +87,30 @@ impl MetropolisSampling {
         let views = ctx.scene.lights.iter().map(|l| if matches!(l, Light::Point(_)) { 6 } else { 1 }).collect();
         let g = ctx.gpu_scene;
         let geometry = (g.raster_vertex_count, g.anchor.to_array().map(f64::to_bits), ctx.extent.to_bits());
-        ChainKey { method: self.method, space: self.space, num_lights: self.num_lights, rsm_size: self.rsm_size, views, geometry }
+        ChainKey { method: self.method, space: self.space, importance: self.importance, num_lights: self.num_lights, rsm_size: self.rsm_size, views, geometry }
     }
 
-    /// Steps the chains of `light`'s view (made afresh first if the key changed) and returns the
-    /// buffer of `light.budget` samples (vec4f: continuous RSM position in texels, p).
-    pub fn step(&self, ctx: &mut FrameContext<'_>, light: &LightRsm<'_>) -> Result<wgpu::Buffer> {
+    /// The seed of the view VSGLs that make this frame's `importance="brsm"` target: the seed
+    /// the chains were made with while they continue, this frame's when they start afresh.
+    /// Why not this frame's seed: every step keeps *this frame's* target invariant, and chains
+    /// distributed by last frame's density are not distributed by a different one after a
+    /// step, so a target that changed with the seed would bias every estimate that divides by
+    /// it. With one seed per chain lifetime the importance map of a static view is the same
+    /// in every frame; a moving camera or light changes it, as a moving light changes the
+    /// RSM's own weights (docs/rendering.md, "Metropolis–Hastings sampling").
+    pub fn target_seed(&self, ctx: &FrameContext<'_>) -> u32 {
+        let key = self.key(ctx);
+        match ctx.chains.as_ref() {
+            Some(c) if c.key == key => c.seed,
+            _ => self.seed,
+        }
+    }
+
+    /// Steps the chains of `light`'s view (made afresh first if the key changed) towards the
+    /// density of `pyramid` (the RSM's weights, or the brsm re-weighted pyramid: the one the
+    /// sampling passes then divide by) and returns the buffer of `light.budget` samples
+    /// (vec4f: continuous RSM position in texels, p).
+    pub fn step(&self, ctx: &mut FrameContext<'_>, light: &LightRsm<'_>, pyramid: &wgpu::Buffer) -> Result<wgpu::Buffer> {
         let key = self.key(ctx);
         let views: usize = key.views.iter().sum();
         let stride = (self.num_lights as u64).div_ceil(16) * 16;
@@ -98,7 +126,7 @@ impl MetropolisSampling {
                 usage: wgpu::BufferUsages::STORAGE | wgpu::BufferUsages::COPY_SRC | wgpu::BufferUsages::COPY_DST,
                 mapped_at_creation: false,
             });
-            *ctx.chains = Some(MetropolisChains { key, buffer, origin: ctx.gpu_scene.anchor, kept: vec![0; views] });
+            *ctx.chains = Some(MetropolisChains { key, buffer, origin: ctx.gpu_scene.anchor, kept: vec![0; views], seed: self.seed });
         }
         let chains = ctx.chains.as_mut().expect("made above");
         let kept = chains.kept[light.slot].min(light.budget);
@@ -125,7 +153,7 @@ impl MetropolisSampling {
             offset: light.slot as u64 * stride * STATE_BYTES,
             size: wgpu::BufferSize::new(stride * STATE_BYTES),
         };
-        ctx.passes.get::<MetropolisStepPass>()?.record(&mut ctx.rec, light.rsm, &settings, wgpu::BindingResource::Buffer(range), &samples);
+        ctx.passes.get::<MetropolisStepPass>()?.record(&mut ctx.rec, light.rsm, pyramid, &settings, wgpu::BindingResource::Buffer(range), &samples);
         Ok(samples)
     }
 }

@@ -184,6 +184,9 @@ pub struct FrameContext<'a> {
     /// cube face's that reflects light).
     pub vsgls: Option<wgpu::Buffer>,
     pub captured_rsm: Option<CapturedRsm>,
+    /// The pyramid the current RSM view's virtual lights were drawn from when it is not the
+    /// RSM's own (`importance="brsm"`), for `capture_rsm`'s "sampling_weight".
+    pub sampling_pyramid: Option<wgpu::Buffer>,
     /// Per-pixel standard error (`stderr` AOV).
     pub stderr: Option<wgpu::Buffer>,
     /// Extra `frame.settings` rows the method learnt while recording.

@@ -230,6 +230,7 @@ pub fn for_each_light(ctx: &mut FrameContext<'_>, s: &RsmSettings, mut per_light
                 }
             }
             passes.record(ctx, "rsm", view, &light);
+            ctx.sampling_pyramid = None;
             if !dark {
                 per_light(ctx, &LightRsm { budget, raw, light: &light, rsm: &passes.rsm, view, slot: slot_base + view_index })?;
             }
@@ -237,7 +238,7 @@ pub fn for_each_light(ctx: &mut FrameContext<'_>, s: &RsmSettings, mut per_light
                 // Read back before the next view overwrites the shared RSM buffers; a point
                 // light's six faces are stacked (CUBE_FACES order) along the first axis.
                 ctx.submit_so_far();
-                let face = read_rsm(ctx, &passes.rsm)?;
+                let face = read_rsm(ctx, &passes.rsm, ctx.sampling_pyramid.as_ref())?;
                 match &mut ctx.captured_rsm {
                     Some((_, stacked)) if view_index > 0 => {
                         for ((_, _, all), (_, _, more)) in stacked.iter_mut().zip(face.1) {
@@ -252,9 +253,12 @@ pub fn for_each_light(ctx: &mut FrameContext<'_>, s: &RsmSettings, mut per_light
     Ok(true)
 }
 
-/// The RSM's buffers as `Frame.rsm` names them.
-fn read_rsm(ctx: &FrameContext<'_>, rsm: &Rsm) -> Result<CapturedRsm> {
-    let b = ctx.gpu.read_buffers(&[&rsm.gbuffer.position, &rsm.gbuffer.normal, &rsm.flux_diffuse, &rsm.flux_specular])?;
+/// The RSM's buffers as `Frame.rsm` names them; `sampling`: the pyramid the view's virtual
+/// lights were drawn from when it is not the RSM's own (brsm).
+fn read_rsm(ctx: &FrameContext<'_>, rsm: &Rsm, sampling: Option<&wgpu::Buffer>) -> Result<CapturedRsm> {
+    let mut buffers = vec![&rsm.gbuffer.position, &rsm.gbuffer.normal, &rsm.flux_diffuse, &rsm.flux_specular];
+    buffers.extend(sampling);
+    let b = ctx.gpu.read_buffers(&buffers)?;
     let f = |x: &Vec<u8>| -> Vec<f32> { bytemuck::cast_slice::<u8, f32>(x).to_vec() };
     let rgb = |v: Vec<f32>| -> Vec<f32> { v.chunks_exact(4).flat_map(|p| [p[0], p[1], p[2]]).collect() };
     let n = rsm.size;
@@ -263,6 +267,9 @@ fn read_rsm(ctx: &FrameContext<'_>, rsm: &Rsm) -> Result<CapturedRsm> {
     let (pos, nrm, fd) = (f(&b[0]), f(&b[1]), f(&b[2]));
     let roughness: Vec<f32> = nrm.chunks_exact(4).map(|p| p[3]).collect();
     let weight: Vec<f32> = fd.chunks_exact(4).map(|p| p[3]).collect();
+    // Level 0 of the sampling pyramid: what the warp and the estimators use as the texel's
+    // (unnormalised) probability; the RSM's own weight unless brsm re-weighted it.
+    let sampling_weight: Vec<f32> = if sampling.is_some() { f(&b[4])[..texels].to_vec() } else { weight.clone() };
     Ok((n, vec![
         ("position".into(), 3, rgb(pos)),
         ("normal".into(), 3, rgb(nrm)),
@@ -270,6 +277,7 @@ fn read_rsm(ctx: &FrameContext<'_>, rsm: &Rsm) -> Result<CapturedRsm> {
         ("flux_diffuse".into(), 3, rgb(fd)),
         ("flux_specular".into(), 3, rgb(fs)),
         ("weight".into(), 1, weight),
+        ("sampling_weight".into(), 1, sampling_weight),
     ]))
 }
 

@@ -42,6 +42,7 @@ const OPTIONS: &[OptionSpec] = &[
     common::ISM_PCF,
     common::IMPORTANCE,
     common::IMPORTANCE_LIGHTS,
+    common::IMPORTANCE_INTERLEAVE,
     common::CAPTURE_RSM,
 ];
 
@@ -102,8 +103,11 @@ impl Method for Vpl {
         let shading_out = InterleavedShading::new(ctx, self.interleave, self.denoise);
         let rsm = RsmSettings { size: self.rsm_size, sampling: true, capture: self.capture_rsm, budget: self.num_lights };
         let vis = VirtualLightVisibility::new(ctx, self.visibility, self.num_lights)?;
+        let metropolis = MetropolisSampling { method: INFO.name, num_lights: self.num_lights, rsm_size: self.rsm_size, seed: self.seed, space: self.chain_space, importance: self.importance };
+        // Metropolis chains keep one view seed while they live (`target_seed` says why).
+        let view_seed = if self.sampling == Sampling::Metropolis { metropolis.target_seed(ctx) } else { self.seed };
         let view = match self.importance {
-            Importance::Brsm { view_lights } => Some(ViewImportance::new(ctx, view_lights, self.seed)?),
+            Importance::Brsm { view_lights, interleave } => Some(ViewImportance::new(ctx, view_lights, interleave, view_seed)?),
             Importance::Rsm => None,
         };
         let lit = for_each_light(ctx, &rsm, |ctx, light| {
@@ -117,11 +121,9 @@ impl Method for Vpl {
             let pdf = reweighted.as_ref().unwrap_or(&light.rsm.pyramid);
             // This RSM's share of num_lights (split over lights and cube faces by reflected
             // power, `power_budgets`); the buffer holds num_lights, the largest share.
+            // The chains target the density the VPLs are then weighted by (`pdf`).
             let samples = match self.sampling {
-                Sampling::Metropolis => {
-                    let m = MetropolisSampling { method: INFO.name, num_lights: self.num_lights, rsm_size: self.rsm_size, seed: self.seed, space: self.chain_space };
-                    Some(m.step(ctx, light)?)
-                }
+                Sampling::Metropolis => Some(metropolis.step(ctx, light, pdf)?),
                 _ => None,
             };
             sample.record_importance(&mut ctx.rec, light.light.as_entire_binding(), light.rsm, pdf, light.budget, self.sampling, self.seed, &vpls, feat, samples.as_ref());

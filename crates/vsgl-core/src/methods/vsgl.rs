@@ -69,6 +69,7 @@ const OPTIONS: &[OptionSpec] = &[
     common::ISM_PCF,
     common::IMPORTANCE,
     common::IMPORTANCE_LIGHTS,
+    common::IMPORTANCE_INTERLEAVE,
     common::CAPTURE_RSM,
 ];
 
@@ -151,7 +152,7 @@ impl Vsgl {
 
 impl Vsgl {
     fn metropolis(&self) -> MetropolisSampling {
-        MetropolisSampling { method: INFO.name, num_lights: self.num_lights, rsm_size: self.rsm_size, seed: self.seed, space: self.chain_space }
+        MetropolisSampling { method: INFO.name, num_lights: self.num_lights, rsm_size: self.rsm_size, seed: self.seed, space: self.chain_space, importance: self.importance }
     }
 }
 
@@ -175,8 +176,10 @@ impl Method for Vsgl {
         let mut chains: Option<MomentChains> = None;
         let rsm = RsmSettings { size: self.rsm_size, sampling: true, capture: self.capture_rsm, budget: self.num_lights };
         let vis = VirtualLightVisibility::new(ctx, self.visibility, self.num_lights)?;
+        // Metropolis chains keep one view seed while they live (`target_seed` says why).
+        let view_seed = if self.sampling == Sampling::Metropolis { self.metropolis().target_seed(ctx) } else { self.seed };
         let view = match self.importance {
-            Importance::Brsm { view_lights } => Some(ViewImportance::new(ctx, view_lights, self.seed)?),
+            Importance::Brsm { view_lights, interleave } => Some(ViewImportance::new(ctx, view_lights, interleave, view_seed)?),
             Importance::Rsm => None,
         };
         let lit = for_each_light(ctx, &rsm, |ctx, light| {
@@ -192,8 +195,10 @@ impl Method for Vsgl {
             moment_mips.record(&mut ctx.rec, self.rsm_size, chains);
             // This RSM's share of num_lights (split over lights and cube faces by reflected
             // power, `power_budgets`).
+            // The chains target the density the VSGLs' estimators then divide by (`pdf`).
+            let pdf = reweighted.as_ref().unwrap_or(&light.rsm.pyramid);
             let samples = match self.sampling {
-                Sampling::Metropolis => Some(self.metropolis().step(ctx, light)?),
+                Sampling::Metropolis => Some(self.metropolis().step(ctx, light, pdf)?),
                 _ => None,
             };
             let buf = ctx.rec.storage("vsgl_buffer", light.budget as u64 * VSGL_BYTES);
@@ -208,7 +213,6 @@ impl Method for Vsgl {
                 light_offset: light.raw.position,
                 importance: reweighted.is_some(),
             };
-            let pdf = reweighted.as_ref().unwrap_or(&light.rsm.pyramid);
             gen.record_with_pdf(&mut ctx.rec, "vsgl_gen", light.rsm, pdf, chains, &settings, &buf);
             vis.build_maps(ctx, &buf, light.budget, VSGL_RECORD_WORDS)?;
             let target = shading_out.target(ctx.indirect);

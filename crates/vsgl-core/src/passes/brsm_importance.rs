@@ -4,7 +4,7 @@
 
 use crate::error::Result;
 use crate::frame::Rsm;
-use crate::gpu::{groups, Gpu, PipelineVariants, Recorder};
+use crate::gpu::{interleaved_groups, Gpu, PipelineVariants, Recorder};
 use crate::plan::ShaderFeatures;
 
 const WORKGROUP: u32 = 8;
@@ -14,7 +14,8 @@ const WORKGROUP: u32 = 8;
 struct ImportanceParamsRaw {
     rsm_size: u32,
     count: u32,
-    _pad: [u32; 2],
+    interleave: u32,
+    _pad: u32,
 }
 
 pub struct BrsmImportancePass {
@@ -27,12 +28,13 @@ impl BrsmImportancePass {
     }
 
     /// Writes level 0 of `importance` (a pyramid in the layout of `rsm.pyramid`) from the
-    /// `count` view VSGLs in `view_vsgls`; `light`: the RSM's light as its passes bind it.
+    /// `count` view VSGLs in `view_vsgls`, each texel evaluating those of its class of the
+    /// `interleave`² classes (k = 1: all); `light`: the RSM's light as its passes bind it.
     #[allow(clippy::too_many_arguments)]
-    pub fn record(&self, rec: &mut Recorder<'_>, light: wgpu::BindingResource<'_>, rsm: &Rsm, view_vsgls: &wgpu::Buffer, count: u32, importance: &wgpu::Buffer, features: ShaderFeatures) {
+    pub fn record(&self, rec: &mut Recorder<'_>, light: wgpu::BindingResource<'_>, rsm: &Rsm, view_vsgls: &wgpu::Buffer, count: u32, interleave: u32, importance: &wgpu::Buffer, features: ShaderFeatures) {
         let gpu = rec.gpu;
         let pipeline = self.pipelines.get(gpu, &features.specular_flags());
-        let uniform = rec.uniform("brsm_importance_params_uniform_buffer", &ImportanceParamsRaw { rsm_size: rsm.size, count, _pad: [0; 2] });
+        let uniform = rec.uniform("brsm_importance_params_uniform_buffer", &ImportanceParamsRaw { rsm_size: rsm.size, count, interleave, _pad: 0 });
         rec.compute(
             "brsm_importance",
             &pipeline,
@@ -46,7 +48,8 @@ impl BrsmImportancePass {
                 view_vsgls.as_entire_binding(),
                 importance.as_entire_binding(),
             ]],
-            (groups(rsm.size, WORKGROUP), groups(rsm.size, WORKGROUP), 1),
+            // Deinterleaved workgroups: each covers texels of one class (common/interleave.wgsl).
+            interleaved_groups((rsm.size, rsm.size), interleave, WORKGROUP),
         );
     }
 }

@@ -64,8 +64,10 @@ impl MetropolisStepPass {
         Ok(Self { pipeline: gpu.compute_pipeline("metropolis_step_pipeline", &module, "main") })
     }
 
-    /// `chains`: this view's range of the kept chain buffer; `samples`: `count` vec4f written.
-    pub fn record(&self, rec: &mut Recorder<'_>, rsm: &Rsm, s: &StepSettings<'_>, chains: wgpu::BindingResource<'_>, samples: &wgpu::Buffer) {
+    /// `pyramid`: the target's weight pyramid in the layout of `rsm.pyramid` (the RSM's own, or
+    /// brsm's re-weighted one); `chains`: this view's range of the kept chain buffer;
+    /// `samples`: `count` vec4f written.
+    pub fn record(&self, rec: &mut Recorder<'_>, rsm: &Rsm, pyramid: &wgpu::Buffer, s: &StepSettings<'_>, chains: wgpu::BindingResource<'_>, samples: &wgpu::Buffer) {
         let v3 = |v: [f32; 4]| [v[0], v[1], v[2]];
         let params = StepParamsRaw {
             count: s.count,
@@ -91,7 +93,7 @@ impl MetropolisStepPass {
             &self.pipeline,
             &[&[
                 uniform.as_entire_binding(),
-                rsm.pyramid.as_entire_binding(),
+                pyramid.as_entire_binding(),
                 rsm.level_offsets.as_entire_binding(),
                 rsm.gbuffer.position.as_entire_binding(),
                 rsm.gbuffer.geo_normal.as_entire_binding(),

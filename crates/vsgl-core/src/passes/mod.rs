@@ -4,6 +4,7 @@
 
 pub mod aov_pack;
 pub mod brsm_importance;
+pub mod brsm_importance_filter;
 pub mod brsm_mix;
 pub mod brsm_view_gbuffer;
 pub mod denoise;
@@ -38,6 +39,7 @@ macro_rules! passes_from_device {
 passes_from_device!(
     aov_pack::AovPackPass,
     brsm_importance::BrsmImportancePass,
+    brsm_importance_filter::BrsmImportanceFilterPass,
     brsm_mix::BrsmMixPass,
     brsm_view_gbuffer::BrsmViewPass,
     denoise::DenoisePass,

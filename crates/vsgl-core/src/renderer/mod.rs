@@ -398,6 +398,7 @@ impl Renderer {
             skipped: Vec::new(),
             vsgls: None,
             captured_rsm: None,
+            sampling_pyramid: None,
             stderr: None,
             settings: Vec::new(),
             stop: job.opts.stop.as_ref(),
