@@ -1,4 +1,4 @@
-// The VSGL as stored between generation and shading (112 bytes; twin `VsglRaw` in
+// The VSGL as stored between generation and shading (128 bytes; twin `VsglRaw` in
 // crates/vsgl-core/src/passes/vsgl_gen.rs, read by `Frame.vsgls()`).
 struct VsglRaw {
     // Positional Gaussian: mean relative to the frame origin (the camera), variance σ².
@@ -27,4 +27,11 @@ struct VsglRaw {
     // tangent planes. Zero when the shading mode does not use it (vsgl_tangent_plane_fade).
     plane_normal: vec3f,
     plane_offset: f32,
+    // Where `visibility="raytrace"` aims its shadow ray (issue 18): the sampled centre texel's
+    // own surface point (relative to the frame origin, like `mean`), not μ. μ of a cluster that
+    // wraps around an object lies inside it, and one ray to μ shadows the whole cluster at once;
+    // the centre is a lit surface point drawn from the sampling density, so over the VSGLs
+    // V(p, centre) estimates the cluster's texel-averaged visibility (noise, not bias).
+    shadow_target: vec3f,
+    _pad2: f32,
 }

@@ -250,6 +250,10 @@ fn main(@builtin(global_invocation_id) gid: vec3u) {
     out.specular_power = min(b.rgb * scale, vec3f(FLT_MAX));
     out.pdf = p;
     out.center = s;
+    // The centre texel's own position y = (w·y)/w at level 0 (chains 0 and 4 hold w and w·y).
+    let centre_weight = moment_texel(0u, 0u, vec2i(warped.texel)).w;
+    let centre_position = moment_texel(4u, 0u, vec2i(warped.texel)).xyz / max(centre_weight, FLT_MIN);
+    out.shadow_target = select(position.mean, centre_position, centre_weight > 0.0) + params.light_offset;
     if (params.kernel == 2u) {
         out.mass = warp_weight(u32(level), params.rsm_size, node) / total;
     } else {

@@ -7,7 +7,8 @@
 // needs are the same for all its threads and are staged through workgroup memory in tiles of
 // TILE: one device-memory load serves WORKGROUP² pixels. Visibility is not evaluated
 // (visibility = "none"), or with `visibility="raytrace"` (VISIBILITY_TRACED) by one shadow ray
-// to each VSGL's mean position μ (issue 17: the VSGL's lobes count only where μ is visible), or with `visibility="ism"`
+// to each VSGL's shadow target (issue 18: its sampled centre texel's surface point, μ for vsgl2;
+// the VSGL's lobes count only where it is visible), or with `visibility="ism"`
 // (VISIBILITY_ISM) by a lookup in μ's imperfect shadow map.
 #include "common/constants.wgsl"
 #include "common/math.wgsl"
@@ -116,9 +117,14 @@ fn main(@builtin(workgroup_id) wg: vec3u, @builtin(local_invocation_id) lid: vec
             for (var t = 0u; t < n_tile; t++) {
                 var light = tile[t];
                 if (VISIBILITY_TRACED || VISIBILITY_ISM) {
-                    // V(x_p, μ_v) of Tok15 Eq. 3: a shadow ray to μ, or the lit fraction of μ's
+                    // V(x_p, μ_v) of Tok15 Eq. 3: a shadow ray to the VSGL's shadow target (its
+                    // centre texel's surface point; μ for vsgl2), or the lit fraction of μ's
                     // imperfect shadow map; it scales both lobes' powers.
-                    let lit = light_visibility(p, n, shadowing, class_first + (tile_start + t) * stride, light.mean);
+                    var shadow_target = light.mean;
+                    if (VISIBILITY_TRACED) {
+                        shadow_target = light.shadow_target;
+                    }
+                    let lit = light_visibility(p, n, shadowing, class_first + (tile_start + t) * stride, shadow_target);
                     if (lit <= 0.0) {
                         continue;
                     }

@@ -664,7 +664,9 @@ impl PyFrame {
     /// (rgb, W), level, specular_axis, specular_sharpness, specular_power, pdf, center (kernel
     /// centre in RSM texels), mass (the kernel's probability mass (4^l/M)·p̄), _pad,
     /// plane_normal and plane_offset (the cluster's mean tangent plane Σw·n/Σw and
-    /// E_w[(μ − y)·n]; zero unless `diffuse` is "accurate" or "sg_product", or for vsgl2).
+    /// E_w[(μ − y)·n]; zero unless `diffuse` is "accurate" or "sg_product", or for vsgl2),
+    /// shadow_target (relative to the camera: where `visibility="raytrace"` aims the VSGL's
+    /// shadow ray, its sampled centre texel's surface point; μ for vsgl2) and _pad2.
     fn vsgls<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyAny>> {
         let Some(data) = &self.inner.vsgls else {
             return Err(argument_error("this frame has no VSGLs; render with method=\"vsgl\" or \"vsgl2\" and a spot light"));

@@ -8,9 +8,9 @@ use crate::passes::vpl_sample::Sampling;
 
 const WORKGROUP: u32 = 64;
 
-/// GPU twin of `VsglRaw` in `wgsl/common/vsgl_record.wgsl` (112 bytes = 28 f32).
-pub const VSGL_FLOATS: usize = 28;
-pub const VSGL_BYTES: u64 = 112;
+/// GPU twin of `VsglRaw` in `wgsl/common/vsgl_record.wgsl` (128 bytes = 32 f32).
+pub const VSGL_FLOATS: usize = 32;
+pub const VSGL_BYTES: u64 = 128;
 
 /// Field names and widths of a VSGL record, in order (for `Frame.vsgls()`).
 pub const VSGL_FIELDS: &[(&str, usize)] = &[
@@ -29,6 +29,8 @@ pub const VSGL_FIELDS: &[(&str, usize)] = &[
     ("_pad", 1),
     ("plane_normal", 3),
     ("plane_offset", 1),
+    ("shadow_target", 3),
+    ("_pad2", 1),
 ];
 const _: () = {
     let mut total = 0;
