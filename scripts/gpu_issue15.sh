@@ -41,8 +41,14 @@ timeout 200 python3 -m vsgl bench --scene cave_flashlight,glossy_cornell --metho
   --size 960x540 --lights 1024 --rsm-sizes 256 --seeds 2 --frames 5 --no-progress --out "$OUT/bench_issue19" 2>&1 | tail -30
 # Issue 18 (a second call): kernels, the 2024 lighting and bidirectional importance against the
 # bidirectional path tracer, N from 256 to 65536 (RSM grown with N as documented), equal time.
-timeout 420 python3 -m vsgl bench --scene caustics_ring,glossy_cornell,cornell_box --methods vsgl,vpl \
+timeout 420 python3 -m vsgl bench --scene caustics_ring,glossy_cornell,cornell_box,mirror_panel --methods vsgl,vpl \
   --kernels integral,node --lighting asg,accurate --importance rsm,brsm --lights 256,1024,4096,16384,65536 \
   --size 960x540 --rsm-sizes 512 --seeds 3 --frames 5 --warmup-seconds 2 --visibility raytrace \
   --reference pathtrace --reference-strategy bidirectional --reference-spp 4096 \
   --no-progress --out "$OUT/bench_issue18" 2>&1 | tail -60
+# Issue 18's acceptance script at a GPU size (the same tables as docs/rendering.md's lavapipe
+# ones, 4×4-pixel blocks against the bidirectional path tracer, with and without shadow rays).
+timeout 300 python3 scripts/issue18_acceptance.py --size 256 --lights 256,1024,4096,16384,65536 --brsm \
+  --cache "$OUT/issue18_truth" --out "$OUT/issue18_none.json" 2>&1 | tail -60
+timeout 300 python3 scripts/issue18_acceptance.py --size 256 --lights 256,1024,4096,16384 --visibility raytrace \
+  --cache "$OUT/issue18_truth" --time-rounds 5 --out "$OUT/issue18_raytrace.json" 2>&1 | tail -60
