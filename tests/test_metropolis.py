@@ -32,6 +32,17 @@ def _weights(renderer, scene) -> np.ndarray:
     return np.asarray(f.rsm("weight"), np.float64).reshape(RSM, RSM)
 
 
+
+def _mean_over_fresh_sequences(r, scene, opts, replicates: int, frames: int) -> tuple[float, float]:
+    """Mean indirect level over `replicates` independent metropolis sequences (fresh chains,
+    disjoint seeds), whose means are i.i.d., and its standard error."""
+    means = []
+    for rep in range(replicates):
+        r.reset_chains()
+        seq = [r.render(scene, sampling="metropolis", seed=1000 * rep + k, **opts).aov("indirect").astype(np.float64).mean() for k in range(frames)]
+        means.append(np.mean(seq))
+    return float(np.mean(means)), float(np.std(means, ddof=1) / np.sqrt(replicates))
+
 def test_chain_states_have_the_warp_density(small):
     """E_p[p(x)] = ∫p² over the unit square = M·Σw²/W² (closed form from the captured texel
     weights) against the chains' mean p over later frames. Each chain's time average is one
@@ -67,15 +78,9 @@ def test_vpl_mean_over_independent_sequences_matches_the_reference(small):
     scene = vsgl.scenes.cornell_box()
     ref = small.render(scene, method="reference", rsm_size=RSM, aovs=["indirect"]).aov("indirect").astype(np.float64).mean()
     opts = dict(method="vpl", rsm_size=RSM, num_lights=64, interleave=1, denoise=False, aovs=["indirect"])
-    replicates, frames = 6, 8
-    means = []
-    for r in range(replicates):
-        small.reset_chains()
-        seq = [small.render(scene, sampling="metropolis", seed=1000 * r + k, **opts).aov("indirect").astype(np.float64).mean() for k in range(frames)]
-        means.append(np.mean(seq))
-    means = np.array(means)
-    stderr = means.std(ddof=1) / np.sqrt(replicates)
-    assert abs(means.mean() - ref) < 4 * stderr, (means.mean(), ref, stderr)
+    replicates = 6
+    mean, stderr = _mean_over_fresh_sequences(small, scene, opts, replicates=replicates, frames=8)
+    assert abs(mean - ref) < 4 * stderr, (mean, ref, stderr)
     # The warp's frames, for the same check at equal cost (independent seeds).
     warp = np.array([small.render(scene, seed=s, **opts).aov("indirect").astype(np.float64).mean() for s in range(replicates)])
     assert abs(warp.mean() - ref) < 4 * warp.std(ddof=1) / np.sqrt(replicates), (warp.mean(), ref)
@@ -266,16 +271,9 @@ def test_brsm_vpl_mean_over_independent_sequences_matches_the_reference(small, t
     scene, cam = lit_floor_corner(tmp_path)
     ref = small.render(scene, camera=cam, method="reference", rsm_size=RSM, vpl_clamp=0.1, aovs=["indirect"]).aov("indirect").astype(np.float64).mean()
     opts = dict(camera=cam, method="vpl", rsm_size=RSM, num_lights=64, interleave=1, denoise=False, vpl_clamp=0.1, aovs=["indirect"], **BRSM)
-    replicates, frames = 8, 8
-    means = []
-    for r in range(replicates):
-        small.reset_chains()
-        seq = [small.render(scene, sampling="metropolis", seed=1000 * r + k, **opts).aov("indirect").astype(np.float64).mean() for k in range(frames)]
-        means.append(np.mean(seq))
-    means = np.array(means)
-    stderr = means.std(ddof=1) / np.sqrt(replicates)
-    print("brsm metropolis", means.mean(), "reference", ref, "stderr", stderr)
-    assert abs(means.mean() - ref) < 4 * stderr, (means.mean(), ref, stderr)
+    mean, stderr = _mean_over_fresh_sequences(small, scene, opts, replicates=8, frames=8)
+    print("brsm metropolis", mean, "reference", ref, "stderr", stderr)
+    assert abs(mean - ref) < 4 * stderr, (mean, ref, stderr)
 
 
 def test_brsm_chains_restart_when_the_importance_changes(small):
