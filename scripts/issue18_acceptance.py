@@ -6,13 +6,13 @@ below VPL's, at equal N and at equal time, on the four caustic and glossy scenes
 
 For every scene the ground truth is `pathtrace strategy="bidirectional"` (light tracing + camera
 paths by MIS) at the scene's spp (cached as .npy in --cache; its own error is printed: the
-relRMSE over 4×4-pixel blocks implied by its per-pixel stderr). Every method renders the
+block error implied by its per-pixel stderr, in the same norm). Every method renders the
 `indirect` AOV at the same size, interleave 1, no denoiser, the RSM side left to the default rule
 (`rsm_size_for`: 256 up to N = 16384, 512 up to 65536), and is scored by
 
-- `block`: relRMSE of 4×4-pixel block means against the truth's (docs/error.md: block means keep
-  the energy and placement of light and drop single-pixel spikes, which decide every per-pixel
-  sum on glossy and caustic scenes);
+- `block`: `vsgl.metrics.block_rmse` over 4×4-pixel blocks, ‖x̄ − t̄‖/‖t̄‖ of the block means
+  (docs/error.md: block means keep the energy and placement of light and drop single-pixel
+  spikes, which decide every per-pixel sum on glossy and caustic scenes);
 - `mean`: the image mean over the truth's;
 - on caustics_ring, `glow`: the mean indirect light on the floor outside the ring (floor points
   more than 0.7 m from its axis, found from the `normal` and `depth` AOVs and the camera) over
@@ -40,19 +40,10 @@ import time
 import numpy as np
 
 import vsgl
+from vsgl.metrics import block_means, block_rmse
 
 SPP = {"cornell_box": 1024, "glossy_cornell": 2048, "caustics_ring": 8192, "mirror_panel": 4096}
 VARIANTS = {"vpl": ("vpl", {}), "vsgl": ("vsgl", {}), "vsgl node": ("vsgl", dict(kernel="node"))}
-
-
-def blocks(a: np.ndarray) -> np.ndarray:
-    h, w = a.shape[:2]
-    return a[: h - h % 4, : w - w % 4].reshape(h // 4, 4, w // 4, 4, -1).mean(axis=(1, 3))
-
-
-def block_error(x: np.ndarray, truth: np.ndarray) -> float:
-    xb, tb = blocks(x), blocks(truth)
-    return float(np.sqrt(((xb - tb) ** 2).mean()) / tb.mean())
 
 
 def ground_truth(r: vsgl.Renderer, name: str, scene: vsgl.Scene, spp: int, cache: pathlib.Path) -> tuple[np.ndarray, np.ndarray]:
@@ -117,7 +108,9 @@ def main() -> int:
     for name in a.scenes.split(","):
         scene = vsgl.scenes.load(name)
         truth, stderr = ground_truth(r, name, scene, SPP[name], a.cache)
-        own = float(np.sqrt((blocks(stderr**2) / 16).mean()) / blocks(truth).mean())
+        # The truth's own block error in the same norm: its block means' variance is the
+        # block-averaged stderr² over the 16 pixels of a block.
+        own = float(np.sqrt((block_means(stderr**2, 4) / 16).mean() / (block_means(truth, 4) ** 2).mean()))
         glow_mask = floor_outside_ring(r, scene) if name == "caustics_ring" else None
         print(f"\n### {name} ({a.size}², visibility {a.visibility}; truth: bidirectional pathtrace {SPP[name]} spp, "
               f"its own block error {own:.3f}, mean {truth.mean():.4g})")
@@ -138,7 +131,7 @@ def main() -> int:
                 r.render(scene, method=method, aovs=["indirect"], **dict(kw, num_lights=64))  # compile the pipelines
             img, secs, settings = timed(r, scene, 3 if n <= 4096 else 1, method=method, **kw)
             res = dict(scene=name, variant=label, num_lights=n, visibility=a.visibility, rsm_size=settings.get("rsm_size"),
-                       block=block_error(img, truth), mean=float(img.mean() / truth.mean()), seconds=secs, truth_own_block=own)
+                       block=block_rmse(img, truth, 4), mean=float(img.mean() / truth.mean()), seconds=secs, truth_own_block=own)
             if glow_mask is not None:
                 res["glow"] = float(img[glow_mask].mean() / truth[glow_mask].mean())
             results.append(res)

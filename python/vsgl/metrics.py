@@ -11,7 +11,8 @@ Per image, against a reference ``ref`` of the same shape:
   (1e-2 of the mean of the *squared* reference, so it has the units of ref²) keeping dark pixels
   from dominating. The "symmetric" variant 0.5·(x − y)²/(y² + ε) of some papers is exactly half of
   this one for the same ε; we keep the factor 1.
-- ``block_rmse(x, ref, block)``: the relative RMS error of block-averaged (low-passed) images.
+- ``block_rmse(x, ref, block)``: the relative RMS error of block-averaged (low-passed) images
+  (``block_means(a, block)``: the block averages themselves).
 - ``ssim(x, ref)``: SSIM of the tone-mapped (clamp + sRGB) luma, Gaussian window.
 - ``flip(x, ref)``: NVIDIA FLIP (LDR, on tone-mapped sRGB) when the ``flip-evaluator`` package is
   installed, else ``None``.
@@ -75,8 +76,10 @@ def relmse(x: np.ndarray, ref: np.ndarray, eps: float | None = None) -> float:
     return float(np.mean((x - ref) ** 2 / (ref**2 + eps)))
 
 
-def _block_means(a: np.ndarray, block: int) -> np.ndarray:
-    """Means over block×block tiles (edge tiles average the pixels they hold)."""
+def block_means(a: np.ndarray, block: int) -> np.ndarray:
+    """Means over block×block tiles (edge tiles average the pixels they hold); what block_rmse
+    compares, and what a reference's own block error is computed from (its stderr² averaged
+    over a block, over the block's pixel count, is the variance of its block mean)."""
     rows = np.arange(0, a.shape[0], block)
     cols = np.arange(0, a.shape[1], block)
     sums = np.add.reduceat(np.add.reduceat(a, rows, axis=0), cols, axis=1)
@@ -99,7 +102,7 @@ def block_rmse(x: np.ndarray, ref: np.ndarray, block: int = 8) -> float:
     _image(x, "x")
     if not (isinstance(block, (int, np.integer)) and block >= 1):
         raise ValueError(f"block: must be an integer >= 1, got {block!r}")
-    return rel_rmse(_block_means(x, int(block)), _block_means(ref, int(block)))
+    return rel_rmse(block_means(x, int(block)), block_means(ref, int(block)))
 
 
 def _srgb(x: np.ndarray) -> np.ndarray:
