@@ -239,6 +239,17 @@ fn lambert_lobe_sg(normal: vec3f) -> Sg {
     return Sg(normal, LAMBERT_LOBE_SG_SHARPNESS, 1.0 / sg_integral(LAMBERT_LOBE_SG_SHARPNESS));
 }
 
+// Gain that normalizes the Lambert lobe's SG over the texel's own hemisphere instead of the
+// sphere (issue 18: VSGLs lost 9% of the diffuse light at every N). The papers' lobe
+// G(ω; n, λd)/A(λd) [Tok16s Eq. 1] has the integral of ρd max(ω·n, 0) over the *sphere*, but the
+// fraction e^{−λd}/(1 + e^{−λd}) of it (9.2% at λd = 2.2925) lies below the texel's plane, where
+// a Lambertian texel emits nothing and no receiver of its light lies: that power is lost.
+// Normalizing over the upper hemisphere, A_hemi(λ) = 2π(1 − e^{−λ})/λ against
+// A(λ) = 2π(1 − e^{−2λ})/λ, multiplies the lobe by A(λd)/A_hemi(λd) = 1 + e^{−λd}.
+fn lambert_lobe_hemisphere_gain() -> f32 {
+    return 1.0 + exp(-LAMBERT_LOBE_SG_SHARPNESS);
+}
+
 // Sharpness of the SG that replaces the peak-normalized NDF [Tok16s §2.1; Tok15s App. A]:
 // D(h)/D(n) ≈ G(h; n, λh), λh = 2/α² (Beckmann and GGX). Clamp: α² is floored so that
 // λh ≤ SG_SHARPNESS_MAX (and α = 0 stays finite).

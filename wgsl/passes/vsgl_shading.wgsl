@@ -42,7 +42,9 @@ struct ShadeParams {
     // 0 = lighting="asg": the papers' SG–ASG specular (vsgl_specular); 1 = lighting="accurate":
     // the filtered-NDF specular (vsgl_specular_accurate; the host also selects diffuse_mode 1).
     lighting_mode: u32,
-    _pad2: u32,
+    // 1 = lambert_lobe="hemisphere": the diffuse lobes carry lambert_lobe_hemisphere_gain();
+    // 0 = "papers": the sphere-normalized lobe of [Tok16s Eq. 1].
+    lambert_lobe: u32,
 }
 
 const WORKGROUP: u32 = 8u;
@@ -161,7 +163,10 @@ fn main(@builtin(workgroup_id) wg: vec3u, @builtin(local_invocation_id) lid: vec
                         specular += light.diffuse_power * (e * ggx_brdf_over_rs(n, l, v, alpha));
                     }
                 } else if (any(light.diffuse_power > vec3f(0.0))) {
-                    let lobe_d = Sg(light.diffuse_axis, light.diffuse_sharpness, 1.0 / sg_integral(light.diffuse_sharpness));
+                    // The cluster's Lambert lobe is the Toksvig merge of its texels' lobes, so
+                    // the texels' hemisphere normalization is one factor on the merged lobe.
+                    let gain = select(1.0, lambert_lobe_hemisphere_gain(), params.lambert_lobe == 1u);
+                    let lobe_d = Sg(light.diffuse_axis, light.diffuse_sharpness, gain / sg_integral(light.diffuse_sharpness));
                     let in_d = vsgl_incoming_radiance(lobe_d, position, p);
                     diffuse += light.diffuse_power * (fade * diffuse_over_rd(in_d, n));
                     if (HAS_SPECULAR) {

@@ -879,11 +879,12 @@ impl PyRenderer {
     ///   bisection_steps, interleave, denoise, diffuse ("papers" | "accurate" | "sg_product"),
     ///   lighting ("asg": the papers' SG–ASG specular and diffuse= | "accurate": GGX with its
     ///   NDF widened by the light's spread, after Tokuyoshi et al. 2024, and the clamped-cosine
-    ///   diffuse; docs/rendering.md "SG lighting"),
+    ///   diffuse; docs/rendering.md "SG lighting"), lambert_lobe ("hemisphere": each texel's
+    ///   Lambert SG normalized over its hemisphere | "papers": over the sphere, 9.2% lost),
     ///   visibility, ism_size, ism_points, ism_points_per_map, ism_bias, ism_pcf, importance,
     ///   importance_lights, importance_interleave, capture_rsm.
     /// - "vsgl2": two VSGLs per light by a parallel sum. shadow_size, rsm_size (any side
-    ///   32..4096), diffuse, lighting, vsgl2_reduction ("auto" | "subgroup" | "shared_memory"),
+    ///   32..4096), diffuse, lighting, lambert_lobe, vsgl2_reduction ("auto" | "subgroup" | "shared_memory"),
     ///   visibility, ism_size, ism_points, ism_points_per_map, ism_bias, ism_pcf, capture_rsm.
     /// - "reference": every texel of an rsm_size² RSM (default 1024²) as a VPL. shadow_size,
     ///   rsm_size, vpl_clamp, visibility, ism_size, ism_points, ism_points_per_map, ism_bias,

@@ -354,6 +354,12 @@ pub mod common {
         &["papers", "accurate", "sg_product"],
         "diffuse SG shading: the papers' clamped form, the unclamped SG-cosine product, or an SG product",
     );
+    /// Normalization of the Lambert lobe's SG (docs/rendering.md, "VSGLs": the hemisphere gain).
+    pub const LAMBERT_LOBE: OptionSpec = choice(
+        "lambert_lobe",
+        &["hemisphere", "papers"],
+        "Lambert lobe SG normalized over the texel's hemisphere (\"hemisphere\": all its diffuse power reaches where a Lambertian texel can light) or over the sphere as the papers do (\"papers\": 9.2% of it lies below the texel and is lost)",
+    );
     /// SG lighting forms (docs/rendering.md, "SG lighting"): the papers' (ASG specular, `diffuse=`)
     /// or the accurate ones (filtered-NDF specular and the clamped-cosine diffuse).
     pub const LIGHTING: OptionSpec = choice(

@@ -16,7 +16,7 @@ use crate::passes::pdf_mips::PdfMipsPass;
 use crate::passes::vpl_sample::Sampling;
 use crate::passes::vsgl_gen::{GenSettings, Kernel, VsglGenPass, VSGL_BYTES};
 use crate::passes::vsgl_moments::VsglMomentsPass;
-use crate::passes::vsgl_shading::{DiffuseMode, LightingMode, VsglShadingPass};
+use crate::passes::vsgl_shading::{DiffuseMode, LambertLobe, LightingMode, VsglShadingPass};
 use std::borrow::Cow;
 
 pub const INFO: MethodInfo = MethodInfo {
@@ -61,6 +61,7 @@ const OPTIONS: &[OptionSpec] = &[
     common::DENOISE,
     common::DIFFUSE,
     common::LIGHTING,
+    common::LAMBERT_LOBE,
     common::VISIBILITY,
     common::ISM_SIZE,
     common::ISM_POINTS,
@@ -88,6 +89,7 @@ struct Vsgl {
     denoise: bool,
     diffuse: DiffuseMode,
     lighting: LightingMode,
+    lambert_lobe: LambertLobe,
     importance: Importance,
     capture_rsm: bool,
 }
@@ -143,6 +145,7 @@ impl Vsgl {
             denoise: o.bool("denoise")?,
             diffuse: diffuse_mode(o)?,
             lighting: lighting_mode(o)?,
+            lambert_lobe: LambertLobe::from_name(o.str("lambert_lobe")?),
             importance: Importance::from_options(o)?,
             capture_rsm: o.bool("capture_rsm")?,
         })
@@ -216,7 +219,7 @@ impl Method for Vsgl {
             gen.record_with_pdf(&mut ctx.rec, "vsgl_gen", light.rsm, pdf, chains, &settings, &buf);
             vis.build_maps(ctx, &buf, light.budget, VSGL_RECORD_WORDS)?;
             let target = shading_out.target(ctx.indirect);
-            shading.record(&mut ctx.rec, ctx.frame_uniforms, &buf, light.budget, self.interleave, self.diffuse, self.lighting, self.kernel == Kernel::Node, ctx.gbuffer, target, feat, ctx.size, &vis);
+            shading.record(&mut ctx.rec, ctx.frame_uniforms, &buf, light.budget, self.interleave, self.diffuse, self.lighting, self.lambert_lobe, self.kernel == Kernel::Node, ctx.gbuffer, target, feat, ctx.size, &vis);
             if ctx.vsgls.is_none() {
                 ctx.vsgls = Some(buf);
             }

@@ -8,7 +8,7 @@ use crate::error::Result;
 use crate::gpu::Gpu;
 use crate::passes::vsgl2_reduce::{Vsgl2Reduce, Vsgl2Reduction, VSGL2_COUNT};
 use crate::passes::vsgl_gen::VSGL_BYTES;
-use crate::passes::vsgl_shading::{DiffuseMode, LightingMode, VsglShadingPass};
+use crate::passes::vsgl_shading::{DiffuseMode, LambertLobe, LightingMode, VsglShadingPass};
 use std::borrow::Cow;
 
 pub const INFO: MethodInfo = MethodInfo {
@@ -27,6 +27,7 @@ const OPTIONS: &[OptionSpec] = &[
     OptionSpec { kind: OptionKind::Int { min: 32, max: 4096, power_of_two: false }, ..common::RSM_SIZE },
     common::DIFFUSE,
     common::LIGHTING,
+    common::LAMBERT_LOBE,
     OptionSpec {
         name: "vsgl2_reduction",
         kind: OptionKind::Choice(&["auto", "subgroup", "shared_memory"]),
@@ -49,6 +50,7 @@ struct Vsgl2 {
     rsm_size: u32,
     diffuse: DiffuseMode,
     lighting: LightingMode,
+    lambert_lobe: LambertLobe,
     reduction: Vsgl2Reduction,
     capture_rsm: bool,
 }
@@ -60,7 +62,7 @@ impl Vsgl2 {
             "shared_memory" => Vsgl2Reduction::SharedMemory,
             _ => Vsgl2Reduction::Auto,
         };
-        Ok(Self { options: o.clone(), visibility: VisibilityMode::from_options(o)?, rsm_size: o.u32("rsm_size")?, diffuse: super::vsgl::diffuse_mode(o)?, lighting: super::vsgl::lighting_mode(o)?, reduction, capture_rsm: o.bool("capture_rsm")? })
+        Ok(Self { options: o.clone(), visibility: VisibilityMode::from_options(o)?, rsm_size: o.u32("rsm_size")?, diffuse: super::vsgl::diffuse_mode(o)?, lighting: super::vsgl::lighting_mode(o)?, lambert_lobe: LambertLobe::from_name(o.str("lambert_lobe")?), reduction, capture_rsm: o.bool("capture_rsm")? })
     }
 }
 
@@ -80,7 +82,7 @@ impl Method for Vsgl2 {
             let buf = ctx.rec.storage("vsgl2_buffer", VSGL2_COUNT as u64 * VSGL_BYTES);
             reduce.record(&mut ctx.rec, light.rsm, light.raw.position, light.raw.rsm_light_dir(), light.texel_footprint(), &buf, feat, reduction)?;
             vis.build_maps(ctx, &buf, VSGL2_COUNT, VSGL_RECORD_WORDS)?;
-            shading.record(&mut ctx.rec, ctx.frame_uniforms, &buf, VSGL2_COUNT, 1, self.diffuse, self.lighting, false, ctx.gbuffer, ctx.indirect, feat, ctx.size, &vis);
+            shading.record(&mut ctx.rec, ctx.frame_uniforms, &buf, VSGL2_COUNT, 1, self.diffuse, self.lighting, self.lambert_lobe, false, ctx.gbuffer, ctx.indirect, feat, ctx.size, &vis);
             if ctx.vsgls.is_none() {
                 ctx.vsgls = Some(buf);
             }

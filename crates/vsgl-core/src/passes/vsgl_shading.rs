@@ -18,7 +18,7 @@ struct ShadeParamsRaw {
     exact_texels: u32,
     plane_fade: u32,
     lighting_mode: u32,
-    _pad: u32,
+    lambert_lobe: u32,
 }
 
 /// Most loop iterations (VSGLs per pixel) one dispatch runs: lavapipe (Mesa 22.3) silently
@@ -92,6 +92,36 @@ impl LightingMode {
     }
 }
 
+/// How the Lambert lobe's SG is normalized (`lambert_lobe=`).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum LambertLobe {
+    /// Over its own hemisphere, so a texel sends its whole diffuse power where a Lambertian
+    /// surface can (`lambert_lobe_hemisphere_gain` in sg.wgsl): 1 + e^(−λd) ≈ 1.101 times the
+    /// papers' lobe.
+    Hemisphere,
+    /// Over the whole sphere, as the papers do [Tok16s Eq. 1]: 9.2% of each texel's diffuse
+    /// power lies below its own plane and lights nothing.
+    Papers,
+}
+
+impl LambertLobe {
+    /// The `lambert_lobe=` value.
+    pub fn from_name(name: &str) -> Self {
+        if name == "papers" {
+            LambertLobe::Papers
+        } else {
+            LambertLobe::Hemisphere
+        }
+    }
+
+    fn shader_code(self) -> u32 {
+        match self {
+            LambertLobe::Papers => 0,
+            LambertLobe::Hemisphere => 1,
+        }
+    }
+}
+
 pub struct VsglShadingPass {
     pipelines: PipelineVariants,
 }
@@ -111,6 +141,7 @@ impl VsglShadingPass {
         interleave: u32,
         diffuse: DiffuseMode,
         lighting: LightingMode,
+        lambert_lobe: LambertLobe,
         exact_texels: bool,
         gbuffer: &GBuffer,
         out: &IndirectTargets,
@@ -128,7 +159,7 @@ impl VsglShadingPass {
         let per_dispatch = if visibility.traced { TRACED_VSGLS_PER_PIXEL_PER_DISPATCH } else { VSGLS_PER_PIXEL_PER_DISPATCH };
         let chunk = per_dispatch * interleave * interleave;
         for_each_chunk(count, chunk, |first, n| {
-            let params = ShadeParamsRaw { count: n, interleave, diffuse_mode: diffuse.shader_code(), first, exact_texels: u32::from(exact_texels), plane_fade: u32::from(diffuse.fades_below_tangent_plane()), lighting_mode: lighting.shader_code(), _pad: 0 };
+            let params = ShadeParamsRaw { count: n, interleave, diffuse_mode: diffuse.shader_code(), first, exact_texels: u32::from(exact_texels), plane_fade: u32::from(diffuse.fades_below_tangent_plane()), lighting_mode: lighting.shader_code(), lambert_lobe: lambert_lobe.shader_code() };
             let uniform = rec.uniform("vsgl_shading_params_uniform_buffer", &params);
             rec.compute(
                 &label,
