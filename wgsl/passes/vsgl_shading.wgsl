@@ -43,6 +43,7 @@ struct ShadeParams {
     // the filtered-NDF specular (vsgl_specular_accurate; the host also selects diffuse_mode 1).
     lighting_mode: u32,
     // 1 = lambert_lobe="hemisphere": the diffuse lobes carry lambert_lobe_hemisphere_gain();
+    // 2 = "exact_compact": that, blended with the exact Lambert emission (lambert_exact_weight);
     // 0 = "papers": the sphere-normalized lobe of [Tok16s Eq. 1].
     lambert_lobe: u32,
 }
@@ -61,6 +62,31 @@ const TILE: u32 = 64u; // = WORKGROUP², one VSGL loaded per thread
 @group(1) @binding(7) var<storage, read_write> indirect_specular: array<vec4f>;
 
 var<workgroup> tile: array<VsglRaw, TILE>;
+
+// Irradiance over power at p (normal n) from a Lambertian patch at `mean` facing `axis` whose
+// positional variance is σ²: the texel's radiant intensity per unit power max(−ω·axis, 0)/π
+// times max(n·ω, 0)/d², with d² + 2σ² in place of d², which on the axis of a Lambertian disk of
+// radius r (r² = 2σ²) is exact, Φ/(π(d² + r²)), and bounds the 1/d² spike at contacts.
+fn lambert_patch_irradiance(mean: vec3f, axis: vec3f, variance: f32, p: vec3f, n: vec3f) -> f32 {
+    let to_light = mean - p;
+    let center_dist2 = dot(to_light, to_light);
+    let dist2 = max(center_dist2 + 2.0 * variance, FLT_MIN);
+    let l = to_light * inverseSqrt(max(center_dist2, FLT_MIN));
+    return max(dot(-l, axis), 0.0) * INV_PI * max(dot(n, l), 0.0) / dist2;
+}
+
+// Weight of the exact Lambertian emission against the cluster's SG (lambert_lobe=
+// "exact_compact"; issue 18, item 3, "exact lobes as clusters shrink"). The Lambert SG's shape
+// differs from max(cos, 0)/π by ε = LAMBERT_LOBE_SG_SHAPE_ERROR (relative RMS over the
+// hemisphere) however small the cluster, while treating the cluster as one patch at μ errs by
+// about σ²/d²: equal where σ²/d² = ε, so w = ε·d²/(ε·d² + σ²) trusts the exact form where the
+// cluster is compact as seen from p and the SG where it is extended. At level 0 (one texel,
+// σ² its footprint) w → 1 and the cluster is the texel.
+fn lambert_exact_weight(mean: vec3f, variance: f32, p: vec3f) -> f32 {
+    let to_light = mean - p;
+    let scaled = LAMBERT_LOBE_SG_SHAPE_ERROR * dot(to_light, to_light);
+    return scaled / max(scaled + variance, FLT_MIN);
+}
 
 fn diffuse_over_rd(radiance: Sg, n: vec3f) -> f32 {
     if (params.diffuse_mode == 1u) {
@@ -147,17 +173,11 @@ fn main(@builtin(workgroup_id) wg: vec3u, @builtin(local_invocation_id) lid: vec
                 // power. A lobe without power (vsgl2's records carry one lobe each; metal
                 // clusters have no diffuse lobe) is skipped: it would add exactly 0.
                 if (params.exact_texels == 1u && light.level == 0.0 && any(light.diffuse_power > vec3f(0.0))) {
-                    // Radiant intensity towards p over power, max(−ω·n_t, 0)/π, at distance d:
-                    // irradiance per unit power facing p is that times max(n·ω, 0)/d². The texel
-                    // is a patch, not a point (issue 18, item 2): a Lambertian disk of radius r
-                    // gives on its axis exactly Φ/(π(d² + r²)), and r² = 2σ² for a disk's
-                    // positional variance σ² (the texel's footprint variance, vsgl_moments.wgsl),
-                    // so d² + 2σ² bounds the VPL's 1/d² spike at contacts by the texel's size.
+                    // The texel is a patch, not a point (issue 18, item 2): its positional
+                    // variance σ² is its footprint (vsgl_moments.wgsl).
+                    let e = lambert_patch_irradiance(light.mean, light.diffuse_axis, light.variance, p, n);
                     let to_light = light.mean - p;
-                    let center_dist2 = dot(to_light, to_light);
-                    let dist2 = max(center_dist2 + 2.0 * light.variance, FLT_MIN);
-                    let l = to_light * inverseSqrt(max(center_dist2, FLT_MIN));
-                    let e = max(dot(-l, light.diffuse_axis), 0.0) * INV_PI * max(dot(n, l), 0.0) / dist2;
+                    let l = to_light * inverseSqrt(max(dot(to_light, to_light), FLT_MIN));
                     diffuse += light.diffuse_power * (e * INV_PI);
                     if (HAS_SPECULAR) {
                         specular += light.diffuse_power * (e * ggx_brdf_over_rs(n, l, v, alpha));
@@ -165,10 +185,18 @@ fn main(@builtin(workgroup_id) wg: vec3u, @builtin(local_invocation_id) lid: vec
                 } else if (any(light.diffuse_power > vec3f(0.0))) {
                     // The cluster's Lambert lobe is the Toksvig merge of its texels' lobes, so
                     // the texels' hemisphere normalization is one factor on the merged lobe.
-                    let gain = select(1.0, lambert_lobe_hemisphere_gain(), params.lambert_lobe == 1u);
+                    let gain = select(1.0, lambert_lobe_hemisphere_gain(), params.lambert_lobe != 0u);
                     let lobe_d = Sg(light.diffuse_axis, light.diffuse_sharpness, gain / sg_integral(light.diffuse_sharpness));
                     let in_d = vsgl_incoming_radiance(lobe_d, position, p);
-                    diffuse += light.diffuse_power * (fade * diffuse_over_rd(in_d, n));
+                    var from_diffuse_lobe = fade * diffuse_over_rd(in_d, n);
+                    if (params.lambert_lobe == 2u) {
+                        // The receiver's specular keeps the SG: a point emitter would put a
+                        // spike into every glossy receiver.
+                        let w = lambert_exact_weight(light.mean, light.variance, p);
+                        let exact = lambert_patch_irradiance(light.mean, light.diffuse_axis, light.variance, p, n) * INV_PI;
+                        from_diffuse_lobe = mix(from_diffuse_lobe, exact, w);
+                    }
+                    diffuse += light.diffuse_power * from_diffuse_lobe;
                     if (HAS_SPECULAR) {
                         specular += light.diffuse_power * specular_over_rs(in_d, n, v, alpha);
                     }

@@ -95,6 +95,10 @@ impl LightingMode {
 /// How the Lambert lobe's SG is normalized (`lambert_lobe=`).
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum LambertLobe {
+    /// [`LambertLobe::Hemisphere`] blended with the exact Lambertian emission of the cluster
+    /// where it is compact as seen from the receiver (`lambert_exact_weight` in
+    /// vsgl_shading.wgsl): the SG's shape error goes where a point emitter's error is larger.
+    ExactCompact,
     /// Over its own hemisphere, so a texel sends its whole diffuse power where a Lambertian
     /// surface can (`lambert_lobe_hemisphere_gain` in sg.wgsl): 1 + e^(−λd) ≈ 1.101 times the
     /// papers' lobe.
@@ -107,10 +111,10 @@ pub enum LambertLobe {
 impl LambertLobe {
     /// The `lambert_lobe=` value.
     pub fn from_name(name: &str) -> Self {
-        if name == "papers" {
-            LambertLobe::Papers
-        } else {
-            LambertLobe::Hemisphere
+        match name {
+            "papers" => LambertLobe::Papers,
+            "hemisphere" => LambertLobe::Hemisphere,
+            _ => LambertLobe::ExactCompact,
         }
     }
 
@@ -118,6 +122,7 @@ impl LambertLobe {
         match self {
             LambertLobe::Papers => 0,
             LambertLobe::Hemisphere => 1,
+            LambertLobe::ExactCompact => 2,
         }
     }
 }
