@@ -295,3 +295,21 @@ def test_cli_prints_no_mesa_runtime_dir_warning(tmp_path):
     assert "XDG_RUNTIME_DIR" not in out.stderr, out.stderr
     methods = subprocess.run([sys.executable, "-m", "vsgl", "methods"], capture_output=True, text=True, env=env, timeout=300)
     assert methods.returncode == 0 and all(m in methods.stdout for m in vsgl.METHODS)
+
+
+def test_cli_option_flag_reaches_every_method_option(tmp_path):
+    """`render -O NAME=VALUE` passes any option of the method (typed: int, float, bool, text);
+    a wrong name or value is the library's error naming the option, not a traceback."""
+    base = [sys.executable, "-m", "vsgl", "render", "cornell_box", "--method", "vsgl", "--size", "24x16", "--lights", "64",
+            "--rsm-size", "32", "--no-error"]
+    a = subprocess.run(base + ["-O", "lambert_lobe=papers", "-O", "denoise=false", "-O", "K=2", "-o", str(tmp_path / "a.npy")],
+                       capture_output=True, text=True, timeout=300)
+    assert a.returncode == 0, a.stderr
+    b = subprocess.run(base + ["-o", str(tmp_path / "b.npy")], capture_output=True, text=True, timeout=300)
+    assert b.returncode == 0, b.stderr
+    # The options took effect: the papers' lobe and K = 2 without the denoiser are another image.
+    assert not np.array_equal(np.load(tmp_path / "a.npy"), np.load(tmp_path / "b.npy"))
+    bad = subprocess.run(base + ["-O", "lambert_lobe=sphere", "-o", str(tmp_path / "c.npy")], capture_output=True, text=True, timeout=300)
+    assert bad.returncode == 2 and "lambert_lobe" in bad.stderr and "Traceback" not in bad.stderr, bad.stderr
+    malformed = subprocess.run(base + ["-O", "lambert_lobe", "-o", str(tmp_path / "d.npy")], capture_output=True, text=True, timeout=300)
+    assert malformed.returncode == 2 and "NAME=VALUE" in malformed.stderr, malformed.stderr

@@ -39,6 +39,8 @@ def _render(args: argparse.Namespace) -> int:
                  importance=args.importance)
     takes = vsgl.method_options(args.method)
     options = {k: v for k, v in flags.items() if k in takes and v is not None}
+    # --option NAME=VALUE reaches every option of the method; the library names a wrong one.
+    options.update(args.option)
     progress = _progress_line(args.method)
     frame = renderer.render(scene, method=args.method, plan=args.plan, progress=progress, **options)
     if progress is not None and progress.shown:  # type: ignore[attr-defined]
@@ -89,6 +91,25 @@ def _render(args: argparse.Namespace) -> int:
         print("error     n/a for this method (error is measured for vpl, vsgl and vsgl2 against reference)")
     print(f"wrote     {args.output}")
     return 0 if finite else 1
+
+
+def _option(text: str) -> tuple[str, object]:
+    """NAME=VALUE of --option, the value as int, float, bool or text (in that order)."""
+    name, sep, value = text.partition("=")
+    if not sep or not name.strip():
+        raise argparse.ArgumentTypeError(f"expected NAME=VALUE (e.g. importance_interleave=2), got {text!r}")
+    value = value.strip()
+    parsed: object = value
+    if value.lower() in ("true", "false"):
+        parsed = value.lower() == "true"
+    else:
+        for kind in (int, float):
+            try:
+                parsed = kind(value)
+                break
+            except ValueError:
+                continue
+    return name.strip(), parsed
 
 
 def _load_scene(name: str):
@@ -212,6 +233,10 @@ def main(argv: list[str] | None = None) -> int:
                         help="visibility of virtual lights in vpl, vsgl, vsgl2 and reference: none (unshadowed; default) or raytrace (shadow rays through the BVH)")
     render.add_argument("--importance", default=None, choices=["rsm", "brsm"],
                         help="RSM sampling density of vpl and vsgl: rsm (reflected power; default) or brsm (bidirectional: importance to the camera's view)")
+    render.add_argument("-O", "--option", action="append", default=[], type=_option, metavar="NAME=VALUE",
+                        help="any option of the method (repeatable), e.g. -O importance_interleave=2 -O lambert_lobe=papers "
+                             "-O denoise=false; values are read as int, float, true/false or text; "
+                             "`python -m vsgl methods` lists each method's options")
     render.add_argument("--reference-rsm", type=int, default=128, help="RSM side of the reference the error is measured against (default: 128; the library default 1024 takes minutes on a CPU adapter)")
     render.add_argument("--no-error", action="store_true", help="skip rendering the reference and the error report")
     render.add_argument("--shadow-size", type=int, default=1024, help="shadow map side (default: 1024)")
