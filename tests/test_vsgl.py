@@ -310,23 +310,27 @@ def test_lambert_sg_shape_error_constant_is_the_quadrature():
 
 
 @pytest.mark.parametrize("num_lights", [1024, 4096])
-def test_exact_compact_lambert_lobes_converge_where_the_sg_plateaus(make_renderer, num_lights):
-    """lambert_lobe="exact_compact" (the default) shades clusters that are compact as seen from
-    the receiver as exact Lambertian patches: against the every-texel reference of the diffuse
-    box its error is below the SG's, whose shape error is a floor that no N removes (32², RSM
-    64, interleave 1, relRMSE)."""
+def test_exact_compact_lambert_lobes_go_below_the_sg_floor_on_the_diffuse_box(make_renderer, num_lights):
+    """lambert_lobe="exact_compact" shades clusters that are compact as seen from the receiver as
+    exact Lambertian point emitters: against the every-texel reference of the closed diffuse box
+    its error is below the SG's, whose shape error is a floor that no N removes (32², RSM 64,
+    interleave 1, relRMSE measured 0.072 / 0.074 against 0.123 / 0.123 at N = 1024 / 4096,
+    means 0.989 / 0.987). The default stays "hemisphere": at grazing floor-to-wall transfer the
+    point emitter loses (docs/rendering.md)."""
     r = make_renderer(32, 32)
     scene = vsgl.scenes.diffuse_cornell()
     ref = r.render(scene, method="reference", rsm_size=64, aovs=["indirect"]).aov("indirect").astype(np.float64)
     errors = {}
-    for lobe in ("exact_compact", "hemisphere"):
-        f = r.render(scene, method="vsgl", num_lights=num_lights, rsm_size=64, interleave=1, denoise=False, lambert_lobe=lobe, aovs=["indirect"])
+    for lobe in ("exact_compact", None):
+        chosen = {} if lobe is None else dict(lambert_lobe=lobe)
+        f = r.render(scene, method="vsgl", num_lights=num_lights, rsm_size=64, interleave=1, denoise=False, aovs=["indirect"], **chosen)
+        name = f.settings["lambert_lobe"]
         img = f.aov("indirect").astype(np.float64)
-        errors[lobe] = _rmse(img, ref) / float(np.sqrt(np.mean(ref**2)))
-        errors[lobe + " mean"] = img.mean() / ref.mean()
-    # Measured: 0.092 against 0.123 at both N, means 0.968 / 0.970 against 0.984 / 0.989.
-    assert errors["exact_compact"] < 0.85 * errors["hemisphere"], errors
-    assert abs(errors["exact_compact mean"] - 1.0) < 0.05, errors
+        errors[name] = _rmse(img, ref) / float(np.sqrt(np.mean(ref**2)))
+        errors[name + " mean"] = img.mean() / ref.mean()
+    assert "hemisphere" in errors, f"the default lambert_lobe is not hemisphere: {errors}"
+    assert errors["exact_compact"] < 0.75 * errors["hemisphere"], errors
+    assert abs(errors["exact_compact mean"] - 1.0) < 0.03, errors
 
 
 @pytest.mark.parametrize(

@@ -879,10 +879,10 @@ impl PyRenderer {
     ///   bisection_steps, interleave, denoise, diffuse ("papers" | "accurate" | "sg_product"),
     ///   lighting ("asg": the papers' SG–ASG specular and diffuse= | "accurate": GGX with its
     ///   NDF widened by the light's spread, after Tokuyoshi et al. 2024, and the clamped-cosine
-    ///   diffuse; docs/rendering.md "SG lighting"), lambert_lobe ("exact_compact": the
-    ///   "hemisphere" SG blended with exact Lambertian emission where a cluster is compact as seen
-    ///   from the receiver | "hemisphere": each texel's Lambert SG normalized over its
-    ///   hemisphere | "papers": over the sphere, 9.2% of the diffuse power lost),
+    ///   diffuse; docs/rendering.md "SG lighting"), lambert_lobe ("hemisphere": each
+    ///   texel's Lambert SG normalized over its hemisphere | "exact_compact": that SG blended
+    ///   with an exact Lambertian point emitter where a cluster is compact as seen from the
+    ///   receiver | "papers": over the sphere, 9.2% of the diffuse power lost),
     ///   visibility, ism_size, ism_points, ism_points_per_map, ism_bias, ism_pcf, importance,
     ///   importance_lights, importance_interleave, capture_rsm.
     /// - "vsgl2": two VSGLs per light by a parallel sum. shadow_size, rsm_size (any side

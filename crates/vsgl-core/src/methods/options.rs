@@ -357,8 +357,8 @@ pub mod common {
     /// Normalization of the Lambert lobe's SG (docs/rendering.md, "VSGLs": the hemisphere gain).
     pub const LAMBERT_LOBE: OptionSpec = choice(
         "lambert_lobe",
-        &["exact_compact", "hemisphere", "papers"],
-        "each cluster's Lambert lobe: \"exact_compact\" (the \"hemisphere\" SG blended with the exact Lambertian emission where the cluster is compact as seen from the receiver), \"hemisphere\" (the SG normalized over each texel's hemisphere, so all its diffuse power reaches where a Lambertian texel can light) or \"papers\" (normalized over the sphere: 9.2% of it lies below the texel and is lost)",
+        &["hemisphere", "exact_compact", "papers"],
+        "each cluster's Lambert lobe: \"hemisphere\" (the SG normalized over each texel's hemisphere, so all its diffuse power reaches where a Lambertian texel can light), \"exact_compact\" (that SG blended with an exact Lambertian point emitter where the cluster is compact as seen from the receiver: better on the closed diffuse box, worse at grazing floor-to-wall transfer) or \"papers\" (normalized over the sphere: 9.2% of it lies below the texel and is lost)",
     );
     /// SG lighting forms (docs/rendering.md, "SG lighting"): the papers' (ASG specular, `diffuse=`)
     /// or the accurate ones (filtered-NDF specular and the clamped-cosine diffuse).

@@ -95,9 +95,10 @@ impl LightingMode {
 /// How the Lambert lobe's SG is normalized (`lambert_lobe=`).
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum LambertLobe {
-    /// [`LambertLobe::Hemisphere`] blended with the exact Lambertian emission of the cluster
-    /// where it is compact as seen from the receiver (`lambert_exact_weight` in
-    /// vsgl_shading.wgsl): the SG's shape error goes where a point emitter's error is larger.
+    /// [`LambertLobe::Hemisphere`] blended with an exact Lambertian point emitter where the
+    /// cluster is compact as seen from the receiver (`lambert_exact_weight` in
+    /// vsgl_shading.wgsl). An option: it wins on the closed diffuse box and loses where floor
+    /// clusters light a wall at grazing angles (docs/rendering.md).
     ExactCompact,
     /// Over its own hemisphere, so a texel sends its whole diffuse power where a Lambertian
     /// surface can (`lambert_lobe_hemisphere_gain` in sg.wgsl): 1 + e^(−λd) ≈ 1.101 times the
@@ -113,8 +114,8 @@ impl LambertLobe {
     pub fn from_name(name: &str) -> Self {
         match name {
             "papers" => LambertLobe::Papers,
-            "hemisphere" => LambertLobe::Hemisphere,
-            _ => LambertLobe::ExactCompact,
+            "exact_compact" => LambertLobe::ExactCompact,
+            _ => LambertLobe::Hemisphere,
         }
     }
 
