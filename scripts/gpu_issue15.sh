@@ -52,3 +52,5 @@ timeout 300 python3 scripts/issue18_acceptance.py --size 256 --lights 256,1024,4
   --cache "$OUT/issue18_truth" --out "$OUT/issue18_none.json" 2>&1 | tail -60
 timeout 300 python3 scripts/issue18_acceptance.py --size 256 --lights 256,1024,4096,16384 --visibility raytrace \
   --cache "$OUT/issue18_truth" --time-rounds 5 --out "$OUT/issue18_raytrace.json" 2>&1 | tail -60
+echo "== lambert_lobe cost (docs/rendering.md, Lambert lobes)"
+timeout 120 python3 scripts/lambert_lobe_timing.py --size 512 --lights 1024,4096 --rounds 9 2>&1 | tail -12
