@@ -14,6 +14,7 @@ from rsm_model import spot_texel_footprint_variance
 # Constants of wgsl/common/sg.wgsl (the f64 twin in crates/vsgl-core/src/verify/oracle reads them too).
 LAMBERT_LOBE_SG_SHARPNESS = 2.2925
 LAMBERT_LOBE_SG_SHAPE_ERROR = 0.1562
+LAMBERT_LOBE_HEMISPHERE_GAIN = 1.1010136
 TOKSVIG_SHARPNESS_MAX = 1.0e5
 SG_SHARPNESS_MAX = 1.0e9
 VSGL_VARIANCE_MIN_FRACTION = 1.0e-6
@@ -289,6 +290,7 @@ def test_hemisphere_normalized_lambert_lobes_deliver_the_diffuse_power(make_rend
         assert f.settings["lambert_lobe"] == lobe
         means[lobe] = f.aov("indirect").astype(np.float64).mean() / ref.mean()
     gain = 1.0 + math.exp(-LAMBERT_LOBE_SG_SHARPNESS)
+    assert LAMBERT_LOBE_HEMISPHERE_GAIN == pytest.approx(gain, rel=1e-7)  # sg.wgsl's digits
     # Every diffuse lobe is scaled by the gain (the specular part of a purely diffuse box is 0).
     assert means["hemisphere"] == pytest.approx(gain * means["papers"], rel=1e-4)
     if method == "vsgl":

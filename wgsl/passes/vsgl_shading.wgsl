@@ -42,7 +42,7 @@ struct ShadeParams {
     // 0 = lighting="asg": the papers' SG–ASG specular (vsgl_specular); 1 = lighting="accurate":
     // the filtered-NDF specular (vsgl_specular_accurate; the host also selects diffuse_mode 1).
     lighting_mode: u32,
-    // 1 = lambert_lobe="hemisphere": the diffuse lobes carry lambert_lobe_hemisphere_gain();
+    // 1 = lambert_lobe="hemisphere": the diffuse lobes carry LAMBERT_LOBE_HEMISPHERE_GAIN;
     // 2 = "exact_compact": that, blended with the exact Lambert emission (lambert_exact_weight);
     // 0 = "papers": the sphere-normalized lobe of [Tok16s Eq. 1].
     lambert_lobe: u32,
@@ -187,7 +187,7 @@ fn main(@builtin(workgroup_id) wg: vec3u, @builtin(local_invocation_id) lid: vec
                 } else if (any(light.diffuse_power > vec3f(0.0))) {
                     // The cluster's Lambert lobe is the Toksvig merge of its texels' lobes, so
                     // the texels' hemisphere normalization is one factor on the merged lobe.
-                    let gain = select(1.0, lambert_lobe_hemisphere_gain(), params.lambert_lobe != 0u);
+                    let gain = select(1.0, LAMBERT_LOBE_HEMISPHERE_GAIN, params.lambert_lobe != 0u);
                     let lobe_d = Sg(light.diffuse_axis, light.diffuse_sharpness, gain / sg_integral(light.diffuse_sharpness));
                     let in_d = vsgl_incoming_radiance(lobe_d, position, p);
                     var from_diffuse_lobe = fade * diffuse_over_rd(in_d, n);

@@ -101,7 +101,7 @@ pub enum LambertLobe {
     /// clusters light a wall at grazing angles (docs/rendering.md).
     ExactCompact,
     /// Over its own hemisphere, so a texel sends its whole diffuse power where a Lambertian
-    /// surface can (`lambert_lobe_hemisphere_gain` in sg.wgsl): 1 + e^(−λd) ≈ 1.101 times the
+    /// surface can (`LAMBERT_LOBE_HEMISPHERE_GAIN` in sg.wgsl): 1 + e^(−λd) ≈ 1.101 times the
     /// papers' lobe.
     Hemisphere,
     /// Over the whole sphere, as the papers do [Tok16s Eq. 1]: 9.2% of each texel's diffuse
