@@ -35,3 +35,17 @@ struct VsglRaw {
     shadow_target: vec3f,
     _pad2: f32,
 }
+
+// The record's radiant-intensity lobes as normalized SGs (amplitude 1/A(λ): per unit power), as
+// every pass that shades VSGLs needs them (the includer brings common/sg.wgsl). The diffuse
+// lobe takes `lambert_gain`: LAMBERT_LOBE_HEMISPHERE_GAIN normalizes it over each texel's
+// hemisphere (lambert_lobe="hemisphere", the default), 1 keeps the papers' sphere
+// normalization [Tok16s Eq. 1]. A cluster's lobe is the Toksvig merge of its texels' lobes, so
+// the texels' normalization is one factor on the merged lobe.
+fn vsgl_record_diffuse_lobe(v: VsglRaw, lambert_gain: f32) -> Sg {
+    return Sg(v.diffuse_axis, v.diffuse_sharpness, lambert_gain / sg_integral(v.diffuse_sharpness));
+}
+
+fn vsgl_record_specular_lobe(v: VsglRaw) -> Sg {
+    return Sg(v.specular_axis, v.specular_sharpness, 1.0 / sg_integral(v.specular_sharpness));
+}

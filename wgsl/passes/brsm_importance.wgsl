@@ -116,17 +116,17 @@ fn main(@builtin(workgroup_id) wg: vec3u, @builtin(local_invocation_id) lid: vec
             for (var t = 0u; t < n_tile; t++) {
                 let v = tile[t];
                 let position = VsglPosition(v.mean, v.variance);
-                // Each lobe: incoming SG per unit power (amplitude 1/A(λ)) times its rgb power,
-                // as vsgl_shading.wgsl shades the light's VSGLs.
+                // Each lobe: incoming SG per unit power times its rgb power, as vsgl_shading.wgsl
+                // shades the light's VSGLs with the default lambert_lobe="hemisphere".
                 if (any(v.diffuse_power > vec3f(0.0))) {
-                    let in_d = vsgl_incoming_radiance(Sg(v.diffuse_axis, v.diffuse_sharpness, 1.0 / sg_integral(v.diffuse_sharpness)), position, y);
+                    let in_d = vsgl_incoming_radiance(vsgl_record_diffuse_lobe(v, LAMBERT_LOBE_HEMISPHERE_GAIN), position, y);
                     diffuse += v.diffuse_power * vsgl_diffuse_accurate(in_d, normal);
                     if (HAS_SPECULAR) {
                         specular += v.diffuse_power * vsgl_specular(in_d, normal, to_light, alpha);
                     }
                 }
                 if (HAS_SPECULAR && any(v.specular_power > vec3f(0.0))) {
-                    let in_s = vsgl_incoming_radiance(Sg(v.specular_axis, v.specular_sharpness, 1.0 / sg_integral(v.specular_sharpness)), position, y);
+                    let in_s = vsgl_incoming_radiance(vsgl_record_specular_lobe(v), position, y);
                     diffuse += v.specular_power * vsgl_diffuse_accurate(in_s, normal);
                     specular += v.specular_power * vsgl_specular(in_s, normal, to_light, alpha);
                 }

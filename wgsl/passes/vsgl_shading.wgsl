@@ -63,16 +63,25 @@ const TILE: u32 = 64u; // = WORKGROUP², one VSGL loaded per thread
 
 var<workgroup> tile: array<VsglRaw, TILE>;
 
+struct LambertPatchIrradiance {
+    // Over the patch's power.
+    irradiance: f32,
+    // Unit direction from p towards the patch.
+    direction: vec3f,
+}
+
 // Irradiance over power at p (normal n) from a Lambertian patch at `mean` facing `axis` whose
 // positional variance is σ²: the texel's radiant intensity per unit power max(−ω·axis, 0)/π
 // times max(n·ω, 0)/d², with d² + 2σ² in place of d², which on the axis of a Lambertian disk of
-// radius r (r² = 2σ²) is exact, Φ/(π(d² + r²)), and bounds the 1/d² spike at contacts.
-fn lambert_patch_irradiance(mean: vec3f, axis: vec3f, variance: f32, p: vec3f, n: vec3f) -> f32 {
+// radius r (r² = 2σ²) is exact, Φ/(π(d² + r²)), and bounds the 1/d² spike at contacts. With
+// σ² = 0 it is vpl_radiance's Lambert term (common/vpl.wgsl) without the GGX lobes, which the
+// callers here do not need.
+fn lambert_patch_irradiance(mean: vec3f, axis: vec3f, variance: f32, p: vec3f, n: vec3f) -> LambertPatchIrradiance {
     let to_light = mean - p;
     let center_dist2 = dot(to_light, to_light);
     let dist2 = max(center_dist2 + 2.0 * variance, FLT_MIN);
     let l = to_light * inverseSqrt(max(center_dist2, FLT_MIN));
-    return max(dot(-l, axis), 0.0) * INV_PI * max(dot(n, l), 0.0) / dist2;
+    return LambertPatchIrradiance(max(dot(-l, axis), 0.0) * INV_PI * max(dot(n, l), 0.0) / dist2, l);
 }
 
 // Weight of the exact Lambertian emission against the cluster's SG (lambert_lobe=
@@ -177,18 +186,14 @@ fn main(@builtin(workgroup_id) wg: vec3u, @builtin(local_invocation_id) lid: vec
                 if (params.exact_texels == 1u && light.level == 0.0 && any(light.diffuse_power > vec3f(0.0))) {
                     // The texel is a patch, not a point (issue 18, item 2): its positional
                     // variance σ² is its footprint (vsgl_moments.wgsl).
-                    let e = lambert_patch_irradiance(light.mean, light.diffuse_axis, light.variance, p, n);
-                    let to_light = light.mean - p;
-                    let l = to_light * inverseSqrt(max(dot(to_light, to_light), FLT_MIN));
-                    diffuse += light.diffuse_power * (e * INV_PI);
+                    let texel_patch = lambert_patch_irradiance(light.mean, light.diffuse_axis, light.variance, p, n);
+                    diffuse += light.diffuse_power * (texel_patch.irradiance * INV_PI);
                     if (HAS_SPECULAR) {
-                        specular += light.diffuse_power * (e * ggx_brdf_over_rs(n, l, v, alpha));
+                        specular += light.diffuse_power * (texel_patch.irradiance * ggx_brdf_over_rs(n, texel_patch.direction, v, alpha));
                     }
                 } else if (any(light.diffuse_power > vec3f(0.0))) {
-                    // The cluster's Lambert lobe is the Toksvig merge of its texels' lobes, so
-                    // the texels' hemisphere normalization is one factor on the merged lobe.
                     let gain = select(1.0, LAMBERT_LOBE_HEMISPHERE_GAIN, params.lambert_lobe != 0u);
-                    let lobe_d = Sg(light.diffuse_axis, light.diffuse_sharpness, gain / sg_integral(light.diffuse_sharpness));
+                    let lobe_d = vsgl_record_diffuse_lobe(light, gain);
                     let in_d = vsgl_incoming_radiance(lobe_d, position, p);
                     var from_diffuse_lobe = fade * diffuse_over_rd(in_d, n);
                     if (params.lambert_lobe == 2u) {
@@ -198,7 +203,7 @@ fn main(@builtin(workgroup_id) wg: vec3u, @builtin(local_invocation_id) lid: vec
                         // A point emitter (σ² = 0): the weight leaves the near field to the SG,
                         // and d² + 2σ² would bias it low off its axis (measured: cornell_box
                         // 0.061 → 0.050 at N = 4096, lit_floor_corner 0.211 → 0.186).
-                        let exact = lambert_patch_irradiance(light.mean, light.diffuse_axis, 0.0, p, n) * INV_PI;
+                        let exact = lambert_patch_irradiance(light.mean, light.diffuse_axis, 0.0, p, n).irradiance * INV_PI;
                         from_diffuse_lobe = mix(from_diffuse_lobe, exact, w);
                     }
                     diffuse += light.diffuse_power * from_diffuse_lobe;
@@ -208,7 +213,7 @@ fn main(@builtin(workgroup_id) wg: vec3u, @builtin(local_invocation_id) lid: vec
                 }
                 // Without specular materials no record has specular power (and R_s = 0 here).
                 if (HAS_SPECULAR && any(light.specular_power > vec3f(0.0))) {
-                    let lobe_s = Sg(light.specular_axis, light.specular_sharpness, 1.0 / sg_integral(light.specular_sharpness));
+                    let lobe_s = vsgl_record_specular_lobe(light);
                     let in_s = vsgl_incoming_radiance(lobe_s, position, p);
                     diffuse += light.specular_power * (fade * diffuse_over_rd(in_s, n));
                     specular += light.specular_power * specular_over_rs(in_s, n, v, alpha);
