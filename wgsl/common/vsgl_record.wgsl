@@ -1,5 +1,6 @@
 // The VSGL as stored between generation and shading (128 bytes; twin `VsglRaw` in
 // crates/vsgl-core/src/passes/vsgl_gen.rs, read by `Frame.vsgls()`).
+#include "common/sg.wgsl"
 struct VsglRaw {
     // Positional Gaussian: mean relative to the frame origin (the camera), variance σ².
     mean: vec3f,
