@@ -17,8 +17,10 @@ block error implied by its per-pixel stderr, in the same norm). Every method ren
 - on caustics_ring, `glow`: the mean indirect light on the floor outside the ring (floor points
   more than 0.7 m from its axis, found from the `normal` and `depth` AOVs and the camera) over
   the truth's there, the issue's "glow outside the caustic";
-- `s`: wall-clock seconds of the render call (lavapipe: only ratios within one run mean
-  anything; the median of 3 for N ≤ 4096, one run above).
+- the time per frame (`--clock`): on a GPU the frame's GPU time from its timestamps (the wall
+  time of a small frame there is mostly the fixed cost of a render() call, alike for every
+  method); on a CPU adapter (lavapipe) the wall clock of the render call, where only ratios
+  within one run mean anything; the median of 3 for N ≤ 4096, one run above.
 
 With `--time-rounds R` the times that decide the equal-time table are taken apart from the
 errors: R rounds, each rendering every configuration with N ≤ `--time-max-lights` once, in turn
@@ -77,13 +79,26 @@ def floor_outside_ring(r: vsgl.Renderer, scene: vsgl.Scene, radius: float = 0.7)
     return on_floor & (np.hypot(points[..., 0], points[..., 2]) > radius)
 
 
+# Which time decides the equal-time table (`cost`): on a GPU the wall time of a 256² frame is
+# mostly the fixed cost of a render() call (submission, readback, Python), the same for every
+# method, so the GPU's own time (the frame's timestamp total) is the budget there; on a CPU
+# adapter the timestamps do not bracket compute work and the wall time is the only clock.
+CLOCK = "wall"
+
+
+def fmt_time(seconds: float) -> str:
+    return f"{seconds * 1e3:.2f} ms" if seconds < 0.1 else f"{seconds:.2f} s"
+
+
 def timed(r: vsgl.Renderer, scene: vsgl.Scene, repeats: int, **kw) -> tuple[np.ndarray, float, dict]:
+    """The indirect AOV, the median cost per frame in seconds (by CLOCK) and the frame's settings."""
     times, frame = [], None
     for _ in range(repeats):
         t = time.perf_counter()
         frame = r.render(scene, aovs=["indirect"], **kw)
         img = frame.aov("indirect").astype(np.float64)
-        times.append(time.perf_counter() - t)
+        wall = time.perf_counter() - t
+        times.append(frame.timings_ms["total"] * 1e-3 if CLOCK == "gpu" else wall)
     return img, statistics.median(times), dict(frame.settings)
 
 
@@ -99,11 +114,16 @@ def main() -> int:
     p.add_argument("--out", type=pathlib.Path, default=None)
     p.add_argument("--time-rounds", type=int, default=0, help="round-robin timing rounds for the equal-time table")
     p.add_argument("--time-max-lights", type=int, default=16384)
+    p.add_argument("--clock", choices=["auto", "wall", "gpu"], default="auto",
+                   help="time that decides the equal-time table: auto = the GPU's timestamps on a GPU, the wall clock on a CPU adapter")
     a = p.parse_args()
     a.cache.mkdir(parents=True, exist_ok=True)
     lights = [int(n) for n in a.lights.split(",")]
     variants = [v.strip() for v in a.variants.split(",")]
     r = vsgl.Renderer(a.size, a.size)
+    global CLOCK
+    CLOCK = a.clock if a.clock != "auto" else ("wall" if r.adapter.get("device_type") == "Cpu" or not r.adapter.get("timestamps") else "gpu")
+    print(f"<!-- adapter {r.adapter.get('name')} ({r.adapter.get('device_type')}); times: {CLOCK} clock -->")
     results = []
     for name in a.scenes.split(","):
         scene = vsgl.scenes.load(name)
@@ -131,11 +151,12 @@ def main() -> int:
                 r.render(scene, method=method, aovs=["indirect"], **dict(kw, num_lights=64))  # compile the pipelines
             img, secs, settings = timed(r, scene, 3 if n <= 4096 else 1, method=method, **kw)
             res = dict(scene=name, variant=label, num_lights=n, visibility=a.visibility, rsm_size=settings.get("rsm_size"),
-                       block=block_rmse(img, truth, 4), mean=float(img.mean() / truth.mean()), seconds=secs, truth_own_block=own)
+                       block=block_rmse(img, truth, 4), mean=float(img.mean() / truth.mean()), seconds=secs, clock=CLOCK,
+                       truth_own_block=own)
             if glow_mask is not None:
                 res["glow"] = float(img[glow_mask].mean() / truth[glow_mask].mean())
             results.append(res)
-            cell = f"{res['block']:.3f} ({res['mean']:.2f}×" + (f", glow {res['glow']:.2f}×" if "glow" in res else "") + f"; {secs:.2f} s)"
+            cell = f"{res['block']:.3f} ({res['mean']:.2f}×" + (f", glow {res['glow']:.2f}×" if "glow" in res else "") + f"; {fmt_time(secs)})"
             rows.setdefault(label, []).append(cell if not extra else f"N = {n}: {cell}")
             print(f"<!-- {label} N={n}: {cell} -->", flush=True)
         for label, cells in rows.items():
@@ -159,11 +180,11 @@ def round_robin_times(r: vsgl.Renderer, scene: vsgl.Scene, results: list[dict], 
             _, secs, _ = timed(r, scene, 1, method=method, **kw, **extra, num_lights=x["num_lights"], interleave=1,
                                denoise=False, visibility=x["visibility"])
             samples[id(x)].append(secs)
-    print(f"\nTimes, median over {rounds} round-robin rounds [min, max] (s):\n")
+    print(f"\nTimes ({CLOCK} clock), median over {rounds} round-robin rounds [min, max]:\n")
     for x in todo:
         t = samples[id(x)]
         x.update(seconds=statistics.median(t), seconds_min=min(t), seconds_max=max(t), time_rounds=rounds)
-        print(f"- {x['variant']} N = {x['num_lights']}: {x['seconds']:.3f} [{min(t):.3f}, {max(t):.3f}]")
+        print(f"- {x['variant']} N = {x['num_lights']}: {fmt_time(x['seconds'])} [{fmt_time(min(t))}, {fmt_time(max(t))}]")
     for x in results:
         if x["num_lights"] > max_lights:
             x["seconds_untimed"] = x.pop("seconds")  # one run under other load: not a budget
@@ -176,15 +197,15 @@ def equal_time(results: list[dict], scene: str) -> None:
     if not vpls or not vsgls:
         return
     print(f"\nEqual time on {scene}: every VPL time is a budget; the best VSGL configuration that fits it")
-    print("\n| budget (s) | vpl | best vsgl within it | vsgl below vpl? |\n|---|---|---|---|")
+    print(f"\n| budget ({CLOCK} clock) | vpl | best vsgl within it | vsgl below vpl? |\n|---|---|---|---|")
     for v in vpls:
         fits = [s for s in vsgls if s["seconds"] <= v["seconds"] * 1.05]
         if not fits:
-            print(f"| {v['seconds']:.2f} | N = {v['num_lights']}: {v['block']:.3f} | none fits | — |")
+            print(f"| {fmt_time(v['seconds'])} | N = {v['num_lights']}: {v['block']:.3f} | none fits | — |")
             continue
         best = min(fits, key=lambda s: s["block"])
-        print(f"| {v['seconds']:.2f} | N = {v['num_lights']}: {v['block']:.3f} | {best['variant']} N = {best['num_lights']}: "
-              f"{best['block']:.3f} ({best['seconds']:.2f} s) | {'yes' if best['block'] < v['block'] else '**no**'} |")
+        print(f"| {fmt_time(v['seconds'])} | N = {v['num_lights']}: {v['block']:.3f} | {best['variant']} N = {best['num_lights']}: "
+              f"{best['block']:.3f} ({fmt_time(best['seconds'])}) | {'yes' if best['block'] < v['block'] else '**no**'} |")
 
 
 if __name__ == "__main__":
