@@ -63,25 +63,18 @@ const TILE: u32 = 64u; // = WORKGROUP², one VSGL loaded per thread
 
 var<workgroup> tile: array<VsglRaw, TILE>;
 
-struct LambertPatchIrradiance {
-    // Over the patch's power.
-    irradiance: f32,
-    // Unit direction from p towards the patch.
-    direction: vec3f,
-}
-
 // Irradiance over power at p (normal n) from a Lambertian patch at `mean` facing `axis` whose
 // positional variance is σ²: the texel's radiant intensity per unit power max(−ω·axis, 0)/π
 // times max(n·ω, 0)/d², with d² + 2σ² in place of d², which on the axis of a Lambertian disk of
 // radius r (r² = 2σ²) is exact, Φ/(π(d² + r²)), and bounds the 1/d² spike at contacts. With
 // σ² = 0 it is vpl_radiance's Lambert term (common/vpl.wgsl) without the GGX lobes, which the
-// callers here do not need.
-fn lambert_patch_irradiance(mean: vec3f, axis: vec3f, variance: f32, p: vec3f, n: vec3f) -> LambertPatchIrradiance {
+// callers here do not need (the receiver's specular takes the texel's SG, see the node path).
+fn lambert_patch_irradiance(mean: vec3f, axis: vec3f, variance: f32, p: vec3f, n: vec3f) -> f32 {
     let to_light = mean - p;
     let center_dist2 = dot(to_light, to_light);
     let dist2 = max(center_dist2 + 2.0 * variance, FLT_MIN);
     let l = to_light * inverseSqrt(max(center_dist2, FLT_MIN));
-    return LambertPatchIrradiance(max(dot(-l, axis), 0.0) * INV_PI * max(dot(n, l), 0.0) / dist2, l);
+    return max(dot(-l, axis), 0.0) * INV_PI * max(dot(n, l), 0.0) / dist2;
 }
 
 // Weight of the exact Lambertian emission against the cluster's SG (lambert_lobe=
@@ -186,10 +179,18 @@ fn main(@builtin(workgroup_id) wg: vec3u, @builtin(local_invocation_id) lid: vec
                 if (params.exact_texels == 1u && light.level == 0.0 && any(light.diffuse_power > vec3f(0.0))) {
                     // The texel is a patch, not a point (issue 18, item 2): its positional
                     // variance σ² is its footprint (vsgl_moments.wgsl).
-                    let texel_patch = lambert_patch_irradiance(light.mean, light.diffuse_axis, light.variance, p, n);
-                    diffuse += light.diffuse_power * (texel_patch.irradiance * INV_PI);
+                    let texel_irradiance = lambert_patch_irradiance(light.mean, light.diffuse_axis, light.variance, p, n);
+                    diffuse += light.diffuse_power * (texel_irradiance * INV_PI);
                     if (HAS_SPECULAR) {
-                        specular += light.diffuse_power * (texel_patch.irradiance * ggx_brdf_over_rs(n, texel_patch.direction, v, alpha));
+                        // The receiver's specular keeps the texel's SG with its footprint (as
+                        // "exact_compact" does): a point emitter in a sharp GGX lobe is a spike
+                        // wherever it sits in the mirror direction. Measured on an H200 at 256²
+                        // (docs/rendering.md, "Issue 18's acceptance on a GPU"): node VSGLs at
+                        // N = 16384 gave 22.97 on caustics_ring and 0.97 on mirror_panel against
+                        // 0.59 and 0.10 at N = 4096, all of it in indirect_specular.
+                        let gain = select(1.0, LAMBERT_LOBE_HEMISPHERE_GAIN, params.lambert_lobe != 0u);
+                        let in_d = vsgl_incoming_radiance(vsgl_record_diffuse_lobe(light, gain), position, p);
+                        specular += light.diffuse_power * specular_over_rs(in_d, n, v, alpha);
                     }
                 } else if (any(light.diffuse_power > vec3f(0.0))) {
                     let gain = select(1.0, LAMBERT_LOBE_HEMISPHERE_GAIN, params.lambert_lobe != 0u);
@@ -203,7 +204,7 @@ fn main(@builtin(workgroup_id) wg: vec3u, @builtin(local_invocation_id) lid: vec
                         // A point emitter (σ² = 0): the weight leaves the near field to the SG,
                         // and d² + 2σ² would bias it low off its axis (measured: cornell_box
                         // 0.061 → 0.050 at N = 4096, lit_floor_corner 0.211 → 0.186).
-                        let exact = lambert_patch_irradiance(light.mean, light.diffuse_axis, 0.0, p, n).irradiance * INV_PI;
+                        let exact = lambert_patch_irradiance(light.mean, light.diffuse_axis, 0.0, p, n) * INV_PI;
                         from_diffuse_lobe = mix(from_diffuse_lobe, exact, w);
                     }
                     diffuse += light.diffuse_power * from_diffuse_lobe;
