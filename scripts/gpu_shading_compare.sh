@@ -1,0 +1,45 @@
+#!/usr/bin/env bash
+# Two builds' shading passes back to back on one warm GPU, then issue 18's acceptance with the
+# new one (one device call, ~3 min; results under $OUT):
+#   - the previous build's wheel in .whl-old/, this build's in .whl/ (installed to /tmp/site by
+#     the gpu-prep lines);
+#   - per-pass timings at 1920x1080 on cornell_box (diffuse) and glossy_cornell (specular), vsgl
+#     and vpl at interleave 1 (1024 lights per pixel: the 6 ms target) and 8x8, in the order
+#     old, new, old, new, so a drift of the machine shows as a difference between rounds;
+#   - issue18_acceptance.py at 256² (GPU clock for the equal-time tables), with and without
+#     shadow rays.
+#   bash ../shared/tools/gpu-prep.sh; mkdir -p .whl-old && cp <previous wheel> .whl-old/
+#   device (carry .gl .whl .whl-old): <gpu-prep lines> bash scripts/gpu_shading_compare.sh
+set -uo pipefail
+FINAL_OUT=${OUT:-out}
+mkdir -p "$FINAL_OUT"
+RES=$(mktemp -d)
+export OUT=$RES PYTHONUNBUFFERED=1
+cd "$(dirname "$0")/.."
+SIZE=${SIZE:-1920x1080} ACC_SIZE=${ACC_SIZE:-256} ACC_LIGHTS=${ACC_LIGHTS:-256,1024,4096,16384,65536}  # smaller for a smoke test
+pack() { tar czf "$FINAL_OUT/results.tgz" -C "$RES" . 2>/dev/null; }
+{
+python3 -m pip install -q --no-index --no-deps --no-compile --target /tmp/old .whl-old/*.whl || exit 1
+nvidia-smi --query-gpu=name,driver_version,clocks.sm,clocks.max.sm --format=csv 2>&1 | tee "$RES/gpu.txt"
+common=(--size "$SIZE" --frames 20 --scenes cornell_box,glossy_cornell --aovs image --warm-seconds 3)
+for round in 1 2; do
+  for build in old new; do
+    [ $build = old ] && path=/tmp/old || path=/tmp/site
+    PYTHONPATH=$path timeout 90 python3 scripts/gpu_timings.py "${common[@]}" --methods vsgl,vpl --interleave 1 --vpl-interleave 1 \
+      --tag "_k1_${build}_$round" 2>&1 | grep -v adapter | sed -E 's/  (visibility|shadow_map|material|direct|rsm_[a-z]+|aov_pack)=[^ ]+//g' | cut -c1-260
+    PYTHONPATH=$path timeout 60 python3 scripts/gpu_timings.py "${common[@]}" --methods vsgl --tag "_k8_${build}_$round" 2>&1 \
+      | grep -v adapter | sed -E 's/  (visibility|shadow_map|material|direct|rsm_[a-z]+|aov_pack)=[^ ]+//g' | cut -c1-260
+    pack
+  done
+done
+echo "== issue 18, 256², no shadows"
+timeout 100 python3 scripts/issue18_acceptance.py --size "$ACC_SIZE" --lights "$ACC_LIGHTS" --brsm \
+  --cache "$RES/truth" --out "$RES/issue18_none.json" > "$RES/issue18_none.log" 2>&1
+grep -v '^<!--' "$RES/issue18_none.log" | grep -E '^\| `?(vpl|vsgl)|^###' | cut -c1-200; pack
+echo "== issue 18, 256², shadow rays"
+timeout 120 python3 scripts/issue18_acceptance.py --size "$ACC_SIZE" --lights "${ACC_LIGHTS%,65536}" --visibility raytrace \
+  --cache "$RES/truth" --time-rounds 3 --out "$RES/issue18_raytrace.json" > "$RES/issue18_raytrace.log" 2>&1
+grep -v '^<!--' "$RES/issue18_raytrace.log" | grep -E '^\| `?(vpl|vsgl)|^###|^\| [0-9]' | cut -c1-200
+rm -rf "$RES/truth"
+} 2>&1 | tee "$FINAL_OUT/log.txt"
+pack
