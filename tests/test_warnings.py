@@ -59,3 +59,9 @@ def test_the_cli_prints_the_warnings(tmp_path):
                          capture_output=True, text=True)
     assert out.returncode == 0, out.stderr
     assert "warning   the scene has no light" in out.stdout, out.stdout
+    # From the shell the way out is --light, and the hint's example must itself be accepted.
+    hint = next(line for line in out.stdout.splitlines() if line.startswith("hint      "))
+    example = hint.split('--light "', 1)[1].split('"', 1)[0]
+    lit = subprocess.run([sys.executable, "-m", "vsgl", "render", str(path), "--size", "32x24", "-o", str(tmp_path / "b.png"), "--light", example],
+                         capture_output=True, text=True)
+    assert lit.returncode == 0 and "warning" not in lit.stdout, lit.stdout + lit.stderr  # lit, and not black

@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import argparse
+import math
 import os
 import sys
 import time
@@ -55,6 +56,21 @@ def _render(args: argparse.Namespace) -> int:
     print(f"method    {args.method}, {width}x{height}")
     for warning in frame.warnings:
         print(f"warning   {warning}")
+        if warning.startswith("the scene has no light"):
+            # The library's hint names the API; from the shell the light comes from --light.
+            # The example is a headlight: at the scene's camera, or where the default camera
+            # stands (renderer::default_camera: in front (+Z) of and above the bounds' centre),
+            # so it lights what the image shows; its intensity gives ~10 W/m² at that distance.
+            lo, hi = scene.bounds
+            centre = [(a + b) / 2 for a, b in zip(lo, hi)]
+            if scene.cameras:
+                eye = list(scene.cameras[0].eye)
+            else:
+                radius = max(0.5 * math.dist(lo, hi), 1e-3)
+                eye = [c + d * radius / math.sin(math.radians(22.5)) for c, d in zip(centre, (0.0, 0.6 / math.hypot(0.6, 1.0), 1.0 / math.hypot(0.6, 1.0)))]
+            distance = max(math.dist(eye, centre), 1e-3)
+            print(f'hint      light it from here with --light, e.g. --light "point position={",".join(f"{x:.4g}" for x in eye)} '
+                  f'intensity={10 * distance * distance:.3g}" (a light at the camera; see render --help)')
     if args.explain:
         print("passes    " + ", ".join(frame.passes))
         for name, why in frame.skipped.items():
