@@ -8,6 +8,7 @@
 #     old, new, old, new, so a drift of the machine shows as a difference between rounds;
 #   - issue18_acceptance.py at 256² (GPU clock for the equal-time tables), with and without
 #     shadow rays;
+#   - vsgl2's subgroup against shared-memory reduction by RSM side;
 #   - issue 19's sequence benchmark on cave_flashlight, cut to fit (K = 1, 4; 20 frames; 512-spp truth).
 #   bash ../shared/tools/gpu-prep.sh; mkdir -p .whl-old && cp <previous wheel> .whl-old/
 #   device (carry .gl .whl .whl-old): <gpu-prep lines> bash scripts/gpu_shading_compare.sh
@@ -42,6 +43,8 @@ timeout 120 python3 scripts/issue18_acceptance.py --size "$ACC_SIZE" --lights "$
   --cache "$RES/truth" --time-rounds 3 --out "$RES/issue18_raytrace.json" > "$RES/issue18_raytrace.log" 2>&1
 grep -v '^<!--' "$RES/issue18_raytrace.log" | grep -E '^\| `?(vpl|vsgl)|^###|^\| [0-9]' | cut -c1-200
 rm -rf "$RES/truth"; pack
+echo "== vsgl2's reductions"
+timeout 45 python3 scripts/gpu_vsgl2_reduction.py --size "$SIZE" --rsm 256,1024,4096 2>&1 | tail -4; pack
 echo "== issue 19 on a GPU: error, flicker and time under the animated flashlight"
 timeout 90 python3 -m vsgl bench --scene cave_flashlight --methods vpl,vsgl --K 1,4 --sequence 20 --sampling stratified,metropolis \
   --size 960x540 --lights 1024 --rsm-sizes 256 --seeds 1 --frames 3 --reference pathtrace --reference-spp 512 \
