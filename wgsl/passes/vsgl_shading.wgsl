@@ -61,7 +61,43 @@ const TILE: u32 = 64u; // = WORKGROUP², one VSGL loaded per thread
 @group(1) @binding(6) var<storage, read_write> indirect_diffuse: array<vec4f>;
 @group(1) @binding(7) var<storage, read_write> indirect_specular: array<vec4f>;
 
-var<workgroup> tile: array<VsglRaw, TILE>;
+// The tile keeps, per VSGL, only what the shading loop reads, in arrays of 16 bytes grouped by
+// the branch that reads them, so the default diffuse path reads 48 of the record's 128 bytes:
+// the loop runs once per (pixel, VSGL) pair and its shared-memory reads are per pair, while the
+// tile is written once per VSGL and workgroup (WORKGROUP² pixels). What depends on the VSGL
+// alone is formed there too (shade_light_from_record), once instead of once per pixel.
+// Positional Gaussian (μ_v, σ_v²).
+var<workgroup> tile_position: array<vec4f, TILE>;
+// Diffuse lobe: (axis ξ_v, sharpness λ_v) and (rgb power, amplitude gain/A(λ_v)).
+var<workgroup> tile_diffuse_lobe: array<vec4f, TILE>;
+var<workgroup> tile_diffuse_power: array<vec4f, TILE>;
+// Specular lobe, read only with HAS_SPECULAR: the same, amplitude 1/A(λ).
+var<workgroup> tile_specular_lobe: array<vec4f, TILE>;
+var<workgroup> tile_specular_power: array<vec4f, TILE>;
+// Mean tangent plane (N̄, offset), read only with plane_fade.
+var<workgroup> tile_plane: array<vec4f, TILE>;
+// (shadow target, level): the target is read only with visibility, the level only by the
+// exact_texels path.
+var<workgroup> tile_target_level: array<vec4f, TILE>;
+
+// Writes record `v` into tile slot `slot`, with its lobes' amplitudes: the diffuse one with
+// the Lambert gain params.lambert_lobe selects (vsgl_record_diffuse_lobe), the specular one
+// normalized (vsgl_record_specular_lobe). Each is exp + division + a series branch
+// (sg_integral) that depends on the VSGL only.
+fn store_tile_light(slot: u32, v: VsglRaw) {
+    let gain = select(1.0, LAMBERT_LOBE_HEMISPHERE_GAIN, params.lambert_lobe != 0u);
+    let lobe_d = vsgl_record_diffuse_lobe(v, gain);
+    tile_position[slot] = vec4f(v.mean, v.variance);
+    tile_diffuse_lobe[slot] = vec4f(lobe_d.axis, lobe_d.sharpness);
+    tile_diffuse_power[slot] = vec4f(v.diffuse_power, lobe_d.amplitude);
+    if (HAS_SPECULAR) {
+        let lobe_s = vsgl_record_specular_lobe(v);
+        tile_specular_lobe[slot] = vec4f(lobe_s.axis, lobe_s.sharpness);
+        tile_specular_power[slot] = vec4f(v.specular_power, lobe_s.amplitude);
+    }
+    tile_plane[slot] = vec4f(v.plane_normal, v.plane_offset);
+    tile_target_level[slot] = vec4f(v.shadow_target, v.level);
+}
 
 struct LambertPatchIrradiance {
     // Over the patch's power.
@@ -109,11 +145,37 @@ fn diffuse_over_rd(radiance: Sg, n: vec3f) -> f32 {
     return vsgl_diffuse_approx(radiance, n);
 }
 
-fn specular_over_rs(radiance: Sg, n: vec3f, v: vec3f, alpha: f32) -> f32 {
-    if (params.lighting_mode == 1u) {
-        return vsgl_specular_accurate(radiance, n, v, alpha);
+// What the specular forms need of the receiver alone, formed once per pixel: n·ω_o and the
+// GGX lobe's ASG [Tok16s §4.2; ggx_lobe_asg], which vsgl_specular would rebuild per VSGL.
+struct SpecularReceiver {
+    n: vec3f,
+    v: vec3f,
+    alpha: f32,
+    n_dot_v: f32,
+    asg: Asg,
+}
+
+fn specular_receiver(n: vec3f, v: vec3f, alpha: f32) -> SpecularReceiver {
+    return SpecularReceiver(n, v, alpha, dot(n, v), ggx_lobe_asg(n, v, alpha));
+}
+
+// vsgl_specular (common/vsgl.wgsl: [Tok16s §4.2 boxed; Tok15s App. B]) with the receiver's
+// ASG and n·ω_o taken from `r` instead of recomputed: the same operations on the same values.
+fn vsgl_specular_receiver(radiance: Sg, r: SpecularReceiver) -> f32 {
+    let n_dot_l = dot(r.n, radiance.axis);
+    if (n_dot_l <= 0.0 || r.n_dot_v <= 0.0) {
+        return 0.0;
     }
-    return vsgl_specular(radiance, n, v, alpha);
+    let g2 = ggx_smith_g2(n_dot_l, r.n_dot_v, r.alpha);
+    let lobe = sg_asg_product_integral_over_asg_integral(radiance.axis, radiance.sharpness, r.asg);
+    return min(radiance.amplitude * g2 * lobe, FLT_MAX);
+}
+
+fn specular_over_rs(radiance: Sg, r: SpecularReceiver) -> f32 {
+    if (params.lighting_mode == 1u) {
+        return vsgl_specular_accurate(radiance, r.n, r.v, r.alpha);
+    }
+    return vsgl_specular_receiver(radiance, r);
 }
 
 @compute @workgroup_size(WORKGROUP, WORKGROUP, 1)
@@ -144,33 +206,39 @@ fn main(@builtin(workgroup_id) wg: vec3u, @builtin(local_invocation_id) lid: vec
     let class_count = class_light_count(ip.class_index, params.count, k);
     var diffuse = vec3f(0.0);
     var specular = vec3f(0.0);
+    var spec_rcv: SpecularReceiver;
+    if (HAS_SPECULAR && has_surface) {
+        spec_rcv = specular_receiver(n, v, alpha);
+    }
     // Every thread takes part in the tile loads and barriers, with a surface or not.
     for (var tile_start = 0u; tile_start < class_count; tile_start += TILE) {
         let m = tile_start + local;
         if (m < class_count) {
-            tile[local] = vsgls[class_first + m * stride];
+            store_tile_light(local, vsgls[class_first + m * stride]);
         }
         workgroupBarrier();
         let n_tile = min(TILE, class_count - tile_start);
         if (has_surface) {
             for (var t = 0u; t < n_tile; t++) {
-                var light = tile[t];
+                let pos = tile_position[t];
+                let position = VsglPosition(pos.xyz, pos.w);
+                let diffuse_power_amplitude = tile_diffuse_power[t];
+                var diffuse_power = diffuse_power_amplitude.xyz;
+                var lit = 1.0;
                 if (VISIBILITY_TRACED || VISIBILITY_ISM) {
                     // V(x_p, μ_v) of Tok15 Eq. 3: a shadow ray to the VSGL's shadow target (its
                     // centre texel's surface point; μ for vsgl2), or the lit fraction of μ's
                     // imperfect shadow map; it scales both lobes' powers.
-                    var shadow_target = light.mean;
+                    var shadow_target = position.mean;
                     if (VISIBILITY_TRACED) {
-                        shadow_target = light.shadow_target;
+                        shadow_target = tile_target_level[t].xyz;
                     }
-                    let lit = light_visibility(p, n, shadowing, class_first + (tile_start + t) * stride, shadow_target);
+                    lit = light_visibility(p, n, shadowing, class_first + (tile_start + t) * stride, shadow_target);
                     if (lit <= 0.0) {
                         continue;
                     }
-                    light.diffuse_power *= lit;
-                    light.specular_power *= lit;
+                    diffuse_power *= lit;
                 }
-                let position = VsglPosition(light.mean, light.variance);
                 // The diffuse forms that integrate the incoming lobe over the receiver's
                 // hemisphere ("accurate", "sg_product") also need the cluster's: texels reflect
                 // only into their own hemisphere, so nothing reaches p from below the cluster's
@@ -178,45 +246,52 @@ fn main(@builtin(workgroup_id) wg: vec3u, @builtin(local_invocation_id) lid: vec
                 // specular ASG form vanish there already and are left as they are.
                 var fade = 1.0;
                 if (params.plane_fade == 1u) {
-                    fade = vsgl_tangent_plane_fade(VsglTangentPlane(light.plane_normal, light.plane_offset), position, p);
+                    let plane = tile_plane[t];
+                    fade = vsgl_tangent_plane_fade(VsglTangentPlane(plane.xyz, plane.w), position, p);
                 }
                 // Each lobe: radiance SG per unit power (amplitude 1/A(λ)), times its rgb
                 // power. A lobe without power (vsgl2's records carry one lobe each; metal
                 // clusters have no diffuse lobe) is skipped: it would add exactly 0.
-                if (params.exact_texels == 1u && light.level == 0.0 && any(light.diffuse_power > vec3f(0.0))) {
+                let has_diffuse = any(diffuse_power > vec3f(0.0));
+                let lobe_d4 = tile_diffuse_lobe[t];
+                if (params.exact_texels == 1u && has_diffuse && tile_target_level[t].w == 0.0) {
                     // The texel is a patch, not a point (issue 18, item 2): its positional
                     // variance σ² is its footprint (vsgl_moments.wgsl).
-                    let texel_patch = lambert_patch_irradiance(light.mean, light.diffuse_axis, light.variance, p, n);
-                    diffuse += light.diffuse_power * (texel_patch.irradiance * INV_PI);
+                    let texel_patch = lambert_patch_irradiance(position.mean, lobe_d4.xyz, position.variance, p, n);
+                    diffuse += diffuse_power * (texel_patch.irradiance * INV_PI);
                     if (HAS_SPECULAR) {
-                        specular += light.diffuse_power * (texel_patch.irradiance * ggx_brdf_over_rs(n, texel_patch.direction, v, alpha));
+                        specular += diffuse_power * (texel_patch.irradiance * ggx_brdf_over_rs(n, texel_patch.direction, v, alpha));
                     }
-                } else if (any(light.diffuse_power > vec3f(0.0))) {
-                    let gain = select(1.0, LAMBERT_LOBE_HEMISPHERE_GAIN, params.lambert_lobe != 0u);
-                    let lobe_d = vsgl_record_diffuse_lobe(light, gain);
+                } else if (has_diffuse) {
+                    let lobe_d = Sg(lobe_d4.xyz, lobe_d4.w, diffuse_power_amplitude.w);
                     let in_d = vsgl_incoming_radiance(lobe_d, position, p);
                     var from_diffuse_lobe = fade * diffuse_over_rd(in_d, n);
                     if (params.lambert_lobe == 2u) {
                         // The receiver's specular keeps the SG: a point emitter would put a
                         // spike into every glossy receiver.
-                        let w = lambert_exact_weight(light.mean, light.variance, p);
+                        let w = lambert_exact_weight(position.mean, position.variance, p);
                         // A point emitter (σ² = 0): the weight leaves the near field to the SG,
                         // and d² + 2σ² would bias it low off its axis (measured: cornell_box
                         // 0.061 → 0.050 at N = 4096, lit_floor_corner 0.211 → 0.186).
-                        let exact = lambert_patch_irradiance(light.mean, light.diffuse_axis, 0.0, p, n).irradiance * INV_PI;
+                        let exact = lambert_patch_irradiance(position.mean, lobe_d4.xyz, 0.0, p, n).irradiance * INV_PI;
                         from_diffuse_lobe = mix(from_diffuse_lobe, exact, w);
                     }
-                    diffuse += light.diffuse_power * from_diffuse_lobe;
+                    diffuse += diffuse_power * from_diffuse_lobe;
                     if (HAS_SPECULAR) {
-                        specular += light.diffuse_power * specular_over_rs(in_d, n, v, alpha);
+                        specular += diffuse_power * specular_over_rs(in_d, spec_rcv);
                     }
                 }
                 // Without specular materials no record has specular power (and R_s = 0 here).
-                if (HAS_SPECULAR && any(light.specular_power > vec3f(0.0))) {
-                    let lobe_s = vsgl_record_specular_lobe(light);
-                    let in_s = vsgl_incoming_radiance(lobe_s, position, p);
-                    diffuse += light.specular_power * (fade * diffuse_over_rd(in_s, n));
-                    specular += light.specular_power * specular_over_rs(in_s, n, v, alpha);
+                if (HAS_SPECULAR) {
+                    let specular_power_amplitude = tile_specular_power[t];
+                    let specular_power = specular_power_amplitude.xyz * lit;
+                    if (any(specular_power > vec3f(0.0))) {
+                        let lobe_s4 = tile_specular_lobe[t];
+                        let lobe_s = Sg(lobe_s4.xyz, lobe_s4.w, specular_power_amplitude.w);
+                        let in_s = vsgl_incoming_radiance(lobe_s, position, p);
+                        diffuse += specular_power * (fade * diffuse_over_rd(in_s, n));
+                        specular += specular_power * specular_over_rs(in_s, spec_rcv);
+                    }
                 }
             }
         }
