@@ -68,10 +68,11 @@ const TILE: u32 = 64u; // = WORKGROUP², one VSGL loaded per thread
 // alone is formed there too (shade_light_from_record), once instead of once per pixel.
 // Positional Gaussian (μ_v, σ_v²).
 var<workgroup> tile_position: array<vec4f, TILE>;
-// Diffuse lobe: (axis ξ_v, sharpness λ_v) and (rgb power, amplitude gain/A(λ_v)).
+// Diffuse lobe: (axis ξ_v, sharpness λ_v) and (rgb power, amplitude over 2π, gain/(2π A(λ_v)):
+// the factor of the incoming radiance's coefficient that depends on the VSGL alone).
 var<workgroup> tile_diffuse_lobe: array<vec4f, TILE>;
 var<workgroup> tile_diffuse_power: array<vec4f, TILE>;
-// Specular lobe, read only with HAS_SPECULAR: the same, amplitude 1/A(λ).
+// Specular lobe, read only with HAS_SPECULAR: the same, 1/(2π A(λ)).
 var<workgroup> tile_specular_lobe: array<vec4f, TILE>;
 var<workgroup> tile_specular_power: array<vec4f, TILE>;
 // Mean tangent plane (N̄, offset), read only with plane_fade.
@@ -83,17 +84,18 @@ var<workgroup> tile_target_level: array<vec4f, TILE>;
 // Writes record `v` into tile slot `slot`, with its lobes' amplitudes: the diffuse one with
 // the Lambert gain params.lambert_lobe selects (vsgl_record_diffuse_lobe), the specular one
 // normalized (vsgl_record_specular_lobe). Each is exp + division + a series branch
-// (sg_integral) that depends on the VSGL only.
+// (sg_integral) that depends on the VSGL only; the 1/(2π) of the incoming radiance's
+// coefficient (incoming_radiance) is folded in here too.
 fn store_tile_light(slot: u32, v: VsglRaw) {
     let gain = select(1.0, LAMBERT_LOBE_HEMISPHERE_GAIN, params.lambert_lobe != 0u);
     let lobe_d = vsgl_record_diffuse_lobe(v, gain);
     tile_position[slot] = vec4f(v.mean, v.variance);
     tile_diffuse_lobe[slot] = vec4f(lobe_d.axis, lobe_d.sharpness);
-    tile_diffuse_power[slot] = vec4f(v.diffuse_power, lobe_d.amplitude);
+    tile_diffuse_power[slot] = vec4f(v.diffuse_power, lobe_d.amplitude / TWO_PI);
     if (HAS_SPECULAR) {
         let lobe_s = vsgl_record_specular_lobe(v);
         tile_specular_lobe[slot] = vec4f(lobe_s.axis, lobe_s.sharpness);
-        tile_specular_power[slot] = vec4f(v.specular_power, lobe_s.amplitude);
+        tile_specular_power[slot] = vec4f(v.specular_power, lobe_s.amplitude / TWO_PI);
     }
     tile_plane[slot] = vec4f(v.plane_normal, v.plane_offset);
     tile_target_level[slot] = vec4f(v.shadow_target, v.level);
@@ -143,6 +145,47 @@ fn diffuse_over_rd(radiance: Sg, n: vec3f) -> f32 {
         return vsgl_diffuse_sg_product(radiance, n);
     }
     return vsgl_diffuse_approx(radiance, n);
+}
+
+// vsgl_incoming_radiance (common/vsgl.wgsl) [Tok15 Eq. 5; Tok16s Eq. 7] with its sg_product
+// inlined, written for the inner loop, where it runs once per (pixel, VSGL) pair:
+//   L_in(ω) = c_v/(2πσ²)·G(ω; −ξ_v, λ_v)·G(ω; ξ_μ, λσ), λσ = d²/σ², ξ_μ = (μ_v − p)/d.
+// The same formulas, clamps and stable log-amplitude −λ_v·(λσ/(λ_in + λ_v + λσ))·‖ξ_v + ξ_μ‖²
+// (sg_product); what differs is only how often it divides, which the GPU pays for per pair:
+//  - c_v/(2π) comes from the tile (amplitude_over_two_pi), so the coefficient and λσ share one
+//    reciprocal 1/σ² instead of two divisions;
+//  - ξ_μ is (μ_v − p)·(d²)^(−1/2) with the d² already formed, and ξ_in is v·‖v‖⁻¹ with the ‖v‖²
+//    that λ_in = ‖v‖ needs, instead of safe_normalize's three divisions by the largest component
+//    (which guards vectors whose squared length underflows: here d² < FLT_MIN means p within
+//    1e-19 of μ_v, where λσ ≈ 0 and ξ_μ does not matter, and ‖v‖² < FLT_MIN means λ_in ≈ 0,
+//    where the fallback is sg_product's: the sharper input's axis);
+//  - d²/SG_SHARPNESS_MAX is a product with the constant's reciprocal.
+// Each replaced division rounds differently in the last bit or two: the result differs from
+// vsgl_incoming_radiance by a few ULP (scripts/shading_cost_compare.py --check measures it).
+fn incoming_radiance(lobe_axis: vec3f, lobe_sharpness: f32, amplitude_over_two_pi: f32, position: VsglPosition, shading_position: vec3f) -> Sg {
+    let to_mean = position.mean - shading_position;
+    let dist2 = dot(to_mean, to_mean);
+    let variance = max(max(position.variance, dist2 * (1.0 / SG_SHARPNESS_MAX)), FLT_MIN);
+    let inv_variance = 1.0 / variance;
+    let sharpness_sigma = dist2 * inv_variance;
+    let axis1 = -lobe_axis;
+    // At the mean itself (d = 0) λσ = 0 and ξ_μ is irrelevant.
+    var axis_mu = axis1;
+    if (dist2 >= FLT_MIN) {
+        axis_mu = to_mean * inverseSqrt(dist2);
+    }
+    let v = lobe_sharpness * axis1 + sharpness_sigma * axis_mu;
+    let v_len2 = dot(v, v);
+    let sharpness = sqrt(v_len2);
+    var axis = select(axis_mu, axis1, lobe_sharpness >= sharpness_sigma);
+    if (v_len2 >= FLT_MIN) {
+        axis = v * inverseSqrt(v_len2);
+    }
+    let d = axis1 - axis_mu;
+    let ratio = sharpness_sigma / max(sharpness + lobe_sharpness + sharpness_sigma, FLT_MIN);
+    let log_amplitude = -lobe_sharpness * ratio * dot(d, d);
+    let coefficient = min(amplitude_over_two_pi * inv_variance, FLT_MAX);
+    return Sg(axis, sharpness, coefficient * exp(log_amplitude));
 }
 
 // What the specular forms need of the receiver alone, formed once per pixel: n·ω_o and the
@@ -263,8 +306,7 @@ fn main(@builtin(workgroup_id) wg: vec3u, @builtin(local_invocation_id) lid: vec
                         specular += diffuse_power * (texel_patch.irradiance * ggx_brdf_over_rs(n, texel_patch.direction, v, alpha));
                     }
                 } else if (has_diffuse) {
-                    let lobe_d = Sg(lobe_d4.xyz, lobe_d4.w, diffuse_power_amplitude.w);
-                    let in_d = vsgl_incoming_radiance(lobe_d, position, p);
+                    let in_d = incoming_radiance(lobe_d4.xyz, lobe_d4.w, diffuse_power_amplitude.w, position, p);
                     var from_diffuse_lobe = fade * diffuse_over_rd(in_d, n);
                     if (params.lambert_lobe == 2u) {
                         // The receiver's specular keeps the SG: a point emitter would put a
@@ -287,8 +329,7 @@ fn main(@builtin(workgroup_id) wg: vec3u, @builtin(local_invocation_id) lid: vec
                     let specular_power = specular_power_amplitude.xyz * lit;
                     if (any(specular_power > vec3f(0.0))) {
                         let lobe_s4 = tile_specular_lobe[t];
-                        let lobe_s = Sg(lobe_s4.xyz, lobe_s4.w, specular_power_amplitude.w);
-                        let in_s = vsgl_incoming_radiance(lobe_s, position, p);
+                        let in_s = incoming_radiance(lobe_s4.xyz, lobe_s4.w, specular_power_amplitude.w, position, p);
                         diffuse += specular_power * (fade * diffuse_over_rd(in_s, n));
                         specular += specular_power * specular_over_rs(in_s, spec_rcv);
                     }
