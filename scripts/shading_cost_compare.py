@@ -107,7 +107,7 @@ def main() -> int:
     ap.add_argument("--size", default="64x64")
     ap.add_argument("--lights", type=int, default=1024)
     ap.add_argument("--rsm", type=int, default=128)
-    ap.add_argument("--scenes", default="cornell_box,glossy_cornell")
+    ap.add_argument("--scenes", default="cornell_box,diffuse_cornell,glossy_cornell")
     ap.add_argument("--check", action="store_true", help="compare the indirect AOVs of the mode matrix instead of timing")
     ap.add_argument("--child", choices=["time", "check"], help=argparse.SUPPRESS)
     ap.add_argument("--child-out", help=argparse.SUPPRESS)

@@ -152,6 +152,8 @@ fn diffuse_over_rd(radiance: Sg, n: vec3f) -> f32 {
 //   L_in(ω) = c_v/(2πσ²)·G(ω; −ξ_v, λ_v)·G(ω; ξ_μ, λσ), λσ = d²/σ², ξ_μ = (μ_v − p)/d.
 // The same formulas, clamps and stable log-amplitude −λ_v·(λσ/(λ_in + λ_v + λσ))·‖ξ_v + ξ_μ‖²
 // (sg_product); what differs is only how often it divides, which the GPU pays for per pair:
+//  - the positional Gaussian as seen from p (d², 1/σ², λσ, ξ_μ: PositionSeen) is formed once
+//    per pair and serves both lobes;
 //  - c_v/(2π) comes from the tile (amplitude_over_two_pi), so the coefficient and λσ share one
 //    reciprocal 1/σ² instead of two divisions;
 //  - ξ_μ is (μ_v − p)·(d²)^(−1/2) with the d² already formed, and ξ_in is v·‖v‖⁻¹ with the ‖v‖²
@@ -162,18 +164,30 @@ fn diffuse_over_rd(radiance: Sg, n: vec3f) -> f32 {
 //  - d²/SG_SHARPNESS_MAX is a product with the constant's reciprocal.
 // Each replaced division rounds differently in the last bit or two: the result differs from
 // vsgl_incoming_radiance by a few ULP (scripts/shading_cost_compare.py --check measures it).
-fn incoming_radiance(lobe_axis: vec3f, lobe_sharpness: f32, amplitude_over_two_pi: f32, position: VsglPosition, shading_position: vec3f) -> Sg {
+struct PositionSeen {
+    // 1/σ², σ² floored as in vsgl_incoming_radiance (λσ ≤ SG_SHARPNESS_MAX).
+    inv_variance: f32,
+    // λσ = d²/σ².
+    sharpness: f32,
+    // ξ_μ, valid where has_axis (d² ≥ FLT_MIN); else the caller's lobe decides (−ξ_v).
+    axis: vec3f,
+    has_axis: bool,
+}
+
+fn position_seen_from(position: VsglPosition, shading_position: vec3f) -> PositionSeen {
     let to_mean = position.mean - shading_position;
     let dist2 = dot(to_mean, to_mean);
     let variance = max(max(position.variance, dist2 * (1.0 / SG_SHARPNESS_MAX)), FLT_MIN);
     let inv_variance = 1.0 / variance;
-    let sharpness_sigma = dist2 * inv_variance;
+    let has_axis = dist2 >= FLT_MIN;
+    return PositionSeen(inv_variance, dist2 * inv_variance, to_mean * inverseSqrt(select(1.0, dist2, has_axis)), has_axis);
+}
+
+fn incoming_radiance(lobe_axis: vec3f, lobe_sharpness: f32, amplitude_over_two_pi: f32, seen: PositionSeen) -> Sg {
     let axis1 = -lobe_axis;
+    let sharpness_sigma = seen.sharpness;
     // At the mean itself (d = 0) λσ = 0 and ξ_μ is irrelevant.
-    var axis_mu = axis1;
-    if (dist2 >= FLT_MIN) {
-        axis_mu = to_mean * inverseSqrt(dist2);
-    }
+    let axis_mu = select(axis1, seen.axis, seen.has_axis);
     let v = lobe_sharpness * axis1 + sharpness_sigma * axis_mu;
     let v_len2 = dot(v, v);
     let sharpness = sqrt(v_len2);
@@ -184,32 +198,36 @@ fn incoming_radiance(lobe_axis: vec3f, lobe_sharpness: f32, amplitude_over_two_p
     let d = axis1 - axis_mu;
     let ratio = sharpness_sigma / max(sharpness + lobe_sharpness + sharpness_sigma, FLT_MIN);
     let log_amplitude = -lobe_sharpness * ratio * dot(d, d);
-    let coefficient = min(amplitude_over_two_pi * inv_variance, FLT_MAX);
+    let coefficient = min(amplitude_over_two_pi * seen.inv_variance, FLT_MAX);
     return Sg(axis, sharpness, coefficient * exp(log_amplitude));
 }
 
-// What the specular forms need of the receiver alone, formed once per pixel: n·ω_o and the
-// GGX lobe's ASG [Tok16s §4.2; ggx_lobe_asg], which vsgl_specular would rebuild per VSGL.
+// What the specular forms need of the receiver alone, formed once per pixel: n·ω_o, the GGX
+// lobe's ASG [Tok16s §4.2; ggx_lobe_asg] and the view's Smith Λ(ω_o) [Heitz 2014, Eq. 99],
+// which vsgl_specular would rebuild per VSGL.
 struct SpecularReceiver {
     n: vec3f,
     v: vec3f,
     alpha: f32,
     n_dot_v: f32,
+    lambda_v: f32,
     asg: Asg,
 }
 
 fn specular_receiver(n: vec3f, v: vec3f, alpha: f32) -> SpecularReceiver {
-    return SpecularReceiver(n, v, alpha, dot(n, v), ggx_lobe_asg(n, v, alpha));
+    let n_dot_v = dot(n, v);
+    return SpecularReceiver(n, v, alpha, n_dot_v, ggx_smith_lambda(n_dot_v, alpha), ggx_lobe_asg(n, v, alpha));
 }
 
 // vsgl_specular (common/vsgl.wgsl: [Tok16s §4.2 boxed; Tok15s App. B]) with the receiver's
-// ASG and n·ω_o taken from `r` instead of recomputed: the same operations on the same values.
+// ASG, n·ω_o and Λ(ω_o) taken from `r` instead of recomputed: the same operations on the same
+// values (G2 = 1/(1 + Λ(ω_i) + Λ(ω_o)) as ggx_smith_g2 forms it).
 fn vsgl_specular_receiver(radiance: Sg, r: SpecularReceiver) -> f32 {
     let n_dot_l = dot(r.n, radiance.axis);
     if (n_dot_l <= 0.0 || r.n_dot_v <= 0.0) {
         return 0.0;
     }
-    let g2 = ggx_smith_g2(n_dot_l, r.n_dot_v, r.alpha);
+    let g2 = 1.0 / (1.0 + ggx_smith_lambda(n_dot_l, r.alpha) + r.lambda_v);
     let lobe = sg_asg_product_integral_over_asg_integral(radiance.axis, radiance.sharpness, r.asg);
     return min(radiance.amplitude * g2 * lobe, FLT_MAX);
 }
@@ -292,6 +310,7 @@ fn main(@builtin(workgroup_id) wg: vec3u, @builtin(local_invocation_id) lid: vec
                     let plane = tile_plane[t];
                     fade = vsgl_tangent_plane_fade(VsglTangentPlane(plane.xyz, plane.w), position, p);
                 }
+                let seen = position_seen_from(position, p);
                 // Each lobe: radiance SG per unit power (amplitude 1/A(λ)), times its rgb
                 // power. A lobe without power (vsgl2's records carry one lobe each; metal
                 // clusters have no diffuse lobe) is skipped: it would add exactly 0.
@@ -306,7 +325,7 @@ fn main(@builtin(workgroup_id) wg: vec3u, @builtin(local_invocation_id) lid: vec
                         specular += diffuse_power * (texel_patch.irradiance * ggx_brdf_over_rs(n, texel_patch.direction, v, alpha));
                     }
                 } else if (has_diffuse) {
-                    let in_d = incoming_radiance(lobe_d4.xyz, lobe_d4.w, diffuse_power_amplitude.w, position, p);
+                    let in_d = incoming_radiance(lobe_d4.xyz, lobe_d4.w, diffuse_power_amplitude.w, seen);
                     var from_diffuse_lobe = fade * diffuse_over_rd(in_d, n);
                     if (params.lambert_lobe == 2u) {
                         // The receiver's specular keeps the SG: a point emitter would put a
@@ -329,7 +348,7 @@ fn main(@builtin(workgroup_id) wg: vec3u, @builtin(local_invocation_id) lid: vec
                     let specular_power = specular_power_amplitude.xyz * lit;
                     if (any(specular_power > vec3f(0.0))) {
                         let lobe_s4 = tile_specular_lobe[t];
-                        let in_s = incoming_radiance(lobe_s4.xyz, lobe_s4.w, specular_power_amplitude.w, position, p);
+                        let in_s = incoming_radiance(lobe_s4.xyz, lobe_s4.w, specular_power_amplitude.w, seen);
                         diffuse += specular_power * (fade * diffuse_over_rd(in_s, n));
                         specular += specular_power * specular_over_rs(in_s, spec_rcv);
                     }
