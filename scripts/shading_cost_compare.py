@@ -6,13 +6,16 @@ wheel into its own folder and compare it with the build importable here:
 
     maturin build --release -o /tmp/base-wheel            # at the base commit
     python -m pip install --no-deps --target /tmp/base /tmp/base-wheel/*.whl
-    python scripts/shading_cost_compare.py --base /tmp/base [--new /tmp/new] --rounds 5
+    python scripts/shading_cost_compare.py --base /tmp/base [--new /tmp/new] [--rounds 15]
 
-Each round renders every scene with both builds in separate processes, alternating which goes
-first, and records the median wall clock per frame of `vsgl` with interleave 1 (every pixel
-shades all N VSGLs) and with interleave 8 (1/64 of the shading work, the rest unchanged). The
-difference of the two estimates the shading pass alone; the report gives new/base ratios of the
-frame and of that difference per round, and their median and range.
+Both builds run as two long-lived processes that render one frame per request, and the requests
+alternate between them frame by frame (which one goes first alternates too), so a change of the
+machine's load (other processes on a shared CPU) falls on both alike. Per scene it times `vsgl`
+with interleave 1 (every pixel shades all N VSGLs) and interleave 8 (1/64 of the shading work,
+the rest unchanged); each round renders every configuration once with each build. The report
+gives new/base ratios of the interleave-1 frame per round, their median and interquartile
+range, and of the shading pass alone, estimated as the difference interleave 1 − interleave 8
+of the per-configuration medians.
 
 `--check` renders a matrix of shading modes (diffuse, lighting, lambert_lobe, kernel="node",
 visibility) with both builds and prints the largest relative difference of each indirect AOV
@@ -64,20 +67,17 @@ def child(args: argparse.Namespace) -> None:
 
     w, h = (int(x) for x in args.size.split("x"))
     r = vsgl.Renderer(width=w, height=h)
-    if args.child == "time":
-        out = {}
-        for name in args.scenes.split(","):
-            scene = vsgl.scenes.load(name)
-            for k in (1, 8):
-                opts = dict(method="vsgl", num_lights=args.lights, rsm_size=args.rsm, interleave=k)
-                r.render(scene, **opts)  # warm-up: pipelines, uploads
-                times = []
-                for _ in range(args.frames):
-                    t0 = time.perf_counter()
-                    r.render(scene, **opts)
-                    times.append(time.perf_counter() - t0)
-                out[f"{name}/k{k}"] = statistics.median(times)
-        print(json.dumps(out))
+    if args.child == "serve":
+        scenes = {}
+        print("ready", flush=True)
+        for line in sys.stdin:
+            name, k = line.split()
+            if name not in scenes:
+                scenes[name] = vsgl.scenes.load(name)
+            t0 = time.perf_counter()
+            r.render(scenes[name], method="vsgl", num_lights=args.lights, rsm_size=args.rsm, interleave=int(k))
+            print(time.perf_counter() - t0, flush=True)
+        return
     else:
         arrays = {}
         for i, (name, opts) in enumerate(CHECK_MODES):
@@ -102,14 +102,14 @@ def main() -> int:
     ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     ap.add_argument("--base", required=False, help="folder holding the base build's `vsgl` package")
     ap.add_argument("--new", default=None, help="folder holding the new build (default: the one importable here)")
-    ap.add_argument("--rounds", type=int, default=5)
-    ap.add_argument("--frames", type=int, default=5, help="timed frames per configuration and round")
+    ap.add_argument("--rounds", type=int, default=15)
+    ap.add_argument("--warmup", type=int, default=2, help="untimed frames per configuration and build first")
     ap.add_argument("--size", default="64x64")
     ap.add_argument("--lights", type=int, default=1024)
     ap.add_argument("--rsm", type=int, default=128)
     ap.add_argument("--scenes", default="cornell_box,diffuse_cornell,glossy_cornell")
     ap.add_argument("--check", action="store_true", help="compare the indirect AOVs of the mode matrix instead of timing")
-    ap.add_argument("--child", choices=["time", "check"], help=argparse.SUPPRESS)
+    ap.add_argument("--child", choices=["serve", "check"], help=argparse.SUPPRESS)
     ap.add_argument("--child-out", help=argparse.SUPPRESS)
     args = ap.parse_args()
     if args.child:
@@ -117,7 +117,7 @@ def main() -> int:
         return 0
     if not args.base:
         ap.error("--base is required")
-    common = ["--size", args.size, "--lights", str(args.lights), "--rsm", str(args.rsm), "--scenes", args.scenes, "--frames", str(args.frames)]
+    common = ["--size", args.size, "--lights", str(args.lights), "--rsm", str(args.rsm), "--scenes", args.scenes]
     if args.check:
         with tempfile.TemporaryDirectory() as tmp:
             files = {}
@@ -136,22 +136,47 @@ def main() -> int:
                 print(f"{name:15s} {json.dumps(opts):70s} {aov:18s} max|base| {scale:.3e}  max rel diff {rel:.2e}")
             print(f"largest relative difference: {worst:.2e}")
         return 0
-    rows: dict[str, list[float]] = {}
+    servers = {label: start_server(path, common) for label, path in (("base", args.base), ("new", args.new))}
+    configs = [(name, k) for name in args.scenes.split(",") for k in (1, 8)]
+    for name, k in configs:
+        for _ in range(args.warmup):
+            for server in servers.values():
+                render_once(server, name, k)
+    times: dict[tuple[str, str, int], list[float]] = {}
     for rnd in range(args.rounds):
-        order = [("base", args.base), ("new", args.new)]
-        if rnd % 2:
-            order.reverse()
-        got = {label: json.loads(run_child(path, ["--child", "time", *common]).stdout) for label, path in order}
-        for name in args.scenes.split(","):
-            b1, b8 = got["base"][f"{name}/k1"], got["base"][f"{name}/k8"]
-            n1, n8 = got["new"][f"{name}/k1"], got["new"][f"{name}/k8"]
-            rows.setdefault(f"{name} frame", []).append(n1 / b1)
-            rows.setdefault(f"{name} shading (k1 - k8)", []).append((n1 - n8) / (b1 - b8))
-            print(f"round {rnd}: {name}: base k1 {b1 * 1e3:.1f} ms k8 {b8 * 1e3:.1f} ms; new k1 {n1 * 1e3:.1f} ms k8 {n8 * 1e3:.1f} ms", flush=True)
-    print("new/base ratio: median [min, max] over rounds")
-    for key, v in rows.items():
-        print(f"  {key:40s} {statistics.median(v):.3f} [{min(v):.3f}, {max(v):.3f}]")
+        for name, k in configs:
+            order = ["base", "new"] if rnd % 2 == 0 else ["new", "base"]
+            for label in order:
+                times.setdefault((label, name, k), []).append(render_once(servers[label], name, k))
+        print(f"round {rnd}: " + "; ".join(f"{name} k{k} base {times[('base', name, k)][-1] * 1e3:.0f} ms new {times[('new', name, k)][-1] * 1e3:.0f} ms" for name, k in configs), flush=True)
+    for server in servers.values():
+        server.stdin.close()
+        server.wait()
+    print(f"new/base ratio over {args.rounds} rounds ({args.size}, N = {args.lights}, RSM {args.rsm})")
+    for name in args.scenes.split(","):
+        ratios = [n / b for n, b in zip(times[("new", name, 1)], times[("base", name, 1)])]
+        q = statistics.quantiles(ratios, n=4) if len(ratios) >= 2 else [ratios[0]] * 3
+        med = {key: statistics.median(v) for key, v in times.items() if key[1] == name}
+        shading = (med[("new", name, 1)] - med[("new", name, 8)]) / (med[("base", name, 1)] - med[("base", name, 8)])
+        print(f"  {name:16s} interleave-1 frame {statistics.median(ratios):.3f} (IQR {q[0]:.3f}-{q[2]:.3f}); "
+              f"shading (k1 - k8 of medians) {shading:.3f}; base k1 {med[('base', name, 1)] * 1e3:.0f} ms, k8 {med[('base', name, 8)] * 1e3:.0f} ms")
     return 0
+
+
+def start_server(path: str | None, common: list[str]) -> subprocess.Popen:
+    env = dict(os.environ)
+    if path:
+        env["PYTHONPATH"] = path + os.pathsep + env.get("PYTHONPATH", "")
+    env.setdefault("XDG_RUNTIME_DIR", "/tmp")
+    proc = subprocess.Popen([sys.executable, __file__, "--child", "serve", *common], env=env, stdin=subprocess.PIPE, stdout=subprocess.PIPE, text=True)
+    assert proc.stdout.readline().strip() == "ready"
+    return proc
+
+
+def render_once(server: subprocess.Popen, name: str, k: int) -> float:
+    server.stdin.write(f"{name} {k}\n")
+    server.stdin.flush()
+    return float(server.stdout.readline())
 
 
 if __name__ == "__main__":
