@@ -65,7 +65,7 @@ const TILE: u32 = 64u; // = WORKGROUP², one VSGL loaded per thread
 // the branch that reads them, so the default diffuse path reads 48 of the record's 128 bytes:
 // the loop runs once per (pixel, VSGL) pair and its shared-memory reads are per pair, while the
 // tile is written once per VSGL and workgroup (WORKGROUP² pixels). What depends on the VSGL
-// alone is formed there too (shade_light_from_record), once instead of once per pixel.
+// alone is formed there too (store_tile_light), once instead of once per pixel.
 // Positional Gaussian (μ_v, σ_v²).
 var<workgroup> tile_position: array<vec4f, TILE>;
 // Diffuse lobe: (axis ξ_v, sharpness λ_v) and (rgb power, amplitude over 2π, gain/(2π A(λ_v)):
@@ -165,7 +165,7 @@ fn diffuse_over_rd(radiance: Sg, n: vec3f) -> f32 {
 // Each replaced division rounds differently in the last bit or two: the result differs from
 // vsgl_incoming_radiance by a few ULP (scripts/shading_cost_compare.py --check measures it).
 struct PositionSeen {
-    // 1/σ², σ² floored as in vsgl_incoming_radiance (λσ ≤ SG_SHARPNESS_MAX).
+    // 1/σ², σ² floored as in vsgl_incoming_radiance (λσ ≤ SG_SHARPNESS_MAX to rounding).
     inv_variance: f32,
     // λσ = d²/σ².
     sharpness: f32,
