@@ -61,7 +61,45 @@ const TILE: u32 = 64u; // = WORKGROUP², one VSGL loaded per thread
 @group(1) @binding(6) var<storage, read_write> indirect_diffuse: array<vec4f>;
 @group(1) @binding(7) var<storage, read_write> indirect_specular: array<vec4f>;
 
-var<workgroup> tile: array<VsglRaw, TILE>;
+// The tile keeps, per VSGL, only what the shading loop reads, in arrays of 16 bytes grouped by
+// the branch that reads them, so the default diffuse path reads 48 of the record's 128 bytes:
+// the loop runs once per (pixel, VSGL) pair and its shared-memory reads are per pair, while the
+// tile is written once per VSGL and workgroup (WORKGROUP² pixels). What depends on the VSGL
+// alone is formed there too (store_tile_light), once instead of once per pixel.
+// Positional Gaussian (μ_v, σ_v²).
+var<workgroup> tile_position: array<vec4f, TILE>;
+// Diffuse lobe: (axis ξ_v, sharpness λ_v) and (rgb power, amplitude over 2π, gain/(2π A(λ_v)):
+// the factor of the incoming radiance's coefficient that depends on the VSGL alone).
+var<workgroup> tile_diffuse_lobe: array<vec4f, TILE>;
+var<workgroup> tile_diffuse_power: array<vec4f, TILE>;
+// Specular lobe, read only with HAS_SPECULAR: the same, 1/(2π A(λ)).
+var<workgroup> tile_specular_lobe: array<vec4f, TILE>;
+var<workgroup> tile_specular_power: array<vec4f, TILE>;
+// Mean tangent plane (N̄, offset), read only with plane_fade.
+var<workgroup> tile_plane: array<vec4f, TILE>;
+// (shadow target, level): the target is read only with visibility, the level only by the
+// exact_texels path.
+var<workgroup> tile_target_level: array<vec4f, TILE>;
+
+// Writes record `v` into tile slot `slot`, with its lobes' amplitudes: the diffuse one with
+// the Lambert gain params.lambert_lobe selects (vsgl_record_diffuse_lobe), the specular one
+// normalized (vsgl_record_specular_lobe). Each is exp + division + a series branch
+// (sg_integral) that depends on the VSGL only; the 1/(2π) of the incoming radiance's
+// coefficient (incoming_radiance) is folded in here too.
+fn store_tile_light(slot: u32, v: VsglRaw) {
+    let gain = select(1.0, LAMBERT_LOBE_HEMISPHERE_GAIN, params.lambert_lobe != 0u);
+    let lobe_d = vsgl_record_diffuse_lobe(v, gain);
+    tile_position[slot] = vec4f(v.mean, v.variance);
+    tile_diffuse_lobe[slot] = vec4f(lobe_d.axis, lobe_d.sharpness);
+    tile_diffuse_power[slot] = vec4f(v.diffuse_power, lobe_d.amplitude / TWO_PI);
+    if (HAS_SPECULAR) {
+        let lobe_s = vsgl_record_specular_lobe(v);
+        tile_specular_lobe[slot] = vec4f(lobe_s.axis, lobe_s.sharpness);
+        tile_specular_power[slot] = vec4f(v.specular_power, lobe_s.amplitude / TWO_PI);
+    }
+    tile_plane[slot] = vec4f(v.plane_normal, v.plane_offset);
+    tile_target_level[slot] = vec4f(v.shadow_target, v.level);
+}
 
 // Irradiance over power at p (normal n) from a Lambertian patch at `mean` facing `axis` whose
 // positional variance is σ²: the texel's radiant intensity per unit power max(−ω·axis, 0)/π
@@ -102,11 +140,96 @@ fn diffuse_over_rd(radiance: Sg, n: vec3f) -> f32 {
     return vsgl_diffuse_approx(radiance, n);
 }
 
-fn specular_over_rs(radiance: Sg, n: vec3f, v: vec3f, alpha: f32) -> f32 {
-    if (params.lighting_mode == 1u) {
-        return vsgl_specular_accurate(radiance, n, v, alpha);
+// vsgl_incoming_radiance (common/vsgl.wgsl) [Tok15 Eq. 5; Tok16s Eq. 7] with its sg_product
+// inlined, written for the inner loop, where it runs once per (pixel, VSGL) pair:
+//   L_in(ω) = c_v/(2πσ²)·G(ω; −ξ_v, λ_v)·G(ω; ξ_μ, λσ), λσ = d²/σ², ξ_μ = (μ_v − p)/d.
+// The same formulas, clamps and stable log-amplitude −λ_v·(λσ/(λ_in + λ_v + λσ))·‖ξ_v + ξ_μ‖²
+// (sg_product); what differs is only how often it divides, which the GPU pays for per pair:
+//  - the positional Gaussian as seen from p (d², 1/σ², λσ, ξ_μ: PositionSeen) is formed once
+//    per pair and serves both lobes;
+//  - c_v/(2π) comes from the tile (amplitude_over_two_pi), so the coefficient and λσ share one
+//    reciprocal 1/σ² instead of two divisions;
+//  - ξ_μ is (μ_v − p)·(d²)^(−1/2) with the d² already formed, and ξ_in is v·‖v‖⁻¹ with the ‖v‖²
+//    that λ_in = ‖v‖ needs, instead of safe_normalize's three divisions by the largest component
+//    (which guards vectors whose squared length underflows: here d² < FLT_MIN means p within
+//    1e-19 of μ_v, where λσ ≈ 0 and ξ_μ does not matter, and ‖v‖² < FLT_MIN means λ_in ≈ 0,
+//    where the fallback is sg_product's: the sharper input's axis);
+//  - d²/SG_SHARPNESS_MAX is a product with the constant's reciprocal.
+// Each replaced division rounds differently in the last bit or two: the result differs from
+// vsgl_incoming_radiance by a few ULP (scripts/shading_cost_compare.py --check measures it).
+struct PositionSeen {
+    // 1/σ², σ² floored as in vsgl_incoming_radiance (λσ ≤ SG_SHARPNESS_MAX to rounding).
+    inv_variance: f32,
+    // λσ = d²/σ².
+    sharpness: f32,
+    // ξ_μ, valid where has_axis (d² ≥ FLT_MIN); else the caller's lobe decides (−ξ_v).
+    axis: vec3f,
+    has_axis: bool,
+}
+
+fn position_seen_from(position: VsglPosition, shading_position: vec3f) -> PositionSeen {
+    let to_mean = position.mean - shading_position;
+    let dist2 = dot(to_mean, to_mean);
+    let variance = max(max(position.variance, dist2 * (1.0 / SG_SHARPNESS_MAX)), FLT_MIN);
+    let inv_variance = 1.0 / variance;
+    let has_axis = dist2 >= FLT_MIN;
+    return PositionSeen(inv_variance, dist2 * inv_variance, to_mean * inverseSqrt(select(1.0, dist2, has_axis)), has_axis);
+}
+
+fn incoming_radiance(lobe_axis: vec3f, lobe_sharpness: f32, amplitude_over_two_pi: f32, seen: PositionSeen) -> Sg {
+    let axis1 = -lobe_axis;
+    let sharpness_sigma = seen.sharpness;
+    // At the mean itself (d = 0) λσ = 0 and ξ_μ is irrelevant.
+    let axis_mu = select(axis1, seen.axis, seen.has_axis);
+    let v = lobe_sharpness * axis1 + sharpness_sigma * axis_mu;
+    let v_len2 = dot(v, v);
+    let sharpness = sqrt(v_len2);
+    var axis = select(axis_mu, axis1, lobe_sharpness >= sharpness_sigma);
+    if (v_len2 >= FLT_MIN) {
+        axis = v * inverseSqrt(v_len2);
     }
-    return vsgl_specular(radiance, n, v, alpha);
+    let d = axis1 - axis_mu;
+    let ratio = sharpness_sigma / max(sharpness + lobe_sharpness + sharpness_sigma, FLT_MIN);
+    let log_amplitude = -lobe_sharpness * ratio * dot(d, d);
+    let coefficient = min(amplitude_over_two_pi * seen.inv_variance, FLT_MAX);
+    return Sg(axis, sharpness, coefficient * exp(log_amplitude));
+}
+
+// What the specular forms need of the receiver alone, formed once per pixel: n·ω_o, the GGX
+// lobe's ASG [Tok16s §4.2; ggx_lobe_asg] and the view's Smith Λ(ω_o) [Heitz 2014, Eq. 99],
+// which vsgl_specular would rebuild per VSGL.
+struct SpecularReceiver {
+    n: vec3f,
+    v: vec3f,
+    alpha: f32,
+    n_dot_v: f32,
+    lambda_v: f32,
+    asg: Asg,
+}
+
+fn specular_receiver(n: vec3f, v: vec3f, alpha: f32) -> SpecularReceiver {
+    let n_dot_v = dot(n, v);
+    return SpecularReceiver(n, v, alpha, n_dot_v, ggx_smith_lambda(n_dot_v, alpha), ggx_lobe_asg(n, v, alpha));
+}
+
+// vsgl_specular (common/vsgl.wgsl: [Tok16s §4.2 boxed; Tok15s App. B]) with the receiver's
+// ASG, n·ω_o and Λ(ω_o) taken from `r` instead of recomputed: the same operations on the same
+// values (G2 = 1/(1 + Λ(ω_i) + Λ(ω_o)) as ggx_smith_g2 forms it).
+fn vsgl_specular_receiver(radiance: Sg, r: SpecularReceiver) -> f32 {
+    let n_dot_l = dot(r.n, radiance.axis);
+    if (n_dot_l <= 0.0 || r.n_dot_v <= 0.0) {
+        return 0.0;
+    }
+    let g2 = 1.0 / (1.0 + ggx_smith_lambda(n_dot_l, r.alpha) + r.lambda_v);
+    let lobe = sg_asg_product_integral_over_asg_integral(radiance.axis, radiance.sharpness, r.asg);
+    return min(radiance.amplitude * g2 * lobe, FLT_MAX);
+}
+
+fn specular_over_rs(radiance: Sg, r: SpecularReceiver) -> f32 {
+    if (params.lighting_mode == 1u) {
+        return vsgl_specular_accurate(radiance, r.n, r.v, r.alpha);
+    }
+    return vsgl_specular_receiver(radiance, r);
 }
 
 @compute @workgroup_size(WORKGROUP, WORKGROUP, 1)
@@ -137,33 +260,39 @@ fn main(@builtin(workgroup_id) wg: vec3u, @builtin(local_invocation_id) lid: vec
     let class_count = class_light_count(ip.class_index, params.count, k);
     var diffuse = vec3f(0.0);
     var specular = vec3f(0.0);
+    var spec_rcv: SpecularReceiver;
+    if (HAS_SPECULAR && has_surface) {
+        spec_rcv = specular_receiver(n, v, alpha);
+    }
     // Every thread takes part in the tile loads and barriers, with a surface or not.
     for (var tile_start = 0u; tile_start < class_count; tile_start += TILE) {
         let m = tile_start + local;
         if (m < class_count) {
-            tile[local] = vsgls[class_first + m * stride];
+            store_tile_light(local, vsgls[class_first + m * stride]);
         }
         workgroupBarrier();
         let n_tile = min(TILE, class_count - tile_start);
         if (has_surface) {
             for (var t = 0u; t < n_tile; t++) {
-                var light = tile[t];
+                let pos = tile_position[t];
+                let position = VsglPosition(pos.xyz, pos.w);
+                let diffuse_power_amplitude = tile_diffuse_power[t];
+                var diffuse_power = diffuse_power_amplitude.xyz;
+                var lit = 1.0;
                 if (VISIBILITY_TRACED || VISIBILITY_ISM) {
                     // V(x_p, μ_v) of Tok15 Eq. 3: a shadow ray to the VSGL's shadow target (its
                     // centre texel's surface point; μ for vsgl2), or the lit fraction of μ's
                     // imperfect shadow map; it scales both lobes' powers.
-                    var shadow_target = light.mean;
+                    var shadow_target = position.mean;
                     if (VISIBILITY_TRACED) {
-                        shadow_target = light.shadow_target;
+                        shadow_target = tile_target_level[t].xyz;
                     }
-                    let lit = light_visibility(p, n, shadowing, class_first + (tile_start + t) * stride, shadow_target);
+                    lit = light_visibility(p, n, shadowing, class_first + (tile_start + t) * stride, shadow_target);
                     if (lit <= 0.0) {
                         continue;
                     }
-                    light.diffuse_power *= lit;
-                    light.specular_power *= lit;
+                    diffuse_power *= lit;
                 }
-                let position = VsglPosition(light.mean, light.variance);
                 // The diffuse forms that integrate the incoming lobe over the receiver's
                 // hemisphere ("accurate", "sg_product") also need the cluster's: texels reflect
                 // only into their own hemisphere, so nothing reaches p from below the cluster's
@@ -171,16 +300,20 @@ fn main(@builtin(workgroup_id) wg: vec3u, @builtin(local_invocation_id) lid: vec
                 // specular ASG form vanish there already and are left as they are.
                 var fade = 1.0;
                 if (params.plane_fade == 1u) {
-                    fade = vsgl_tangent_plane_fade(VsglTangentPlane(light.plane_normal, light.plane_offset), position, p);
+                    let plane = tile_plane[t];
+                    fade = vsgl_tangent_plane_fade(VsglTangentPlane(plane.xyz, plane.w), position, p);
                 }
+                let seen = position_seen_from(position, p);
                 // Each lobe: radiance SG per unit power (amplitude 1/A(λ)), times its rgb
                 // power. A lobe without power (vsgl2's records carry one lobe each; metal
                 // clusters have no diffuse lobe) is skipped: it would add exactly 0.
-                if (params.exact_texels == 1u && light.level == 0.0 && any(light.diffuse_power > vec3f(0.0))) {
+                let has_diffuse = any(diffuse_power > vec3f(0.0));
+                let lobe_d4 = tile_diffuse_lobe[t];
+                if (params.exact_texels == 1u && has_diffuse && tile_target_level[t].w == 0.0) {
                     // The texel is a patch, not a point (issue 18, item 2): its positional
                     // variance σ² is its footprint (vsgl_moments.wgsl).
-                    let texel_irradiance = lambert_patch_irradiance(light.mean, light.diffuse_axis, light.variance, p, n);
-                    diffuse += light.diffuse_power * (texel_irradiance * INV_PI);
+                    let texel_irradiance = lambert_patch_irradiance(position.mean, lobe_d4.xyz, position.variance, p, n);
+                    diffuse += diffuse_power * (texel_irradiance * INV_PI);
                     if (HAS_SPECULAR) {
                         // The receiver's specular keeps the texel's SG with its footprint (as
                         // "exact_compact" does): a point emitter in a sharp GGX lobe is a spike
@@ -188,36 +321,37 @@ fn main(@builtin(workgroup_id) wg: vec3u, @builtin(local_invocation_id) lid: vec
                         // (docs/rendering.md, "Issue 18's acceptance on a GPU"): node VSGLs at
                         // N = 16384 gave 22.97 on caustics_ring and 0.97 on mirror_panel against
                         // 0.59 and 0.10 at N = 4096, all of it in indirect_specular.
-                        let gain = select(1.0, LAMBERT_LOBE_HEMISPHERE_GAIN, params.lambert_lobe != 0u);
-                        let in_d = vsgl_incoming_radiance(vsgl_record_diffuse_lobe(light, gain), position, p);
-                        specular += light.diffuse_power * specular_over_rs(in_d, n, v, alpha);
+                        let in_d = incoming_radiance(lobe_d4.xyz, lobe_d4.w, diffuse_power_amplitude.w, seen);
+                        specular += diffuse_power * specular_over_rs(in_d, spec_rcv);
                     }
-                } else if (any(light.diffuse_power > vec3f(0.0))) {
-                    let gain = select(1.0, LAMBERT_LOBE_HEMISPHERE_GAIN, params.lambert_lobe != 0u);
-                    let lobe_d = vsgl_record_diffuse_lobe(light, gain);
-                    let in_d = vsgl_incoming_radiance(lobe_d, position, p);
+                } else if (has_diffuse) {
+                    let in_d = incoming_radiance(lobe_d4.xyz, lobe_d4.w, diffuse_power_amplitude.w, seen);
                     var from_diffuse_lobe = fade * diffuse_over_rd(in_d, n);
                     if (params.lambert_lobe == 2u) {
                         // The receiver's specular keeps the SG: a point emitter would put a
                         // spike into every glossy receiver.
-                        let w = lambert_exact_weight(light.mean, light.variance, p);
+                        let w = lambert_exact_weight(position.mean, position.variance, p);
                         // A point emitter (σ² = 0): the weight leaves the near field to the SG,
                         // and d² + 2σ² would bias it low off its axis (measured: cornell_box
                         // 0.061 → 0.050 at N = 4096, lit_floor_corner 0.211 → 0.186).
-                        let exact = lambert_patch_irradiance(light.mean, light.diffuse_axis, 0.0, p, n) * INV_PI;
+                        let exact = lambert_patch_irradiance(position.mean, lobe_d4.xyz, 0.0, p, n) * INV_PI;
                         from_diffuse_lobe = mix(from_diffuse_lobe, exact, w);
                     }
-                    diffuse += light.diffuse_power * from_diffuse_lobe;
+                    diffuse += diffuse_power * from_diffuse_lobe;
                     if (HAS_SPECULAR) {
-                        specular += light.diffuse_power * specular_over_rs(in_d, n, v, alpha);
+                        specular += diffuse_power * specular_over_rs(in_d, spec_rcv);
                     }
                 }
                 // Without specular materials no record has specular power (and R_s = 0 here).
-                if (HAS_SPECULAR && any(light.specular_power > vec3f(0.0))) {
-                    let lobe_s = vsgl_record_specular_lobe(light);
-                    let in_s = vsgl_incoming_radiance(lobe_s, position, p);
-                    diffuse += light.specular_power * (fade * diffuse_over_rd(in_s, n));
-                    specular += light.specular_power * specular_over_rs(in_s, n, v, alpha);
+                if (HAS_SPECULAR) {
+                    let specular_power_amplitude = tile_specular_power[t];
+                    let specular_power = specular_power_amplitude.xyz * lit;
+                    if (any(specular_power > vec3f(0.0))) {
+                        let lobe_s4 = tile_specular_lobe[t];
+                        let in_s = incoming_radiance(lobe_s4.xyz, lobe_s4.w, specular_power_amplitude.w, seen);
+                        diffuse += specular_power * (fade * diffuse_over_rd(in_s, n));
+                        specular += specular_power * specular_over_rs(in_s, spec_rcv);
+                    }
                 }
             }
         }
