@@ -3,15 +3,17 @@
 # new one (one device call, ~3 min; results under $OUT):
 #   - the previous build's wheel in .whl-old/, this build's in .whl/ (installed to /tmp/site by
 #     the gpu-prep lines);
-#   - per-pass timings at 1920x1080 on cornell_box (diffuse) and glossy_cornell (specular), vsgl
-#     and vpl at interleave 1 (1024 lights per pixel: the 6 ms target) and 8x8, in the order
-#     old, new, old, new, so a drift of the machine shows as a difference between rounds;
+#   - per-pass timings at 1920x1080 on cornell_box (R_s 0.04), diffuse_cornell (diffuse only) and
+#     glossy_cornell, vsgl
+#     and vpl at interleave 1 (1024 lights per pixel: the 6 ms target) and 8x8: old, new, the
+#     diagnostic variants, new again (its difference from the first is the drift of the machine);
 #   - issue18_acceptance.py at 256² (GPU clock for the equal-time tables), with and without
 #     shadow rays;
 #   - vsgl2's subgroup against shared-memory reduction by RSM side;
 #   - issue 19's sequence benchmark on cave_flashlight, cut to fit (K = 1, 4; 20 frames; 512-spp truth).
 #   bash ../shared/tools/gpu-prep.sh; mkdir -p .whl-old && cp <previous wheel> .whl-old/
-#   device (carry .gl .whl .whl-old): <gpu-prep lines> bash scripts/gpu_shading_compare.sh
+#   optional diagnostic builds in .whl-var/NAME.whl (timed once each, vsgl at interleave 1)
+#   device (carry .gl .whl .whl-old .whl-var): <gpu-prep lines> bash scripts/gpu_shading_compare.sh
 set -uo pipefail
 FINAL_OUT=${OUT:-out}
 mkdir -p "$FINAL_OUT"
@@ -21,19 +23,27 @@ cd "$(dirname "$0")/.."
 SIZE=${SIZE:-1920x1080} ACC_SIZE=${ACC_SIZE:-256} ACC_LIGHTS=${ACC_LIGHTS:-256,1024,4096,16384,65536}  # smaller for a smoke test
 pack() { tar czf "$FINAL_OUT/results.tgz" -C "$RES" . 2>/dev/null; }
 {
-python3 -m pip install -q --no-index --no-deps --no-compile --target /tmp/old .whl-old/*.whl || exit 1
+# Wheels are zip files: extracting them is installing them, whatever their platform tag.
+python3 -m zipfile -e .whl-old/*.whl /tmp/old || exit 1
+for w in .whl-var/*.whl; do [ -f "$w" ] && python3 -m zipfile -e "$w" "/tmp/var_$(basename "$w" .whl)"; done
 nvidia-smi --query-gpu=name,driver_version,clocks.sm,clocks.max.sm --format=csv 2>&1 | tee "$RES/gpu.txt"
-common=(--size "$SIZE" --frames 20 --scenes cornell_box,glossy_cornell --aovs image --warm-seconds 3)
-for round in 1 2; do
-  for build in old new; do
-    [ $build = old ] && path=/tmp/old || path=/tmp/site
-    PYTHONPATH=$path timeout 90 python3 scripts/gpu_timings.py "${common[@]}" --methods vsgl,vpl --interleave 1 --vpl-interleave 1 \
-      --tag "_k1_${build}_$round" 2>&1 | grep -v adapter | sed -E 's/  (visibility|shadow_map|material|direct|rsm_[a-z]+|aov_pack)=[^ ]+//g' | cut -c1-260
-    PYTHONPATH=$path timeout 60 python3 scripts/gpu_timings.py "${common[@]}" --methods vsgl --tag "_k8_${build}_$round" 2>&1 \
-      | grep -v adapter | sed -E 's/  (visibility|shadow_map|material|direct|rsm_[a-z]+|aov_pack)=[^ ]+//g' | cut -c1-260
-    pack
-  done
-done
+common=(--size "$SIZE" --frames 20 --scenes cornell_box,diffuse_cornell,glossy_cornell --aovs image --warm-seconds 3)
+strip() { grep -v adapter | sed -E 's/  (visibility|shadow_map|material|direct|rsm_[a-z]+|aov_pack|pdf_mips|vsgl_moments|moment_mips|vsgl_gen|vpl_sample)=[^ ]+//g' | cut -c1-230; }
+time_build() {  # NAME PYTHONPATH FULL: k1 vsgl (and vpl, k8 vsgl when FULL=1)
+  local name=$1 path=$2 full=$3 methods=vsgl
+  [ "$full" = 1 ] && methods=vsgl,vpl
+  echo "-- $name"
+  PYTHONPATH=$path timeout 90 python3 scripts/gpu_timings.py "${common[@]}" --methods $methods --interleave 1 --vpl-interleave 1 --tag "_k1_$name" 2>&1 | strip
+  [ "$full" = 1 ] && PYTHONPATH=$path timeout 60 python3 scripts/gpu_timings.py "${common[@]}" --methods vsgl --tag "_k8_$name" 2>&1 | strip
+  pack
+}
+# Diagnostic variants (.whl-var/, when present): "nospec" replaces the receiver's SG-ASG specular
+# by a trivial term, "floor" also the incoming-radiance and diffuse arithmetic: where the pass's
+# time goes per (pixel, VSGL) pair. Their images are wrong by construction; only their time counts.
+time_build old_1 /tmp/old 1
+time_build new_1 /tmp/site 1
+for v in /tmp/var_*; do [ -d "$v" ] && time_build "${v#/tmp/var_}" "$v" 0; done
+time_build new_2 /tmp/site 0  # the same build again: the drift over the comparison
 echo "== issue 18, 256², no shadows"
 timeout 100 python3 scripts/issue18_acceptance.py --size "$ACC_SIZE" --lights "$ACC_LIGHTS" --brsm \
   --cache "$RES/truth" --out "$RES/issue18_none.json" > "$RES/issue18_none.log" 2>&1
@@ -46,7 +56,7 @@ rm -rf "$RES/truth"; pack
 echo "== vsgl2's reductions"
 timeout 45 python3 scripts/gpu_vsgl2_reduction.py --size "$SIZE" --rsm 256,1024,4096 2>&1 | tail -4; pack
 echo "== issue 19 on a GPU: error, flicker and time under the animated flashlight"
-timeout 90 python3 -m vsgl bench --scene cave_flashlight --methods vpl,vsgl --K 1,4 --sequence 20 --sampling stratified,metropolis \
+timeout 50 python3 -m vsgl bench --scene cave_flashlight --methods vpl,vsgl --K 1,4 --sequence 20 --sampling stratified,metropolis \
   --size 960x540 --lights 1024 --rsm-sizes 256 --seeds 1 --frames 3 --reference pathtrace --reference-spp 512 \
   --no-progress --out "$RES/bench_issue19" 2>&1 | tail -25 | cut -c1-230
 } 2>&1 | tee "$FINAL_OUT/log.txt"
