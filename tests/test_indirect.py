@@ -10,6 +10,7 @@ import pytest
 import vsgl
 from scene_builders import write_quad
 from test_direct import ggx_over_rs
+from camera_model import camera_rays
 
 
 def cone_power(intensity: float, inner_deg: float, outer_deg: float) -> float:
@@ -34,16 +35,6 @@ def test_rsm_total_diffuse_flux_equals_light_power_times_rd(tmp_path, renderer, 
     np.testing.assert_allclose(spec, 0.04 * cone_power(intensity, inner, outer), rtol=0.005)
 
 
-def _camera_rays(cam: vsgl.Camera, w: int, h: int) -> np.ndarray:
-    fwd, up = np.array(cam.forward), np.array(cam.up)
-    right = np.cross(fwd, up)
-    t = math.tan(math.radians(cam.fov_y_deg) / 2)
-    x = (np.arange(w) + 0.5) / w * 2 - 1
-    y = 1 - (np.arange(h) + 0.5) / h * 2
-    rays = fwd + x[None, :, None] * right * t * w / h + y[:, None, None] * up * t
-    return rays / np.linalg.norm(rays, axis=-1, keepdims=True)
-
-
 def test_reference_matches_a_numpy_sum_over_every_rsm_texel(renderer):
     """The reference at a few pixels, recomputed in float64 from the RSM the GPU used."""
     scene = vsgl.scenes.cornell_box()
@@ -51,7 +42,7 @@ def test_reference_matches_a_numpy_sum_over_every_rsm_texel(renderer):
     cam = scene.cameras[0]
     light = scene.lights[0]
     h, w = frame.height, frame.width
-    rays = _camera_rays(cam, w, h)
+    rays = camera_rays(cam, w, h)
     depth = frame.aov("depth")[..., 0].astype(np.float64)
     fwd = np.array(cam.forward)
     pos = rays * (depth / (rays @ fwd))[..., None]  # relative to the camera

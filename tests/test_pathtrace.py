@@ -14,22 +14,13 @@ import pytest
 
 import vsgl
 from scene_builders import write_quads
+from camera_model import camera_rays
 
 W, H = 64, 48
 
 
-def _camera_rays(cam: vsgl.Camera, w: int, h: int) -> np.ndarray:
-    fwd, up = np.array(cam.forward), np.array(cam.up)
-    right = np.cross(fwd, up)
-    t = math.tan(math.radians(cam.fov_y_deg) / 2)
-    x = (np.arange(w) + 0.5) / w * 2 - 1
-    y = 1 - (np.arange(h) + 0.5) / h * 2
-    rays = fwd + x[None, :, None] * right * t * w / h + y[:, None, None] * up * t
-    return rays / np.linalg.norm(rays, axis=-1, keepdims=True)
-
-
 def _world_positions(frame: vsgl.Frame, cam: vsgl.Camera) -> np.ndarray:
-    rays = _camera_rays(cam, frame.width, frame.height)
+    rays = camera_rays(cam, frame.width, frame.height)
     depth = frame.aov("depth")[..., 0].astype(np.float64)
     return np.array(cam.eye) + rays * (depth / (rays @ np.array(cam.forward)))[..., None]
 

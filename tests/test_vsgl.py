@@ -13,6 +13,7 @@ import pytest
 import vsgl
 from vsgl.metrics import rel_rmse
 from rsm_model import spot_texel_footprint_variance
+from camera_model import camera_rays
 
 # Constants of wgsl/common/sg.wgsl (the f64 twin in crates/vsgl-core/src/verify/oracle reads them too).
 LAMBERT_LOBE_SG_SHARPNESS = 2.2925
@@ -277,17 +278,6 @@ def test_interleaving_with_denoising_matches_full_evaluation(renderer):
     assert abs(filtered.aov("indirect").mean() / target.mean() - 1) < 0.05
 
 
-def _camera_rays(cam: vsgl.Camera, w: int, h: int) -> np.ndarray:
-    """Unit view rays through the pixel centres (the camera model of tests/test_indirect.py)."""
-    fwd, up = np.array(cam.forward), np.array(cam.up)
-    right = np.cross(fwd, up)
-    t = math.tan(math.radians(cam.fov_y_deg) / 2)
-    x = (np.arange(w) + 0.5) / w * 2 - 1
-    y = 1 - (np.arange(h) + 0.5) / h * 2
-    rays = fwd + x[None, :, None] * right * t * w / h + y[:, None, None] * up * t
-    return rays / np.linalg.norm(rays, axis=-1, keepdims=True)
-
-
 def _sg_integral(lam: np.ndarray) -> np.ndarray:
     """A(λ) = 2π(1 − e^{−2λ})/λ [Tok16s §2], 4π at λ = 0."""
     lam = np.asarray(lam, np.float64)
@@ -312,7 +302,7 @@ def test_shading_equals_a_float64_evaluation_of_the_frames_own_vsgls(renderer, s
     assert ("vsgl_shading[diffuse_only]" in f.passes) == (scene_name == "diffuse_cornell")
     cam = scene.cameras[0]
     h, w = f.height, f.width
-    rays = _camera_rays(cam, w, h)
+    rays = camera_rays(cam, w, h)
     depth = f.aov("depth")[..., 0].astype(np.float64)
     pos = rays * (depth / (rays @ np.array(cam.forward)))[..., None]  # relative to the camera, as the records
     normal = f.aov("normal").astype(np.float64)
