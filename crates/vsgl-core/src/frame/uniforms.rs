@@ -430,7 +430,7 @@ mod tests {
     #[test]
     fn no_view_that_sees_part_of_the_scene_is_left_out() {
         let mut rng = SplitMix64(7);
-        let mut unit = |rng: &mut SplitMix64| DVec3::new(rng.next_f64() * 2.0 - 1.0, rng.next_f64() * 2.0 - 1.0, rng.next_f64() * 2.0 - 1.0);
+        let unit = |rng: &mut SplitMix64| DVec3::new(rng.next_f64() * 2.0 - 1.0, rng.next_f64() * 2.0 - 1.0, rng.next_f64() * 2.0 - 1.0);
         let mut left_out = 0;
         for _ in 0..200 {
             let anchor = unit(&mut rng) * 5.0;
