@@ -283,6 +283,35 @@ def test_lighting_sweeps_the_sg_lighting_forms_of_vsgl_and_vsgl2(tmp_path, rende
         bench.run(lightings=("exact",), size=(8, 8), out=None, progress=False)
 
 
+def test_option_sweeps_any_method_option_for_the_methods_that_take_it(tmp_path):
+    """-O NAME=V1,V2 sweeps an option that has no axis of its own (here lambert_lobe, which
+    vsgl and vsgl2 take and vpl does not): one row per value for the methods that take it, the
+    value in the table, the CSV and the JSON, and the values render differently (the papers'
+    lobe delivers 1/1.101 of the hemisphere one's diffuse light). Options with their own axis,
+    options no swept method takes, and empty value lists are refused by name."""
+    out = tmp_path / "b"
+    done = subprocess.run([sys.executable, "-m", "vsgl", "bench", "--scene", "diffuse_cornell", "--methods", "vpl,vsgl,vsgl2", "--lights", "32",
+                           "--size", "24x16", "--rsm-sizes", "32", "--seeds", "1", "--frames", "1", "--warmup", "0", "--reference-rsm", "32",
+                           "-O", "lambert_lobe=papers,hemisphere", "--no-progress", "--out", str(out)], capture_output=True, text=True, timeout=600)
+    assert done.returncode == 0, done.stderr
+    for label in ("vsgl(lambert_lobe=papers)", "vsgl(lambert_lobe=hemisphere)", "vsgl2(lambert_lobe=papers)", "vsgl2(lambert_lobe=hemisphere)"):
+        assert label in done.stdout, label
+    rows = list(csv.DictReader((out / "bench.csv").open()))
+    assert [(r["method"], r["options"]) for r in rows] == [
+        ("vpl", ""), ("vsgl", "lambert_lobe=papers"), ("vsgl", "lambert_lobe=hemisphere"),
+        ("vsgl2", "lambert_lobe=papers"), ("vsgl2", "lambert_lobe=hemisphere")]
+    saved = json.loads((out / "bench.json").read_text())["rows"]
+    assert [r["options"] for r in saved] == [None, {"lambert_lobe": "papers"}, {"lambert_lobe": "hemisphere"},
+                                             {"lambert_lobe": "papers"}, {"lambert_lobe": "hemisphere"}]
+    err = {(r["method"], r["options"]): float(r["rmse_indirect"]) for r in rows}
+    assert err[("vsgl", "lambert_lobe=papers")] != err[("vsgl", "lambert_lobe=hemisphere")]
+    for bad, match in (({"kernel": ("node",)}, "--kernels"), ({"photon_count": (1,)}, "none of the methods"), ({"lambert_lobe": ()}, "non-empty")):
+        with pytest.raises(ValueError, match=match):
+            bench.run(methods=["vsgl"], options=bad, size=(8, 8), out=None, progress=False)
+    refused = subprocess.run([sys.executable, "-m", "vsgl", "bench", "-O", "lambert_lobe"], capture_output=True, text=True, timeout=60)
+    assert refused.returncode == 2 and "NAME=V1,V2" in refused.stderr, refused.stderr
+
+
 def test_bench_compares_rsm_and_brsm_importance(tmp_path):
     """--importance rsm,brsm: each vpl and vsgl configuration runs with both sampling densities
     (rows marked in the table, CSV and JSON); methods that sample nothing run once."""

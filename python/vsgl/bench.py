@@ -1,7 +1,8 @@
 """Error against run time: ``python -m vsgl bench`` and ``vsgl.bench.run(...)``.
 
 Sweeps methods × light counts × RSM sizes × VSGL kernels (× K with ``--K``, × the SG lighting forms of
-vsgl and vsgl2 with ``--lighting asg,accurate``) over scenes at one resolution. For each
+vsgl and vsgl2 with ``--lighting asg,accurate``, × any other method option with ``-O NAME=V1,V2``,
+for the methods that take it) over scenes at one resolution. For each
 configuration it reports GPU time per pass and in total (median, interquartile range and
 extremes over frames rendered back to back after a warm-up of ``--warmup-seconds`` of sustained
 rendering, so the GPU leaves its idle clock; from timestamp queries; the SM clock before and
@@ -139,6 +140,9 @@ class Row:
     importance: str | None = None
     # vpl's and vsgl's `sampling=` when --sampling sweeps it (None: the default, "stratified").
     sampling: str | None = None
+    # Any other method options swept by --option NAME=V1,V2 (only those this method takes);
+    # None when none was swept for it.
+    options: dict[str, Any] | None = None
     # With --sequence N: metrics.flicker of the indirect AOV over N frames of a moving light
     # (the scene's animation, or its lights slid along x) against the every-texel reference of
     # the same frames; stochastic methods draw seed k in frame k, as a real-time renderer would.
@@ -373,6 +377,7 @@ def run(
     importances=("rsm",),
     samplings=(None,),
     importance_interleave=None,
+    options=None,
 ) -> Report:
     """Runs the sweep and returns a :class:`Report`; with ``out`` also writes CSV, JSON and plots.
 
@@ -405,6 +410,15 @@ def run(
         raise ValueError(f"importance_interleave: expected an integer 1..16 (or None for the default), got {importance_interleave!r}")
     if not samplings or any(s not in (None, *SAMPLINGS) for s in samplings):
         raise ValueError(f"samplings: expected values from {', '.join(SAMPLINGS)} (or None for the default), got {list(samplings)}")
+    options = dict(options or {})
+    for name, values in options.items():
+        takers = [m for m in methods if name in vsgl.method_options(m)]
+        if not takers:
+            raise ValueError(f"options: {name!r} is an option of none of the methods {list(methods)}; `python -m vsgl methods` lists each one's")
+        if name in SWEPT_ELSEWHERE:
+            raise ValueError(f"options: {name!r} has its own axis or setting ({SWEPT_ELSEWHERE[name]}); use that")
+        if isinstance(values, (str, bytes)) or not hasattr(values, "__len__") or len(values) == 0:
+            raise ValueError(f"options: {name!r} needs a non-empty list of values, got {values!r}")
     if isinstance(sequence, bool) or not isinstance(sequence, int) or sequence < 0 or sequence == 1:
         raise ValueError(f"sequence: expected 0 (off) or a number of frames >= 2, got {sequence!r}")
     # The adapter decides the defaults; a tiny renderer finds it (~0.1 s) before the real one.
@@ -478,7 +492,9 @@ def run(
                     configs.append((m, None, r, None, None, li, None, None))
         else:
             configs.append((m, None, None, None, None, None, None, None))
-    # Plans alternate inside one configuration so both see the same machine state.
+    # --option axes, for the methods that take each option; then the plans, which alternate
+    # inside one configuration so both see the same machine state.
+    configs = [(*c, extra) for c in configs for extra in _option_combinations(c[0], options)]
     configs = [(*c, plan) for c in configs for plan in plans]
     # Per row (by its index in report.rows): its SeedErrors, for the equal-time comparisons.
     seed_stats: dict[int, metrics.SeedErrors] = {}
@@ -492,8 +508,8 @@ def run(
         ref_error = report.reference_rel_error[scene_name]
         ref_has_light = bool(np.any(ref.indirect != 0))
         bar = _progress(len(configs), progress)
-        for method, n, rsm, kernel, K, lighting, importance, sampling, plan in configs:
-            settings: dict[str, Any] = {"plan": plan}
+        for method, n, rsm, kernel, K, lighting, importance, sampling, extra, plan in configs:
+            settings: dict[str, Any] = {"plan": plan, **dict(extra)}
             if sampling is not None:
                 settings["sampling"] = sampling
             # Metropolis chains start afresh for each configuration (they are kept from frame to
@@ -576,6 +592,7 @@ def run(
                 lighting=lighting,
                 importance=importance,
                 sampling=sampling,
+                options=dict(extra) or None,
                 seeds=len(run_seeds),
                 total_ms_median=statistics.median(totals),
                 total_ms_min=min(totals),
@@ -747,8 +764,30 @@ def _kernel_label(kernel: str | None, K: float | None) -> str | None:
 
 
 def _method_label(r: Row) -> str:
-    """The method as tables and plots name it: with its lighting when --lighting set it ("vsgl:accurate")."""
-    return r.method + (f":{r.lighting}" if r.lighting else "")
+    """The method as tables and plots name it: with its lighting when --lighting set it
+    ("vsgl:accurate") and the options --option swept ("vsgl(lambert_lobe=papers)")."""
+    label = r.method + (f":{r.lighting}" if r.lighting else "")
+    if r.options:
+        label += "(" + ",".join(f"{k}={v}" for k, v in r.options.items()) + ")"
+    return label
+
+
+# Options that have their own axis or setting in the sweep: --option would fight it.
+SWEPT_ELSEWHERE = {
+    "num_lights": "--lights", "rsm_size": "--rsm-sizes", "kernel": "--kernels", "K": "--K", "lighting": "--lighting",
+    "importance": "--importance", "importance_interleave": "--importance-interleave", "sampling": "--sampling",
+    "interleave": "--interleave / --vpl-interleave", "visibility": "--visibility", "seed": "--seeds", "plan": "--plans",
+}
+
+
+def _option_combinations(method: str, options: dict[str, Any]) -> list[tuple[tuple[str, Any], ...]]:
+    """Every combination of the --option values this method takes, as (name, value) pairs; one
+    empty combination when it takes none of them."""
+    combos: list[tuple[tuple[str, Any], ...]] = [()]
+    for name, values in options.items():
+        if name in vsgl.method_options(method):
+            combos = [(*c, (name, v)) for c in combos for v in values]
+    return combos
 
 
 def _label(r: Row) -> str:
@@ -791,7 +830,7 @@ def _equal_time(rows: list[Row], seed_stats: dict[int, metrics.SeedErrors]) -> l
 
 def _plan_ratios(rows: list[Row]) -> list[dict[str, Any]]:
     """Pairs each "auto" row with the "full" row of the same configuration."""
-    key = lambda r: (r.scene, r.method, r.num_lights, r.rsm_size, r.kernel, r.K, r.lighting, r.importance, r.sampling)  # noqa: E731
+    key = lambda r: (r.scene, r.method, r.num_lights, r.rsm_size, r.kernel, r.K, r.lighting, r.importance, r.sampling, _method_label(r))  # noqa: E731
     full = {key(r): r for r in rows if r.plan == "full"}
     out = []
     for r in rows:
@@ -886,7 +925,7 @@ def _equal_time_line(e: dict[str, Any], last_budget_ms: float | None = None) -> 
 
 
 CSV_COLUMNS = [
-    "scene", "plan", "method", "num_lights", "rsm_size", "kernel", "K", "lighting", "importance", "sampling", "seeds", "total_ms_median", "total_ms_q1", "total_ms_q3", "total_ms_min", "total_ms_max",
+    "scene", "plan", "method", "num_lights", "rsm_size", "kernel", "K", "lighting", "importance", "sampling", "options", "seeds", "total_ms_median", "total_ms_q1", "total_ms_q3", "total_ms_min", "total_ms_max",
     "rmse_indirect", "rmse_indirect_std", "rmse_image", "relmse_indirect", "relmse_image", "flip_image", "rel_rmse_indirect", "bias", "noise",
     "relmse_indirect_debiased", "relmse_indirect_debiased_lo", "relmse_indirect_debiased_hi", "reference_rel_error", "reference_too_noisy",
     "ssim_image", "block_rmse_indirect", "flicker_indirect", "notes", "passes_ms",
@@ -902,7 +941,8 @@ def write(report: Report, out) -> None:
         writer.writerow(CSV_COLUMNS)
         for r in report.rows:
             iv = r.relmse_indirect_debiased_interval or (None, None)
-            values = dict(asdict(r), relmse_indirect_debiased_lo=iv[0], relmse_indirect_debiased_hi=iv[1], notes="; ".join(r.notes), passes_ms=json.dumps(r.passes_ms))
+            values = dict(asdict(r), relmse_indirect_debiased_lo=iv[0], relmse_indirect_debiased_hi=iv[1], notes="; ".join(r.notes), passes_ms=json.dumps(r.passes_ms),
+                          options=";".join(f"{k}={v}" for k, v in (r.options or {}).items()))
             writer.writerow([values[c] for c in CSV_COLUMNS])
     (out / "bench.txt").write_text(table(report) + "\n")
     _plots(report, out)
@@ -985,6 +1025,25 @@ def _strs(text: str) -> list[str]:
     return [x for x in text.split(",") if x]
 
 
+def _option_axis(text: str) -> tuple[str, list[Any]]:
+    """NAME=V1,V2 of --option: each value as int, float, bool or text (in that order)."""
+    name, sep, values = text.partition("=")
+    if not sep or not name.strip() or not values.strip():
+        raise argparse.ArgumentTypeError(f"expected NAME=V1,V2 (e.g. lambert_lobe=papers,hemisphere), got {text!r}")
+
+    def typed(v: str) -> Any:
+        if v.lower() in ("true", "false"):
+            return v.lower() == "true"
+        for kind in (int, float):
+            try:
+                return kind(v)
+            except ValueError:
+                pass
+        return v
+
+    return name.strip(), [typed(v.strip()) for v in values.split(",") if v.strip()]
+
+
 def main(argv: list[str] | None = None) -> int:
     p = argparse.ArgumentParser(prog="python -m vsgl bench", description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     p.add_argument("--scene", type=_strs, default=["cornell_box"], help="comma-separated built-in names or .gltf/.glb paths (default: cornell_box)")
@@ -1004,6 +1063,9 @@ def main(argv: list[str] | None = None) -> int:
                    help=f"vpl and vsgl sampling to sweep, from {','.join(SAMPLINGS)} (default: the methods', stratified); "
                         "metropolis keeps Markov chains through each configuration's frames and its --sequence")
     p.add_argument("--kernels", type=_strs, default=["integral"], help="VSGL kernels: integral, density, node (default: integral)")
+    p.add_argument("-O", "--option", action="append", default=[], type=_option_axis, metavar="NAME=V1,V2",
+                   help="sweep any other method option (repeatable), for the methods that take it, e.g. -O lambert_lobe=papers,hemisphere "
+                        "-O denoise=true,false; values are read as int, float, true/false or text")
     p.add_argument("--interleave", type=int, default=8, help="VSGL interleaving (default: 8)")
     p.add_argument("--visibility", default="none", choices=["none", "raytrace", "ism"],
                    help="visibility of the virtual lights of vpl, vsgl, vsgl2 and reference (default: none, the papers' unshadowed setting); the every-texel reference then traces its shadow rays")
@@ -1050,7 +1112,7 @@ def main(argv: list[str] | None = None) -> int:
         seeds=None if a.seeds is None else tuple(range(a.seeds)), frames=a.frames, warmup=a.warmup, warmup_seconds=a.warmup_seconds, reference=a.reference, reference_rsm=a.reference_rsm,
         reference_spp=a.reference_spp, reference_strategy=a.reference_strategy, add_lights=add_lights, scene_lights=not a.no_scene_lights, interleave=a.interleave, vpl_interleave=a.vpl_interleave, visibility=a.visibility, plans=tuple(a.plans), adapter=a.adapter, out=a.out, progress=not a.no_progress,
         sequence=a.sequence, Ks=tuple(a.K) if a.K else (None,), lightings=tuple(a.lighting) if a.lighting else (None,), importances=tuple(a.importance), importance_interleave=a.importance_interleave,
-        samplings=tuple(a.sampling) if a.sampling else (None,),
+        samplings=tuple(a.sampling) if a.sampling else (None,), options=dict(a.option),
     )
     print(table(report))
     print(f"wrote     {os.path.join(a.out, 'bench.csv')}, bench.json, bench.txt and plots (with matplotlib)")
