@@ -114,18 +114,9 @@ def _option(text: str) -> tuple[str, object]:
     name, sep, value = text.partition("=")
     if not sep or not name.strip():
         raise argparse.ArgumentTypeError(f"expected NAME=VALUE (e.g. importance_interleave=2), got {text!r}")
-    value = value.strip()
-    parsed: object = value
-    if value.lower() in ("true", "false"):
-        parsed = value.lower() == "true"
-    else:
-        for kind in (int, float):
-            try:
-                parsed = kind(value)
-                break
-            except ValueError:
-                continue
-    return name.strip(), parsed
+    from vsgl.lightspec import option_value
+
+    return name.strip(), option_value(value)
 
 
 def _load_scene(name: str):

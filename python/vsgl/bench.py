@@ -1030,18 +1030,9 @@ def _option_axis(text: str) -> tuple[str, list[Any]]:
     name, sep, values = text.partition("=")
     if not sep or not name.strip() or not values.strip():
         raise argparse.ArgumentTypeError(f"expected NAME=V1,V2 (e.g. lambert_lobe=papers,hemisphere), got {text!r}")
+    from vsgl.lightspec import option_value
 
-    def typed(v: str) -> Any:
-        if v.lower() in ("true", "false"):
-            return v.lower() == "true"
-        for kind in (int, float):
-            try:
-                return kind(v)
-            except ValueError:
-                pass
-        return v
-
-    return name.strip(), [typed(v.strip()) for v in values.split(",") if v.strip()]
+    return name.strip(), [option_value(v) for v in values.split(",") if v.strip()]
 
 
 def main(argv: list[str] | None = None) -> int:

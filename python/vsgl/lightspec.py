@@ -7,7 +7,8 @@
 The first word is the type; then ``name=value`` pairs with the Python constructors' keyword
 names (``vsgl.SpotLight``, ``vsgl.PointLight``, ``vsgl.DirectionalLight``) and units (W/sr,
 i.e. candela for spot and point lights; lux for directional ones). Vectors are three numbers
-separated by commas, with no spaces.
+separated by commas, with no spaces. Also here, for the same command lines: a method option's
+value as typed after ``-O`` (``option_value``).
 """
 
 from __future__ import annotations
@@ -73,3 +74,17 @@ def describe_lights(scene: vsgl.Scene) -> str:
     by_type = scene.stats["lights_by_type"]
     parts = [f"{n} {kind}" for kind, n in by_type.items() if n]
     return ", ".join(parts) or "none"
+
+
+def option_value(text: str) -> object:
+    """A method option's value as typed on a command line (`render -O`, `bench -O`): int, float,
+    true/false or text, tried in that order."""
+    value = text.strip()
+    if value.lower() in ("true", "false"):
+        return value.lower() == "true"
+    for kind in (int, float):
+        try:
+            return kind(value)
+        except ValueError:
+            continue
+    return value
