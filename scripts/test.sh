@@ -9,8 +9,11 @@ bash scripts/setup.sh
 export XDG_RUNTIME_DIR="${XDG_RUNTIME_DIR:-$(mktemp -d)}"
 
 echo "== cargo test"
-cargo test --workspace --exclude vsgl-py --release 2>&1 | tee /tmp/vsgl-cargo-test.log
-grep -qE "^test result: ok\. [1-9]" /tmp/vsgl-cargo-test.log || { echo "cargo ran no test" >&2; exit 1; }
+# A log of its own: two runs on one machine must not read each other's (a fixed /tmp path did).
+cargo_log=$(mktemp -t vsgl-cargo-test.XXXXXX)
+cargo test --workspace --exclude vsgl-py --release 2>&1 | tee "$cargo_log"
+grep -qE "^test result: ok\. [1-9]" "$cargo_log" || { echo "cargo ran no test" >&2; exit 1; }
+rm -f "$cargo_log"
 
 echo "== stub check"
 .venv/bin/python -m mypy.stubtest vsgl._vsgl --allowlist python/vsgl/stubtest-allowlist.txt
