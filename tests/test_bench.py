@@ -308,6 +308,10 @@ def test_option_sweeps_any_method_option_for_the_methods_that_take_it(tmp_path):
     for bad, match in (({"kernel": ("node",)}, "--kernels"), ({"photon_count": (1,)}, "none of the methods"), ({"lambert_lobe": ()}, "non-empty")):
         with pytest.raises(ValueError, match=match):
             bench.run(methods=["vsgl"], options=bad, size=(8, 8), out=None, progress=False)
+    # A value the option refuses is named before anything is rendered: the scene below does not
+    # exist, so a check that came only with the first render would report the scene instead.
+    with pytest.raises(vsgl.ArgumentError, match="lambert_lobe: must be one of"):
+        bench.run(scenes=["no_such_scene"], methods=["vsgl"], options={"lambert_lobe": ("papers", "sphere")}, size=(8, 8), out=None, progress=False)
     refused = subprocess.run([sys.executable, "-m", "vsgl", "bench", "-O", "lambert_lobe"], capture_output=True, text=True, timeout=60)
     assert refused.returncode == 2 and "NAME=V1,V2" in refused.stderr, refused.stderr
 

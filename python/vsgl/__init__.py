@@ -42,6 +42,7 @@ from vsgl._vsgl import (  # noqa: E402  (after the environment set-up above)
     VsglError,
     __version__,
     adapters,
+    check_method_options,
     describe_method,
     method_options,
 )
@@ -67,6 +68,7 @@ __all__ = [
     "VsglError",
     "__version__",
     "adapters",
+    "check_method_options",
     "describe_method",
     "method_options",
     "scenes",

@@ -495,6 +495,10 @@ def run(
     # --option axes, for the methods that take each option; then the plans, which alternate
     # inside one configuration so both see the same machine state.
     configs = [(*c, extra) for c in configs for extra in _option_combinations(c[0], options)]
+    # A value the method refuses fails here, naming the option, before the scenes' references
+    # (minutes on a GPU at high spp) are rendered.
+    for m, *_rest, extra in configs:
+        vsgl.check_method_options(m, **dict(extra))
     configs = [(*c, plan) for c in configs for plan in plans]
     # Per row (by its index in report.rows): its SeedErrors, for the equal-time comparisons.
     seed_stats: dict[int, metrics.SeedErrors] = {}

@@ -1075,6 +1075,19 @@ fn method_options<'py>(py: Python<'py>, name: &str) -> PyResult<Bound<'py, PyDic
     Ok(d)
 }
 
+/// Checks keyword options for method `name` as `render` would, without rendering: raises the
+/// same `ArgumentError` (or `TypeError` for a name no method takes) naming the option. The
+/// benchmark calls it for every configuration of a sweep before the first (possibly long)
+/// reference render.
+#[pyfunction]
+#[pyo3(signature = (name, **options))]
+fn check_method_options(name: &str, options: Option<&Bound<'_, PyDict>>) -> PyResult<()> {
+    let info = methods::info(name).map_err(to_py)?;
+    let given = render_options(name, "auto", None, options)?.options;
+    info.parse_options(&given).map_err(to_py)?;
+    Ok(())
+}
+
 fn adapter_dict<'py>(py: Python<'py>, a: &vsgl_core::gpu::AdapterSummary) -> PyResult<Bound<'py, PyDict>> {
     let d = PyDict::new(py);
     d.set_item("name", &a.name)?;
@@ -1135,6 +1148,7 @@ fn _vsgl(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(adapters, m)?)?;
     m.add_function(wrap_pyfunction!(describe_method, m)?)?;
     m.add_function(wrap_pyfunction!(method_options, m)?)?;
+    m.add_function(wrap_pyfunction!(check_method_options, m)?)?;
     m.add_function(wrap_pyfunction!(builtin_scene_names, m)?)?;
     m.add_function(wrap_pyfunction!(builtin_scene, m)?)?;
     m.add_function(wrap_pyfunction!(stability::stability_suite, m)?)?;
