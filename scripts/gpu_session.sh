@@ -16,11 +16,7 @@
 # 17's visibility timings; 9 issue 15's benchmark at 960x540 on the glossy and caustic
 # built-ins; 10 issue 14's clock stability, shortened to what is left.
 set -uo pipefail
-FINAL_OUT=${OUT:-out}
-mkdir -p "$FINAL_OUT"
-RES=$(mktemp -d)
-export OUT=$RES PYTHONUNBUFFERED=1
-cd "$(dirname "$0")/.."
+source "$(dirname "$0")/gpu_common.sh"  # $FINAL_OUT, $RES, pack; cd to the repository root
 BUDGET=${BUDGET:-520}
 T0=$SECONDS
 if [ "${SMOKE:-0}" = 1 ]; then
@@ -29,7 +25,6 @@ else
   BIG=1920x1080; MID=960x540; SQ=256; N_HI=65536; N_ACC=256,1024,4096,16384,65536; FR=30; WARM=6; ROUNDS=9; SPP=4096
 fi
 
-pack() { tar czf "$FINAL_OUT/results.tgz" -C "$RES" . 2>/dev/null; }
 # step NAME WANT_SECONDS COMMAND...: run under min(WANT, what is left), keep its log, print its tail.
 step() {
   local name=$1 want=$2; shift 2

@@ -15,13 +15,8 @@
 #   optional diagnostic builds in .whl-var/NAME.whl (timed once each, vsgl at interleave 1)
 #   device (carry .gl .whl .whl-old .whl-var): <gpu-prep lines> bash scripts/gpu_shading_compare.sh
 set -uo pipefail
-FINAL_OUT=${OUT:-out}
-mkdir -p "$FINAL_OUT"
-RES=$(mktemp -d)
-export OUT=$RES PYTHONUNBUFFERED=1
-cd "$(dirname "$0")/.."
+source "$(dirname "$0")/gpu_common.sh"  # $FINAL_OUT, $RES, pack; cd to the repository root
 SIZE=${SIZE:-1920x1080} ACC_SIZE=${ACC_SIZE:-256} ACC_LIGHTS=${ACC_LIGHTS:-256,1024,4096,16384,65536}  # smaller for a smoke test
-pack() { tar czf "$FINAL_OUT/results.tgz" -C "$RES" . 2>/dev/null; }
 {
 # Wheels are zip files: extracting them is installing them, whatever their platform tag.
 python3 -m zipfile -e .whl-old/*.whl /tmp/old || exit 1
