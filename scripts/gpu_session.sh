@@ -16,7 +16,7 @@
 # 17's visibility timings; 9 issue 15's benchmark at 960x540 on the glossy and caustic
 # built-ins; 10 issue 14's clock stability, shortened to what is left.
 set -uo pipefail
-source "$(dirname "$0")/gpu_common.sh"  # $FINAL_OUT, $RES, pack; cd to the repository root
+source "$(dirname "$0")/gpu_common.sh"  # $FINAL_OUT, $RES, pack, step, require_gpu; cd to the repository root
 BUDGET=${BUDGET:-520}
 T0=$SECONDS
 if [ "${SMOKE:-0}" = 1 ]; then
@@ -25,28 +25,8 @@ else
   BIG=1920x1080; MID=960x540; SQ=256; N_HI=65536; N_ACC=256,1024,4096,16384,65536; FR=30; WARM=6; ROUNDS=9; SPP=4096
 fi
 
-# step NAME WANT_SECONDS COMMAND...: run under min(WANT, what is left), keep its log, print its tail.
-step() {
-  local name=$1 want=$2; shift 2
-  local left=$((BUDGET - (SECONDS - T0)))
-  if [ "$left" -lt 15 ]; then echo "== $name: SKIPPED (budget spent)"; return; fi
-  local t=$((want < left ? want : left)) s=$SECONDS
-  echo "== $name (cap ${t} s, ${left} s left)"
-  timeout "$t" "$@" > "$RES/$name.log" 2>&1
-  local rc=$?
-  echo "-- $name: rc $rc in $((SECONDS - s)) s$([ $rc = 124 ] && echo ' (TIMED OUT)')"
-  grep -v '^\s*$' "$RES/$name.log" | tail -n "${TAIL:-14}" | cut -c1-220
-  pack
-}
-
 {
-nvidia-smi --query-gpu=name,driver_version,clocks.sm,clocks.max.sm,temperature.gpu,power.draw --format=csv 2>&1 | tee "$RES/gpu.txt"
-python3 - <<'PY' || { echo "vsgl found no usable adapter: stopping"; pack; exit 3; }
-import sys, vsgl
-r = vsgl.Renderer(width=64, height=64)
-print("adapter:", r.adapter, "vsgl", vsgl.__version__)
-sys.exit(0 if ("llvmpipe" not in str(r.adapter).lower() or __import__("os").environ.get("SMOKE") == "1") else 3)
-PY
+require_gpu
 
 common=(--size "$BIG" --frames "$FR" --scenes cornell_box --aovs image --warm-seconds "$WARM")
 # Targets (DESIGN.md): vpl/vsgl with 1024 lights per pixel at interleave 1 <= 6 ms; 8x8 vsgl_shading

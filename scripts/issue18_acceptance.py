@@ -45,7 +45,11 @@ import vsgl
 from vsgl.metrics import block_means, block_rmse
 
 SPP = {"cornell_box": 1024, "glossy_cornell": 2048, "caustics_ring": 8192, "mirror_panel": 4096}
-VARIANTS = {"vpl": ("vpl", {}), "vsgl": ("vsgl", {}), "vsgl node": ("vsgl", dict(kernel="node"))}
+# `--variants` names: the default three, and the exact Lambertian point emitter for compact clusters
+# (`lambert_lobe="exact_compact"`, docs/rendering.md "VSGLs") with either kernel, for the diffuse box.
+VARIANTS = {"vpl": ("vpl", {}), "vsgl": ("vsgl", {}), "vsgl node": ("vsgl", dict(kernel="node")),
+            "vsgl exact_compact": ("vsgl", dict(lambert_lobe="exact_compact")),
+            "vsgl node exact_compact": ("vsgl", dict(kernel="node", lambert_lobe="exact_compact"))}
 
 
 def ground_truth(r: vsgl.Renderer, name: str, scene: vsgl.Scene, spp: int, cache: pathlib.Path) -> tuple[np.ndarray, np.ndarray]:
@@ -106,7 +110,7 @@ def main() -> int:
     p = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     p.add_argument("--scenes", default="cornell_box,glossy_cornell,caustics_ring,mirror_panel")
     p.add_argument("--lights", default="256,1024,4096,16384,65536")
-    p.add_argument("--variants", default="vpl,vsgl,vsgl node")
+    p.add_argument("--variants", default="vpl,vsgl,vsgl node", help="comma-separated, from: " + ", ".join(VARIANTS))
     p.add_argument("--visibility", default="none", choices=["none", "raytrace"])
     p.add_argument("--size", type=int, default=64)
     p.add_argument("--brsm", action="store_true", help="also vpl and vsgl with importance='brsm' at N = 1024")
@@ -120,6 +124,9 @@ def main() -> int:
     a.cache.mkdir(parents=True, exist_ok=True)
     lights = [int(n) for n in a.lights.split(",")]
     variants = [v.strip() for v in a.variants.split(",")]
+    unknown = [v for v in variants if v not in VARIANTS]
+    if unknown:
+        p.error(f"--variants: unknown {', '.join(unknown)}; expected names from {', '.join(VARIANTS)}")
     r = vsgl.Renderer(a.size, a.size)
     global CLOCK
     CLOCK = a.clock if a.clock != "auto" else ("wall" if r.adapter.get("device_type") == "Cpu" or not r.adapter.get("timestamps") else "gpu")
