@@ -1,5 +1,5 @@
 """The scene-level stability suite (`python -m vsgl stability --scenes`; issue 20, item 9):
-every method on the built-ins moved 1e5 m, scaled 1e-3 and 1e3 (intensities × scale²), with
+every method on the built-ins moved 1e5 m, scaled 1e-3, 0.37 and 1e3 (intensities × scale²), with
 intensities × 1e-8 and at 1e30 cd, a light grazing a wall, every material at roughness 1e-4 and
 the camera inside geometry renders no NaN/Inf, and is invariant within 1e-3 (relative RMSE)
 where the scene is representable."""
@@ -15,7 +15,7 @@ from vsgl import stability
 def test_every_method_on_every_case_passes():
     rows = stability.scene_suite()
     print("\n" + stability.format_scene_table(rows))
-    assert len(rows) == 3 * 6 * 9
+    assert len(rows) == 3 * 6 * 10
     # Every method met the near-mirror materials.
     stiff = [r for r in rows if r["case"] == "roughness 1e-4"]
     assert len(stiff) == 3 * len(vsgl.METHODS) and {r["method"] for r in stiff} == set(vsgl.METHODS)
@@ -25,6 +25,11 @@ def test_every_method_on_every_case_passes():
     # The invariance rows were compared, not skipped.
     moved = [r for r in rows if r["case"] == "moved 1e5 m"]
     assert moved and all(r["rel_rmse"] is not None for r in moved)
+    # Scaled by 0.37, pixels on the Cornell box's ceiling/left-wall edge see the wall instead of
+    # the ceiling (f32 rounding of the vertices, in every method alike); they are set apart by
+    # the G-buffer and the rest is invariant. An H200 does this at 1e-3 and 1e3 as well.
+    edge = [r for r in rows if r["scene"] == "cornell_box" and r["case"].startswith("scaled 0.37")]
+    assert edge and all(r["surface"] > 0 for r in edge), edge
 
 
 def test_the_suite_can_fail(monkeypatch):
@@ -32,12 +37,36 @@ def test_the_suite_can_fail(monkeypatch):
     real = stability._scene_cases
 
     def wrong(name):
-        for case, scene, camera, divide in real(name):
+        for case, scene, camera, divide, geometry_scale in real(name):
             if case == "base":
-                yield case, scene, camera, divide
-        yield "intensity x 2 divided by 1", *stability.transformed_scene(name, intensity_scale=2.0), 1.0
+                yield case, scene, camera, divide, geometry_scale
+        yield "intensity x 2 divided by 1", *stability.transformed_scene(name, intensity_scale=2.0), 1.0, 1.0
 
     monkeypatch.setattr(stability, "_scene_cases", wrong)
     rows = stability.scene_suite(scenes=("cornell_box",), methods=("direct", "vsgl"))
     assert [r["passed"] for r in rows if r["case"] != "base"] == [False, False]
     assert all(r["rel_rmse"] > 0.5 for r in rows if r["case"] != "base")
+
+
+def test_pixels_that_change_surface_are_counted_apart_and_bounded(monkeypatch):
+    """The G-buffer decides which pixels changed surface: a camera turned by 3° changes most of
+    them, which must fail as "surface" (not pass because they were set apart)."""
+    import numpy as np
+
+    real = stability._scene_cases
+
+    def turned(name):
+        for case, scene, camera, divide, geometry_scale in real(name):
+            if case == "base":
+                yield case, scene, camera, divide, geometry_scale
+                eye, fwd = np.array(camera.eye), np.array(camera.forward)
+                c, s = np.cos(np.radians(3.0)), np.sin(np.radians(3.0))
+                fwd = np.array([c * fwd[0] + s * fwd[2], fwd[1], -s * fwd[0] + c * fwd[2]])
+                cam = vsgl.Camera.look_at(eye=tuple(eye), target=tuple(eye + fwd), up=camera.up, fov_y_deg=camera.fov_y_deg)
+                yield "camera turned 3°", scene, cam, 1.0, 1.0
+
+    monkeypatch.setattr(stability, "_scene_cases", turned)
+    rows = stability.scene_suite(scenes=("cornell_box",), methods=("direct", "vsgl"))
+    moved = [r for r in rows if r["case"] != "base"]
+    assert [r["passed"] for r in moved] == [False, False]
+    assert all(r["surface"] > stability.SURFACE_FRACTION * 32 * 24 for r in moved), moved

@@ -76,7 +76,7 @@ def format_table(rows: Sequence[dict[str, Any]]) -> str:
 # transformations (issue 20, item 9).
 # ---------------------------------------------------------------------------------------------
 
-SCENE_COLUMNS = ("scene", "method", "case", "rel. RMSE", "bound", "flipped px", "NaN/Inf", "pass/fail")
+SCENE_COLUMNS = ("scene", "method", "case", "rel. RMSE", "bound", "surface px", "flipped px", "NaN/Inf", "pass/fail")
 
 #: Small settings per method, so the whole suite runs in about a minute on lavapipe.
 SCENE_SETTINGS: dict[str, dict[str, Any]] = {
@@ -98,6 +98,19 @@ INVARIANCE_BOUND = 1e-3
 #: (0.7–0.9%) on cornell_box and glossy_cornell scaled 1e-3 and 1e3, none moved 1e5 m or with
 #: scaled intensities. The other methods are continuous in the geometry (filtered shadow maps,
 #: virtual lights) and may flip none. The pixels that did not flip must meet INVARIANCE_BOUND.
+#:
+#: Pixels whose *visible surface* changed are not compared at all ("surface px"): a pixel centre
+#: that lies on the edge between two triangles, within the f32 rounding of the transformed
+#: vertices, is covered by either, in every method alike, and then shows another surface's light.
+#: They are found from the G-buffer (normal turned by more than 0.5°, or depth off by more than
+#: 1e-3 relative after undoing the scale), widened by the denoiser's window (offsets −k … k−1
+#: of interleave k) where a frame was denoised, since a changed G-buffer pixel changes the
+#: filter weights of its neighbours. Seen on an H200: cornell_box and glossy_cornell scaled
+#: 1e-3 and 1e3 put 4 pixels of the ceiling/left-wall edge on the wall instead of the ceiling
+#: (indirect light 0.03 instead of 0.05 there: 4% of the image's RMS), and lavapipe does the
+#: same at scale 0.37 (the "scaled 0.37" case below), while 1e-3 and 1e3 happen to round alike
+#: there. At most SURFACE_FRACTION of the pixels may change surface; the rest must be invariant.
+SURFACE_FRACTION = 0.02
 FLIP_FRACTION = {"pathtrace": 0.01}
 
 
@@ -135,46 +148,77 @@ def transformed_scene(name: str, scale: float = 1.0, offset=(0.0, 0.0, 0.0), int
 
 
 def _scene_cases(name: str):
-    """(case, scene, camera, divide the image by) for the cases of one scene. Invariance cases
-    are compared with the base image after the division; the others need only be finite."""
+    """(case, scene, camera, divide the image by, geometric scale) for the cases of one scene.
+    Invariance cases are compared with the base image after the division (depth after dividing
+    by the scale); the others need only be finite."""
     import numpy as np
 
     import vsgl
 
-    yield "base", *transformed_scene(name), None
-    yield "moved 1e5 m", *transformed_scene(name, offset=(1e5, -1e5, 1e5)), 1.0
-    yield "scaled 1e-3 (I x 1e-6)", *transformed_scene(name, 1e-3, intensity_scale=1e-6), 1.0
-    yield "scaled 1e3 (I x 1e6)", *transformed_scene(name, 1e3, intensity_scale=1e6), 1.0
-    yield "intensity x 1e-8", *transformed_scene(name, intensity_scale=1e-8), 1e-8
+    yield "base", *transformed_scene(name), None, 1.0
+    yield "moved 1e5 m", *transformed_scene(name, offset=(1e5, -1e5, 1e5)), 1.0, 1.0
+    yield "scaled 1e-3 (I x 1e-6)", *transformed_scene(name, 1e-3, intensity_scale=1e-6), 1.0, 1e-3
+    yield "scaled 1e3 (I x 1e6)", *transformed_scene(name, 1e3, intensity_scale=1e6), 1.0, 1e3
+    # Not a power of ten: its rounding differs from the base's, so edge pixels change surface on
+    # lavapipe too (see SURFACE_FRACTION).
+    yield "scaled 0.37 (I x 0.1369)", *transformed_scene(name, 0.37, intensity_scale=0.37**2), 1.0, 0.37
+    yield "intensity x 1e-8", *transformed_scene(name, intensity_scale=1e-8), 1e-8, 1.0
     # 1e30 is below the 1e32 limit but far above any real light: finite, and linear.
     scene, cam = transformed_scene(name)
     factor = 1e30 / max(light.intensity for light in scene.lights)
-    yield "intensity 1e30 cd", *transformed_scene(name, intensity_scale=factor), factor
+    yield "intensity 1e30 cd", *transformed_scene(name, intensity_scale=factor), factor, 1.0
     # A spot light on a wall's plane, aiming along it: grazing at every point of that wall.
     scene, cam = transformed_scene(name)
     lo, hi = scene.bounds
     mid = tuple((np.array(lo) + np.array(hi)) / 2)
     scene.lights = [vsgl.SpotLight(position=(lo[0], mid[1], mid[2]), direction=(0.0, 0.0, -1.0), intensity=5.0, outer_cone_deg=60.0, inner_cone_deg=30.0)]
-    yield "light grazing a wall", scene, cam, None
+    yield "light grazing a wall", scene, cam, None, 1.0
     # Every material at roughness 1e-4 (α = 1e-8), the stiff end of the GGX grids: near-mirror
     # lobes in the direct light, the RSM's specular lobes, the VSGL lobe fits (sharpness near
     # its clamp) and the path tracer's visible-normal sampling; no NaN or Inf.
     scene, cam = transformed_scene(name)
     for material in {m["name"] for m in scene.materials}:
         scene.set_material(material, roughness=1e-4)
-    yield "roughness 1e-4", scene, cam, None
+    yield "roughness 1e-4", scene, cam, None, 1.0
     # The camera inside the scene's geometry bounds at its centre, looking down: whatever it
     # sees (possibly the inside of an object), no NaN or Inf.
     scene, _ = transformed_scene(name)
-    yield "camera inside geometry", scene, vsgl.Camera.look_at(eye=mid, target=(mid[0], mid[1] - 1.0, mid[2] + 1e-3)), None
+    yield "camera inside geometry", scene, vsgl.Camera.look_at(eye=mid, target=(mid[0], mid[1] - 1.0, mid[2] + 1e-3)), None, 1.0
+
+
+def surface_changed(normal_a, depth_a, normal_b, depth_b):
+    """Pixels that see another surface in b than in a: the normal turned by more than 0.5° or the
+    depth (already in the same units) off by more than 1e-3 of itself."""
+    import numpy as np
+
+    # The background has a zero normal in both: the same "surface".
+    hit_a, hit_b = (normal_a**2).sum(axis=-1) > 0.25, (normal_b**2).sum(axis=-1) > 0.25
+    turned = (hit_a != hit_b) | (hit_a & hit_b & ((normal_a * normal_b).sum(axis=-1) < np.cos(np.radians(0.5))))
+    moved = np.abs(depth_b - depth_a) > 1e-3 * np.maximum(np.abs(depth_a), np.abs(depth_b))
+    return turned | moved
+
+
+def widen(mask, k: int):
+    """`mask` grown by the denoiser's reach around each set pixel: a pixel reads offsets −k … k−1
+    per axis, so a changed pixel reaches −(k − 1) … k of itself; ±k per axis covers both."""
+    import numpy as np
+
+    if k <= 1 or not mask.any():
+        return mask
+    out = np.zeros_like(mask)
+    h, w = mask.shape
+    for y, x in zip(*np.nonzero(mask)):
+        out[max(y - k, 0):min(y + k + 1, h), max(x - k, 0):min(x + k + 1, w)] = True
+    return out
 
 
 def scene_suite(scenes: Sequence[str] = ("cornell_box", "glossy_cornell", "caustics_ring"), methods: Sequence[str] | None = None,
                 size: tuple[int, int] = (32, 24), adapter: str | None = None) -> list[dict[str, Any]]:
     """Renders every method on `scenes` under each case of `_scene_cases` and returns one row per
     (scene, method, case): ``rel_rmse`` against the base image (invariance cases, else None),
-    ``rel_rmse_unflipped`` (the same without the pixels that flipped, which must be within
-    ``bound``), ``flipped``, ``bound``, ``nonfinite`` (True when the frame had NaN/Inf: vsgl refuses it with
+    ``rel_rmse_unflipped`` (the same without the pixels that flipped or changed surface, which
+    must be within ``bound``), ``flipped``, ``surface`` (pixels that see another surface,
+    SURFACE_FRACTION), ``bound``, ``nonfinite`` (True when the frame had NaN/Inf: vsgl refuses it with
     NumericsError) and ``passed``."""
     import numpy as np
 
@@ -187,26 +231,32 @@ def scene_suite(scenes: Sequence[str] = ("cornell_box", "glossy_cornell", "caust
         for method in methods or vsgl.METHODS:
             settings = SCENE_SETTINGS.get(method, {})
             base = None
-            for case, scene, camera, divide in cases:
-                row: dict[str, Any] = {"scene": name, "method": method, "case": case, "rel_rmse": None, "bound": None, "flipped": 0, "nonfinite": False}
+            for case, scene, camera, divide, geometry_scale in cases:
+                row: dict[str, Any] = {"scene": name, "method": method, "case": case, "rel_rmse": None, "bound": None, "flipped": 0,
+                                       "surface": 0, "nonfinite": False}
                 try:
-                    image = renderer.render(scene, camera, method=method, aovs=["image"], **settings).image.astype(np.float64)
+                    frame = renderer.render(scene, camera, method=method, aovs=["image", "normal", "depth"], **settings)
                 except vsgl.NumericsError:
                     row.update(nonfinite=True, passed=False)
                     rows.append(row)
                     continue
+                image = frame.image.astype(np.float64)
+                normal, depth = frame.aov("normal").astype(np.float64), frame.aov("depth")[..., 0].astype(np.float64) / geometry_scale
                 if case == "base":
-                    base = image
+                    base, base_normal, base_depth = image, normal, depth
                 elif divide is not None and base is not None:
                     scaled = image / divide
                     scale = max(float(np.abs(base).max()), 1e-30)
-                    flipped = np.abs(scaled - base).max(axis=-1) > 1e-2 * np.maximum(np.abs(base).max(axis=-1), 1e-3 * scale)
-                    keep = ~flipped
+                    surface = surface_changed(base_normal, base_depth, normal, depth)
+                    unsure = widen(surface, int(frame.settings.get("interleave") or 1)) if frame.settings.get("denoise") == "true" else surface
+                    flipped = (np.abs(scaled - base).max(axis=-1) > 1e-2 * np.maximum(np.abs(base).max(axis=-1), 1e-3 * scale)) & ~unsure
+                    keep = ~(flipped | unsure)
                     rel = lambda a, b: float(np.sqrt(np.mean((a - b) ** 2)) / np.sqrt(np.mean(b**2))) if b.size and np.any(b) else 0.0  # noqa: E731
                     row.update(rel_rmse=rel(scaled, base), rel_rmse_unflipped=rel(scaled[keep], base[keep]), bound=INVARIANCE_BOUND,
-                               flipped=int(flipped.sum()))
+                               flipped=int(flipped.sum()), surface=int(surface.sum()))
                 allowed_flips = int(FLIP_FRACTION.get(method, 0.0) * size[0] * size[1])
-                row["passed"] = row["rel_rmse"] is None or (row["rel_rmse_unflipped"] <= INVARIANCE_BOUND and row["flipped"] <= allowed_flips)
+                row["passed"] = row["rel_rmse"] is None or (row["rel_rmse_unflipped"] <= INVARIANCE_BOUND and row["flipped"] <= allowed_flips
+                                                            and row["surface"] <= SURFACE_FRACTION * size[0] * size[1])
                 rows.append(row)
     return rows
 
@@ -214,7 +264,8 @@ def scene_suite(scenes: Sequence[str] = ("cornell_box", "glossy_cornell", "caust
 def format_scene_table(rows: Sequence[dict[str, Any]]) -> str:
     cells = [
         (r["scene"], r["method"], r["case"], "" if r["rel_rmse"] is None else f"{r['rel_rmse']:.2e}",
-         "" if r["bound"] is None else f"{r['bound']:.0e}", str(r["flipped"]), "yes" if r["nonfinite"] else "0", "pass" if r["passed"] else "FAIL")
+         "" if r["bound"] is None else f"{r['bound']:.0e}", str(r["surface"]), str(r["flipped"]), "yes" if r["nonfinite"] else "0",
+         "pass" if r["passed"] else "FAIL")
         for r in rows
     ]
     widths = [max([len(c)] + [len(row[i]) for row in cells]) for i, c in enumerate(SCENE_COLUMNS)]
@@ -235,7 +286,7 @@ def main(argv: Sequence[str] | None = None) -> int:
     )
     parser.add_argument("--verbose", action="store_true", help="print the worst case of every failing row")
     parser.add_argument("--scenes", action="store_true",
-                        help="also run the scene-level suite: every method on built-in scenes moved 1e5 m, scaled 1e-3 and 1e3, "
+                        help="also run the scene-level suite: every method on built-in scenes moved 1e5 m, scaled 1e-3, 0.37 and 1e3, "
                              "with intensities 1e-8 and 1e30, a grazing light, roughness 1e-4 and the camera inside geometry")
     args = parser.parse_args(argv)
     if not args.bound_scale > 0.0:
