@@ -369,3 +369,38 @@ def test_sampling_sweep_reports_error_flicker_and_time_for_warp_and_metropolis(t
     assert "sampling" in text and "metropolis" in text and "vsgl[integral metropolis]" in text
     rows = list(csv.DictReader(open(tmp_path / "bench.csv")))
     assert {r["sampling"] for r in rows} == {"stratified", "metropolis"}
+
+
+class _FakeClock(bench._SmClock):
+    """An SM clock that idles at 360 MHz and reaches its 1980 MHz boost after `warm_after` reads."""
+
+    def __init__(self, warm_after: int | None) -> None:
+        self.reads = 0
+
+        def read() -> int:
+            self.reads += 1
+            return 1980 if warm_after is not None and self.reads > warm_after else 360
+
+        super().__init__(read, 1980)
+
+
+def test_warm_up_waits_for_the_clock_and_cold_rows_are_flagged_and_out_of_equal_time(tmp_path, monkeypatch):
+    """Warm-up goes on while the SM clock is below 90% of its boost; a row whose clock was still
+    cold before or after its timed frames says so and does not compete for equal time (an H200
+    sweep with 0.3 s of warm-up timed rows at 360–900 MHz, 2–7x slower than their warm twins)."""
+    monkeypatch.setattr(bench, "CLOCK_WARM_MAX_EXTRA_S", 1.0)
+    common = dict(scenes=["cornell_box"], methods=["vpl", "vsgl"], lights=[16], size=(24, 16), rsm_sizes=[32], seeds=(0, 1),
+                  frames=1, reference_rsm=32, progress=False, warmup_seconds=0.0)
+    warming = _FakeClock(warm_after=3)
+    monkeypatch.setattr(bench, "_clock_for", lambda cpu: warming)
+    report = bench.run(**common, out=tmp_path / "warm")
+    first = report.rows[0]
+    assert first.warmup_frames >= 3  # rendered while the clock read cold, none were asked for
+    assert all(not any(n.startswith("clock cold") for n in r.notes) for r in report.rows)
+    assert report.equal_time and all(e["best"] is not None for e in report.equal_time)
+
+    monkeypatch.setattr(bench, "_clock_for", lambda cpu: _FakeClock(warm_after=None))
+    report = bench.run(**common, out=tmp_path / "cold")
+    assert all(any(n.startswith("clock cold (360-360 of 1980 MHz)") for n in r.notes) for r in report.rows), [r.notes for r in report.rows]
+    assert all(e["best"] is None for e in report.equal_time), report.equal_time
+    assert "clock cold" in (tmp_path / "cold" / "bench.txt").read_text()

@@ -197,14 +197,37 @@ def _quartiles(v: list[float]) -> tuple[float, float]:
     return q[0], q[2]
 
 
-def _sm_clock_reader():
-    """A function returning the SM clock in MHz through NVML (optional `nvidia-ml-py`), or None."""
+class _SmClock:
+    """The SM clock in MHz through NVML (optional `nvidia-ml-py`): `read()` now, `max_mhz` the boost."""
+
+    def __init__(self, read, max_mhz: int) -> None:
+        self.read, self.max_mhz = read, max_mhz
+
+    def warm(self, mhz: int) -> bool:
+        return mhz >= CLOCK_WARM_FRACTION * self.max_mhz
+
+
+#: A timed frame counts as warm when the SM clock read at least this fraction of its maximum
+#: before and after it (DESIGN.md, "Clocks": idle 345–360 MHz, boost 1980 on an H200).
+CLOCK_WARM_FRACTION = 0.9
+#: How long the warm-up may go on past `warmup_seconds` while the clock is still below that.
+CLOCK_WARM_MAX_EXTRA_S = 5.0
+
+
+def _clock_for(cpu: bool) -> _SmClock | None:
+    """The SM clock to watch: none on a CPU adapter, which has no clock states to leave."""
+    return None if cpu else _sm_clock_reader()
+
+
+def _sm_clock_reader() -> _SmClock | None:
+    """The SM clock of GPU 0 through NVML, or None."""
     try:
         import pynvml  # type: ignore[import-not-found]
 
         pynvml.nvmlInit()
         handle = pynvml.nvmlDeviceGetHandleByIndex(0)
-        return lambda: int(pynvml.nvmlDeviceGetClockInfo(handle, pynvml.NVML_CLOCK_SM))
+        max_mhz = int(pynvml.nvmlDeviceGetMaxClockInfo(handle, pynvml.NVML_CLOCK_SM))
+        return _SmClock(lambda: int(pynvml.nvmlDeviceGetClockInfo(handle, pynvml.NVML_CLOCK_SM)), max_mhz)
     except Exception:  # not installed, no NVIDIA driver, no device: clocks are not reported
         return None
 
@@ -445,7 +468,7 @@ def run(
         ref_settings["visibility"] = "raytrace"
     if out is not None and cache_dir is None:
         cache_dir = pathlib.Path(out) / "cache"
-    sm_clock = None if cpu else _sm_clock_reader()
+    sm_clock = _clock_for(cpu)
     notes = []
     if cpu:
         notes.append("CPU adapter: absolute times are meaningless; compare only ratios within this report (no warm-up time).")
@@ -548,14 +571,20 @@ def run(
             errs: dict[str, list[float]] = {"rmse_indirect": [], "rmse_image": [], "relmse_indirect": [], "relmse_image": [], "flip": [], "ssim": []}
             indirects: list[np.ndarray] = []
             # Sustained load first: frames back to back (nothing read back) until the GPU has left
-            # its idle clock (DESIGN.md, "Clocks"); the seeds that follow keep it busy.
+            # its idle clock (DESIGN.md, "Clocks"): `warmup_seconds`, and where NVML reads the SM
+            # clock, on until it is warm (at most CLOCK_WARM_MAX_EXTRA_S more). Then every seed's
+            # frames back to back, and the errors only after them: a second of CPU work for the
+            # metrics between seeds let an H200 fall back to 360–900 MHz, which made some rows of
+            # a sweep 2–7x slower than their neighbours.
             warm_frames = 0
             t_end = time.perf_counter() + report.warmup_seconds
             quiet = {k: v for k, v in settings.items() if k != "aovs"}
-            while time.perf_counter() < t_end:
+            while time.perf_counter() < t_end or (
+                    sm_clock is not None and not sm_clock.warm(sm_clock.read()) and time.perf_counter() < t_end + CLOCK_WARM_MAX_EXTRA_S):
                 renderer.render(scene, method=method, aovs=[], **quiet)
                 warm_frames += 1
             clocks: list[int] = []
+            seed_frames: list[Any] = []
             for seed in run_seeds:
                 if method in STOCHASTIC:
                     settings["seed"] = seed
@@ -566,7 +595,7 @@ def run(
                 for _ in range(warmup):
                     renderer.render(scene, method=method, **settings)
                 if sm_clock is not None:
-                    clocks.append(sm_clock())
+                    clocks.append(sm_clock.read())
                 frame = None
                 for _ in range(frames):
                     frame = renderer.render(scene, method=method, **settings)
@@ -575,7 +604,9 @@ def run(
                         if k2 != "total":
                             per_pass.setdefault(k2, []).append(v)
                 if sm_clock is not None:
-                    clocks.append(sm_clock())
+                    clocks.append(sm_clock.read())
+                seed_frames.append(frame)
+            for frame in seed_frames:
                 indirect = frame.aov("indirect") if "indirect" in frame.aovs else np.zeros_like(ref.indirect)
                 indirects.append(indirect)
                 errs["rmse_indirect"].append(metrics.rmse(indirect, ref.indirect))
@@ -617,6 +648,9 @@ def run(
                 ssim_image=float(np.mean(errs["ssim"])),
                 reference_rel_error=ref_error,
             )
+            if clocks and not sm_clock.warm(min(clocks)):
+                # Its times are not comparable with warm rows: said in the row, not hidden.
+                row.notes.append(f"clock cold ({min(clocks)}-{max(clocks)} of {sm_clock.max_mhz} MHz)")
             if ref_has_light:
                 _trust(row, indirects, ref, method in STOCHASTIC, seed_stats, len(report.rows))
             if sequence:
@@ -810,11 +844,13 @@ def _equal_time(rows: list[Row], seed_stats: dict[int, metrics.SeedErrors]) -> l
     rows): the row with the lowest debiased error among those within the budget, and the best
     row of another method within it, with the runner-up's excess error over the best (ratio and
     difference, 90% intervals from a bootstrap on shared pixel tiles). The pruned plan's rows
-    count where both plans ran; the reference itself does not compete."""
+    count where both plans ran; the reference itself does not compete, nor do rows timed on a
+    cold clock (their note says so)."""
     plan = "auto" if any(r.plan == "auto" for r in rows) else rows[0].plan if rows else "auto"
     out: list[dict[str, Any]] = []
     for scene in dict.fromkeys(r.scene for r in rows):
-        eligible = [i for i, r in enumerate(rows) if r.scene == scene and r.plan == plan and i in seed_stats and "the reference itself" not in r.notes]
+        eligible = [i for i, r in enumerate(rows) if r.scene == scene and r.plan == plan and i in seed_stats and "the reference itself" not in r.notes
+                    and not any(n.startswith("clock cold") for n in r.notes)]
         budgets = sorted({rows[i].total_ms_median for i in eligible})
         if not budgets:
             out.append({"scene": scene, "budget_ms": None, "best": None, "runner_up": None, "runner_up_vs_best": None,
