@@ -29,6 +29,8 @@ def test_asg_is_the_default_and_accurate_changes_only_what_it_says(renderer, met
     accurate = renderer.render(scene, method=method, aovs=aovs, lighting="accurate", **SMALL, **extra)
     clamped = renderer.render(scene, method=method, aovs=aovs, diffuse="accurate", **SMALL, **extra)
     assert default.settings["lighting"] == "asg" and accurate.settings["lighting"] == "accurate"
+    # The settings name the diffuse form the frame used: the clamped cosine under "accurate".
+    assert default.settings["diffuse"] == "papers" and accurate.settings["diffuse"] == "accurate"
     for aov in aovs:
         assert np.array_equal(default.aov(aov), asg.aov(aov)), aov
     # The accurate diffuse is the clamped cosine of diffuse="accurate", bit for bit.
@@ -63,7 +65,7 @@ def test_accurate_lighting_is_finite_on_the_stability_scenes(renderer, method):
     # renderer raises NumericsError for one) and no negative light.
     settings = dict(stability.SCENE_SETTINGS[method], lighting="accurate")
     for name in ("cornell_box", "glossy_cornell", "caustics_ring"):
-        for case, scene, camera, _ in stability._scene_cases(name):
+        for case, scene, camera, *_ in stability._scene_cases(name):
             f = renderer.render(scene, camera, method=method, aovs=["image", "indirect_specular"], **settings)
             spec = f.aov("indirect_specular")
             assert np.isfinite(f.image).all() and np.isfinite(spec).all(), (name, case)

@@ -115,6 +115,16 @@ pub(super) fn diffuse_mode(o: &Options) -> Result<DiffuseMode> {
     })
 }
 
+/// The options with `diffuse` resolved to the form `lighting` brings when it was left out, so
+/// `frame.settings` shows the diffuse form the frame used (it had shown "papers" under
+/// `lighting="accurate"`, which shades the clamped cosine).
+pub(super) fn with_diffuse_of_lighting(mut o: Options) -> Result<Options> {
+    if lighting_mode(&o)? == LightingMode::Accurate {
+        o.resolve_default("diffuse", super::options::OptionValue::Str("accurate".into()));
+    }
+    Ok(o)
+}
+
 /// `lighting=` as the shading pass takes it.
 pub(super) fn lighting_mode(o: &Options) -> Result<LightingMode> {
     Ok(match o.str("lighting")? {
@@ -125,7 +135,7 @@ pub(super) fn lighting_mode(o: &Options) -> Result<LightingMode> {
 
 impl Vsgl {
     fn new(given: &Options) -> Result<Self> {
-        let o = &super::vpl::with_rsm_size_for_num_lights(given)?;
+        let o = &with_diffuse_of_lighting(super::vpl::with_rsm_size_for_num_lights(given)?)?;
         Ok(Self {
             options: o.clone(),
             visibility: VisibilityMode::from_options(o)?,

@@ -56,7 +56,8 @@ struct Vsgl2 {
 }
 
 impl Vsgl2 {
-    fn new(o: &Options) -> Result<Self> {
+    fn new(given: &Options) -> Result<Self> {
+        let o = &super::vsgl::with_diffuse_of_lighting(given.clone())?;
         let reduction = match o.str("vsgl2_reduction")? {
             "subgroup" => Vsgl2Reduction::Subgroup,
             "shared_memory" => Vsgl2Reduction::SharedMemory,
