@@ -21,7 +21,16 @@ struct DenoiseParams {
     _pad2: u32,
 }
 
-const WORKGROUP: u32 = 8u;
+// A workgroup filters TILE consecutive pixels along the filter's axis. Its threads first copy the
+// span the taps reach (TILE + 2·radius pixels, radius ≤ MAX_RADIUS = the largest interleave) from
+// the G-buffer into workgroup memory, demodulated once per pixel, and every tap then reads it
+// there: the x pass used to read position, normal, input and (to demodulate) base colour and
+// geometric normal per tap, 16 taps per pixel at k = 8. The taps and their order are unchanged,
+// so the output is the same to the bit.
+const TILE: u32 = 64u;
+const MAX_RADIUS: u32 = 16u;
+const SPAN: u32 = TILE + 2u * MAX_RADIUS;
+
 // Distance of a tap from the centre pixel's tangent plane, relative to the centre's depth, at
 // which its weight falls to e^-1. A plane distance (not a depth difference) keeps surfaces seen
 // at grazing angles, whose depth changes fast across the screen, filtered.
@@ -46,15 +55,53 @@ fn rd_at(i: u32) -> vec3f {
     return max(gbuffer_diffuse_reflectance(gbuf_base_color[i].rgb, gbuf_geo_normal[i].w), vec3f(ALBEDO_FLOOR));
 }
 
-@compute @workgroup_size(WORKGROUP, WORKGROUP, 1)
-fn main(@builtin(global_invocation_id) gid: vec3u) {
+// The span: position (w: depth, or GBUFFER_BACKGROUND also for pixels outside the image), shading
+// normal, the input diffuse (demodulated in the x pass) and specular.
+var<workgroup> span_position: array<vec4f, SPAN>;
+var<workgroup> span_normal: array<vec3f, SPAN>;
+var<workgroup> span_diffuse: array<vec3f, SPAN>;
+var<workgroup> span_specular: array<vec3f, SPAN>;
+
+// Workgroup (a, b): pixels a·TILE … a·TILE + TILE − 1 along the filter's axis, line b across it.
+@compute @workgroup_size(TILE, 1, 1)
+fn main(@builtin(workgroup_id) wg: vec3u, @builtin(local_invocation_index) local: u32) {
     let size = vec2i(frame.size);
-    let xy = vec2i(gid.xy);
+    let along_x = params.direction == 0u;
+    let step = select(vec2i(0, 1), vec2i(1, 0), along_x);
+    let demodulate_input = along_x;
+    let r = params.radius;
+    let first = vec2i(select(vec2u(wg.y, wg.x * TILE), vec2u(wg.x * TILE, wg.y), along_x)) - r * step;
+    // Copy the span [first, first + TILE + 2r) along the axis; every thread takes part, so the
+    // barrier below is reached uniformly.
+    for (var s = local; s < TILE + 2u * u32(r); s += TILE) {
+        let q = first + i32(s) * step;
+        var position = vec4f(0.0, 0.0, 0.0, GBUFFER_BACKGROUND);
+        if (q.x >= 0 && q.y >= 0 && q.x < size.x && q.y < size.y) {
+            let j = u32(q.y * size.x + q.x);
+            position = gbuf_position[j];
+            if (position.w != GBUFFER_BACKGROUND) {
+                span_normal[s] = gbuf_normal[j].xyz;
+                var d = in_diffuse[j].rgb;
+                if (demodulate_input) {
+                    d = d / rd_at(j);
+                }
+                span_diffuse[s] = d;
+                if (HAS_SPECULAR) {
+                    span_specular[s] = in_specular[j].rgb;
+                }
+            }
+        }
+        span_position[s] = position;
+    }
+    workgroupBarrier();
+
+    let xy = first + (i32(local) + r) * step;
     if (xy.x >= size.x || xy.y >= size.y) {
         return;
     }
     let index = u32(xy.y * size.x + xy.x);
-    let pos = gbuf_position[index];
+    let centre = local + u32(r);
+    let pos = span_position[centre];
     if (pos.w == GBUFFER_BACKGROUND) {
         out_diffuse[index] = vec4f(0.0);
         if (HAS_SPECULAR) {
@@ -63,33 +110,22 @@ fn main(@builtin(global_invocation_id) gid: vec3u) {
         return;
     }
     let depth = pos.w;
-    let n = gbuf_normal[index].xyz;
-    let step = select(vec2i(0, 1), vec2i(1, 0), params.direction == 0u);
-    let demodulate_input = params.direction == 0u;
+    let n = span_normal[centre];
     var sum_d = vec3f(0.0);
     var sum_s = vec3f(0.0);
     var sum_w = 0.0;
-    let r = params.radius;
-    for (var t = -r; t < r; t++) {
-        let q = xy + t * step;
-        if (q.x < 0 || q.y < 0 || q.x >= size.x || q.y >= size.y) {
-            continue;
-        }
-        let j = u32(q.y * size.x + q.x);
-        let qp = gbuf_position[j];
+    // Taps −r … r − 1 of the centre are span entries local … local + 2r − 1.
+    for (var t = 0u; t < 2u * u32(r); t++) {
+        let qp = span_position[local + t];
         if (qp.w == GBUFFER_BACKGROUND) {
             continue;
         }
         let dz = dot(n, qp.xyz - pos.xyz) / (PLANE_SIGMA * depth);
-        let cos_n = max(dot(n, gbuf_normal[j].xyz), 0.0);
+        let cos_n = max(dot(n, span_normal[local + t]), 0.0);
         let w = exp(-dz * dz) * pow(cos_n, NORMAL_POWER);
-        var d = in_diffuse[j].rgb;
-        if (demodulate_input) {
-            d = d / rd_at(j);
-        }
-        sum_d += w * d;
+        sum_d += w * span_diffuse[local + t];
         if (HAS_SPECULAR) {
-            sum_s += w * in_specular[j].rgb;
+            sum_s += w * span_specular[local + t];
         }
         sum_w += w;
     }

@@ -6,7 +6,11 @@ use crate::frame::{GBuffer, IndirectTargets};
 use crate::gpu::{groups, Gpu, PipelineVariants, Recorder};
 use crate::plan::ShaderFeatures;
 
-const WORKGROUP: u32 = 8;
+/// Pixels per workgroup along the filter's axis (`TILE` in the shader); a workgroup is one line of
+/// them, so the x pass dispatches ceil(W/TILE) × H workgroups and the y pass ceil(H/TILE) × W.
+const TILE: u32 = 64;
+/// The largest radius the shader's workgroup span holds (`MAX_RADIUS`): the largest interleave.
+pub const MAX_RADIUS: u32 = 16;
 
 #[repr(C)]
 #[derive(Clone, Copy, bytemuck::Pod, bytemuck::Zeroable)]
@@ -28,6 +32,7 @@ impl DenoisePass {
     /// Filters `noisy` into `out` through an intermediate (demodulated, x-filtered) pair.
     #[allow(clippy::too_many_arguments)]
     pub fn record(&self, rec: &mut Recorder<'_>, frame: &wgpu::Buffer, radius: u32, gbuffer: &GBuffer, noisy: &IndirectTargets, out: &IndirectTargets, features: ShaderFeatures, size: (u32, u32)) {
+        debug_assert!(radius <= MAX_RADIUS, "denoise radius {radius} > {MAX_RADIUS}: the interleave option's bound");
         let gpu = rec.gpu;
         let pipeline = self.pipelines.get(gpu, &features.specular_flags());
         let bytes = size.0 as u64 * size.1 as u64 * 16;
@@ -55,7 +60,7 @@ impl DenoisePass {
                         output.specular.as_entire_binding(),
                     ],
                 ],
-                (groups(size.0, WORKGROUP), groups(size.1, WORKGROUP), 1),
+                if direction == 0 { (groups(size.0, TILE), size.1, 1) } else { (groups(size.1, TILE), size.0, 1) },
             );
         }
     }
