@@ -6,7 +6,9 @@
 // the plain mapping (one class, every pixel evaluates every light).
 //
 // Dispatch size (crates/vsgl-core/src/gpu/dispatch.rs, `interleaved_groups`): per axis, k
-// classes × ceil(ceil(size/k)/WORKGROUP) workgroups.
+// classes × ceil(ceil(size/k)/WORKGROUP) workgroups. A pass whose threads shade several pixels
+// each (vsgl_shading's register blocking) covers a larger footprint of its class per workgroup
+// (`interleaved_block_pixel`; `interleaved_block_groups` on the host).
 
 struct InterleavedPixel {
     pixel: vec2u,
@@ -16,11 +18,18 @@ struct InterleavedPixel {
 
 // The pixel of local thread `lid` of workgroup `wg` (workgroups of `workgroup`² threads).
 fn interleaved_pixel(wg: vec3u, lid: vec3u, size: vec2u, k: u32, workgroup: u32) -> InterleavedPixel {
+    return interleaved_block_pixel(wg, lid.xy, size, k, vec2u(workgroup));
+}
+
+// The pixel at `offset` (in pixels of the class, < footprint) within workgroup `wg`'s block,
+// where each workgroup covers `footprint` pixels of its class along x and y. All pixels of a
+// workgroup belong to one class, whatever the offset.
+fn interleaved_block_pixel(wg: vec3u, offset: vec2u, size: vec2u, k: u32, footprint: vec2u) -> InterleavedPixel {
     // Workgroups per class along each axis.
-    let per_class = (((size + vec2u(k - 1u)) / k) + vec2u(workgroup - 1u)) / workgroup;
+    let per_class = (((size + vec2u(k - 1u)) / k) + footprint - vec2u(1u)) / footprint;
     let class_xy = wg.xy / per_class;
     let block = wg.xy % per_class;
-    let pixel = class_xy + k * (block * workgroup + lid.xy);
+    let pixel = class_xy + k * (block * footprint + offset);
     return InterleavedPixel(pixel, class_xy.y * k + class_xy.x);
 }
 

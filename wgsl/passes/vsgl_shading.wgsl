@@ -5,7 +5,8 @@
 // [interleaved sampling, Keller & Heidrich 2001; Tok15 §5]; the denoise pass recombines them.
 // A workgroup shades pixels of one interleave class (common/interleave.wgsl), so the VSGLs it
 // needs are the same for all its threads and are staged through workgroup memory in tiles of
-// TILE: one device-memory load serves WORKGROUP² pixels. Visibility is not evaluated
+// TILE: one device-memory load serves WORKGROUP²·PIXELS_PER_THREAD pixels, and each thread
+// shades PIXELS_PER_THREAD pixels of the class per tile read. Visibility is not evaluated
 // (visibility = "none"), or with `visibility="raytrace"` (VISIBILITY_TRACED) by one shadow ray
 // to each VSGL's shadow target (issue 18: its sampled centre texel's surface point, μ for vsgl2;
 // the VSGL's lobes count only where it is visible), or with `visibility="ism"`
@@ -50,6 +51,11 @@ struct ShadeParams {
 
 const WORKGROUP: u32 = 8u;
 const TILE: u32 = 64u; // = WORKGROUP², one VSGL loaded per thread
+// Pixels each thread shades, 1 … 4 (register blocking): each VSGL the loop reads from the tile
+// serves this many (pixel, VSGL) pairs, whose receivers stay in registers. Set by the host
+// (crates/vsgl-core/src/passes/vsgl_shading.rs, PIXELS_PER_THREAD), whose dispatch size
+// depends on it; a constant of each pipeline, so the unused pixels compile out.
+override PIXELS_PER_THREAD: u32;
 
 @group(0) @binding(0) var<uniform> frame: FrameUniforms;
 @group(1) @binding(0) var<uniform> params: ShadeParams;
@@ -64,7 +70,8 @@ const TILE: u32 = 64u; // = WORKGROUP², one VSGL loaded per thread
 // The tile keeps, per VSGL, only what the shading loop reads, in arrays of 16 bytes grouped by
 // the branch that reads them, so the default diffuse path reads 48 of the record's 128 bytes:
 // the loop runs once per (pixel, VSGL) pair and its shared-memory reads are per pair, while the
-// tile is written once per VSGL and workgroup (WORKGROUP² pixels). What depends on the VSGL
+// tile is written once per VSGL and workgroup (WORKGROUP²·PIXELS_PER_THREAD pixels), and each
+// row read is shared by the PIXELS_PER_THREAD pixels of a thread. What depends on the VSGL
 // alone is formed there too (store_tile_light), once instead of once per pixel.
 // Positional Gaussian (μ_v, σ_v²).
 var<workgroup> tile_position: array<vec4f, TILE>;
@@ -232,38 +239,215 @@ fn specular_over_rs(radiance: Sg, r: SpecularReceiver) -> f32 {
     return vsgl_specular_receiver(radiance, r);
 }
 
-@compute @workgroup_size(WORKGROUP, WORKGROUP, 1)
-fn main(@builtin(workgroup_id) wg: vec3u, @builtin(local_invocation_id) lid: vec3u, @builtin(local_invocation_index) local: u32) {
+// The workgroup's footprint in pixels of its class: PIXELS_PER_THREAD blocks of WORKGROUP²
+// pixels side by side along x (crates/vsgl-core/src/passes/vsgl_shading.rs dispatches by it).
+fn block_footprint() -> vec2u {
+    return vec2u(WORKGROUP * PIXELS_PER_THREAD, WORKGROUP);
+}
+
+// One of a thread's pixels: what the loop reads of its receiver, kept in registers through the
+// whole loop, and its sums. rd and rs are read again after the loop (write_block_pixel) instead.
+struct BlockPixel {
+    index: u32,
+    has_surface: bool,
+    p: vec3f,
+    n: vec3f,
+    shadowing: ShadowReceiver,
+    specular_receiver: SpecularReceiver,
+    diffuse: vec3f,
+    specular: vec3f,
+}
+
+// Pixel `slot` of thread `lid`: its pixel in block `slot` of the footprint, so for each slot
+// the threads of a row read neighbouring G-buffer texels (at interleave 1).
+fn block_pixel(wg: vec3u, lid: vec3u, slot: u32) -> BlockPixel {
     let k = params.interleave;
-    let stride = k * k;
-    let ip = interleaved_pixel(wg, lid, frame.size, k, WORKGROUP);
+    let ip = interleaved_block_pixel(wg, vec2u(lid.x + slot * WORKGROUP, lid.y), frame.size, k, block_footprint());
     let inside = ip.pixel.x < frame.size.x && ip.pixel.y < frame.size.y;
     let index = ip.pixel.y * frame.size.x + ip.pixel.x;
     var rcv = no_receiver();
     if (inside) {
         rcv = receiver_from_gbuffer(gbuf_position[index], gbuf_normal[index], gbuf_geo_normal[index], gbuf_base_color[index]);
     }
-    let p = rcv.p;
-    let n = rcv.n;
-    let v = rcv.v;
-    let rd = rcv.rd;
-    let rs = rcv.rs;
-    let alpha = rcv.alpha;
-    let has_surface = rcv.has_surface;
     var geo_normal = vec3f(0.0, 0.0, 1.0);
-    if (VISIBILITY_TRACED && has_surface) {
+    if (VISIBILITY_TRACED && rcv.has_surface) {
         geo_normal = gbuf_geo_normal[index].xyz;
     }
-    let shadowing = shadow_receiver(has_surface, geo_normal, ip.pixel);
-    // The class's VSGLs are params.first + class_index + m·k², m = 0 … class_count − 1.
-    let class_first = params.first + ip.class_index;
-    let class_count = class_light_count(ip.class_index, params.count, k);
-    var diffuse = vec3f(0.0);
-    var specular = vec3f(0.0);
-    var spec_rcv: SpecularReceiver;
-    if (HAS_SPECULAR && has_surface) {
-        spec_rcv = specular_receiver(n, v, alpha);
+    var px: BlockPixel;
+    px.index = index;
+    px.has_surface = rcv.has_surface;
+    px.p = rcv.p;
+    px.n = rcv.n;
+    px.shadowing = shadow_receiver(rcv.has_surface, geo_normal, ip.pixel);
+    if (HAS_SPECULAR && rcv.has_surface) {
+        px.specular_receiver = specular_receiver(rcv.n, rcv.v, rcv.alpha);
     }
+    px.diffuse = vec3f(0.0);
+    px.specular = vec3f(0.0);
+    return px;
+}
+
+// One VSGL of the tile as shade_pair reads it: read from workgroup memory once for all of a
+// thread's pixels. Rows that this variant or this VSGL never reads are not read (left 0).
+struct TileLight {
+    // Its index in the VSGL buffer (its imperfect shadow map).
+    index: u32,
+    position: VsglPosition,
+    diffuse_lobe: vec4f,
+    diffuse_power_amplitude: vec4f,
+    specular_lobe: vec4f,
+    specular_power_amplitude: vec4f,
+    plane: vec4f,
+    target_level: vec4f,
+}
+
+fn tile_light(t: u32, index: u32) -> TileLight {
+    var light: TileLight;
+    light.index = index;
+    let pos = tile_position[t];
+    light.position = VsglPosition(pos.xyz, pos.w);
+    light.diffuse_power_amplitude = tile_diffuse_power[t];
+    light.diffuse_lobe = tile_diffuse_lobe[t];
+    if (VISIBILITY_TRACED || params.exact_texels == 1u) {
+        light.target_level = tile_target_level[t];
+    }
+    if (params.plane_fade == 1u) {
+        light.plane = tile_plane[t];
+    }
+    // Without specular materials no record has specular power (and R_s = 0 here).
+    if (HAS_SPECULAR) {
+        light.specular_power_amplitude = tile_specular_power[t];
+        if (any(light.specular_power_amplitude.xyz > vec3f(0.0))) {
+            light.specular_lobe = tile_specular_lobe[t];
+        }
+    }
+    return light;
+}
+
+// Adds one VSGL's light to one pixel's sums: the pair (pixel, VSGL) of the inner loop.
+fn shade_pair(px: ptr<function, BlockPixel>, light: TileLight) {
+    if (!(*px).has_surface) {
+        return;
+    }
+    let p = (*px).p;
+    let n = (*px).n;
+    let position = light.position;
+    let diffuse_power_amplitude = light.diffuse_power_amplitude;
+    var diffuse_power = diffuse_power_amplitude.xyz;
+    var lit = 1.0;
+    if (VISIBILITY_TRACED || VISIBILITY_ISM) {
+        // V(x_p, μ_v) of Tok15 Eq. 3: a shadow ray to the VSGL's shadow target (its
+        // centre texel's surface point; μ for vsgl2), or the lit fraction of μ's
+        // imperfect shadow map; it scales both lobes' powers.
+        var shadow_target = position.mean;
+        if (VISIBILITY_TRACED) {
+            shadow_target = light.target_level.xyz;
+        }
+        lit = light_visibility(p, n, (*px).shadowing, light.index, shadow_target);
+        if (lit <= 0.0) {
+            return;
+        }
+        diffuse_power *= lit;
+    }
+    // The diffuse forms that integrate the incoming lobe over the receiver's
+    // hemisphere ("accurate", "sg_product") also need the cluster's: texels reflect
+    // only into their own hemisphere, so nothing reaches p from below the cluster's
+    // tangent plane. The papers' form (horizon clamp of the lobe axis) and the
+    // specular ASG form vanish there already and are left as they are.
+    var fade = 1.0;
+    if (params.plane_fade == 1u) {
+        let plane = light.plane;
+        fade = vsgl_tangent_plane_fade(VsglTangentPlane(plane.xyz, plane.w), position, p);
+    }
+    let seen = position_seen_from(position, p);
+    // Each lobe: radiance SG per unit power (amplitude 1/A(λ)), times its rgb
+    // power. A lobe without power (vsgl2's records carry one lobe each; metal
+    // clusters have no diffuse lobe) is skipped: it would add exactly 0.
+    let has_diffuse = any(diffuse_power > vec3f(0.0));
+    let lobe_d4 = light.diffuse_lobe;
+    if (params.exact_texels == 1u && has_diffuse && light.target_level.w == 0.0) {
+        // The texel is a patch, not a point (issue 18, item 2): its positional
+        // variance σ² is its footprint (vsgl_moments.wgsl).
+        let texel_irradiance = lambert_patch_irradiance(position.mean, lobe_d4.xyz, position.variance, p, n);
+        (*px).diffuse += diffuse_power * (texel_irradiance * INV_PI);
+        if (HAS_SPECULAR) {
+            // The receiver's specular keeps the texel's SG with its footprint (as
+            // "exact_compact" does): a point emitter in a sharp GGX lobe is a spike
+            // wherever it sits in the mirror direction. Measured on an H200 at 256²
+            // (docs/rendering.md, "Issue 18's acceptance on a GPU"): node VSGLs at
+            // N = 16384 gave 22.97 on caustics_ring and 0.97 on mirror_panel against
+            // 0.59 and 0.10 at N = 4096, all of it in indirect_specular.
+            let in_d = incoming_radiance(lobe_d4.xyz, lobe_d4.w, diffuse_power_amplitude.w, seen);
+            (*px).specular += diffuse_power * specular_over_rs(in_d, (*px).specular_receiver);
+        }
+    } else if (has_diffuse) {
+        let in_d = incoming_radiance(lobe_d4.xyz, lobe_d4.w, diffuse_power_amplitude.w, seen);
+        var from_diffuse_lobe = fade * diffuse_over_rd(in_d, n);
+        if (params.lambert_lobe == 2u) {
+            // The receiver's specular keeps the SG: a point emitter would put a
+            // spike into every glossy receiver.
+            let w = lambert_exact_weight(position.mean, position.variance, p);
+            // A point emitter (σ² = 0): the weight leaves the near field to the SG,
+            // and d² + 2σ² would bias it low off its axis (measured: cornell_box
+            // 0.061 → 0.050 at N = 4096, lit_floor_corner 0.211 → 0.186).
+            let exact = lambert_patch_irradiance(position.mean, lobe_d4.xyz, 0.0, p, n) * INV_PI;
+            from_diffuse_lobe = mix(from_diffuse_lobe, exact, w);
+        }
+        (*px).diffuse += diffuse_power * from_diffuse_lobe;
+        if (HAS_SPECULAR) {
+            (*px).specular += diffuse_power * specular_over_rs(in_d, (*px).specular_receiver);
+        }
+    }
+    if (HAS_SPECULAR) {
+        let specular_power_amplitude = light.specular_power_amplitude;
+        let specular_power = specular_power_amplitude.xyz * lit;
+        if (any(specular_power > vec3f(0.0))) {
+            let lobe_s4 = light.specular_lobe;
+            let in_s = incoming_radiance(lobe_s4.xyz, lobe_s4.w, specular_power_amplitude.w, seen);
+            (*px).diffuse += specular_power * (fade * diffuse_over_rd(in_s, n));
+            (*px).specular += specular_power * specular_over_rs(in_s, (*px).specular_receiver);
+        }
+    }
+}
+
+// Adds a pixel's sums, times its reflectances and the interleave's k², to the targets.
+fn write_block_pixel(px: BlockPixel, stride: u32) {
+    if (!px.has_surface) {
+        return;
+    }
+    let rcv = receiver_from_gbuffer(gbuf_position[px.index], gbuf_normal[px.index], gbuf_geo_normal[px.index], gbuf_base_color[px.index]);
+    let scale = f32(stride);
+    indirect_diffuse[px.index] += vec4f(min(rcv.rd * px.diffuse * scale, vec3f(FLT_MAX)), 0.0);
+    if (HAS_SPECULAR) {
+        indirect_specular[px.index] += vec4f(min(rcv.rs * px.specular * scale, vec3f(FLT_MAX)), 0.0);
+    }
+}
+
+@compute @workgroup_size(WORKGROUP, WORKGROUP, 1)
+fn main(@builtin(workgroup_id) wg: vec3u, @builtin(local_invocation_id) lid: vec3u, @builtin(local_invocation_index) local: u32) {
+    let k = params.interleave;
+    let stride = k * k;
+    // The thread's pixels. Those past PIXELS_PER_THREAD stay zero (no surface) and, like every
+    // branch on the override, compile out.
+    var pixel0 = block_pixel(wg, lid, 0u);
+    var pixel1: BlockPixel;
+    var pixel2: BlockPixel;
+    var pixel3: BlockPixel;
+    if (PIXELS_PER_THREAD > 1u) {
+        pixel1 = block_pixel(wg, lid, 1u);
+    }
+    if (PIXELS_PER_THREAD > 2u) {
+        pixel2 = block_pixel(wg, lid, 2u);
+    }
+    if (PIXELS_PER_THREAD > 3u) {
+        pixel3 = block_pixel(wg, lid, 3u);
+    }
+    let any_surface = pixel0.has_surface || pixel1.has_surface || pixel2.has_surface || pixel3.has_surface;
+    // All of the workgroup's pixels are of one class. Its VSGLs are params.first + class_index
+    // + m·k², m = 0 … class_count − 1.
+    let class_index = interleaved_block_pixel(wg, lid.xy, frame.size, k, block_footprint()).class_index;
+    let class_first = params.first + class_index;
+    let class_count = class_light_count(class_index, params.count, k);
     // Every thread takes part in the tile loads and barriers, with a surface or not.
     for (var tile_start = 0u; tile_start < class_count; tile_start += TILE) {
         let m = tile_start + local;
@@ -272,96 +456,26 @@ fn main(@builtin(workgroup_id) wg: vec3u, @builtin(local_invocation_id) lid: vec
         }
         workgroupBarrier();
         let n_tile = min(TILE, class_count - tile_start);
-        if (has_surface) {
+        if (any_surface) {
+            // Each pixel sums the same VSGLs in the same order as with one pixel per thread.
             for (var t = 0u; t < n_tile; t++) {
-                let pos = tile_position[t];
-                let position = VsglPosition(pos.xyz, pos.w);
-                let diffuse_power_amplitude = tile_diffuse_power[t];
-                var diffuse_power = diffuse_power_amplitude.xyz;
-                var lit = 1.0;
-                if (VISIBILITY_TRACED || VISIBILITY_ISM) {
-                    // V(x_p, μ_v) of Tok15 Eq. 3: a shadow ray to the VSGL's shadow target (its
-                    // centre texel's surface point; μ for vsgl2), or the lit fraction of μ's
-                    // imperfect shadow map; it scales both lobes' powers.
-                    var shadow_target = position.mean;
-                    if (VISIBILITY_TRACED) {
-                        shadow_target = tile_target_level[t].xyz;
-                    }
-                    lit = light_visibility(p, n, shadowing, class_first + (tile_start + t) * stride, shadow_target);
-                    if (lit <= 0.0) {
-                        continue;
-                    }
-                    diffuse_power *= lit;
+                let light = tile_light(t, class_first + (tile_start + t) * stride);
+                shade_pair(&pixel0, light);
+                if (PIXELS_PER_THREAD > 1u) {
+                    shade_pair(&pixel1, light);
                 }
-                // The diffuse forms that integrate the incoming lobe over the receiver's
-                // hemisphere ("accurate", "sg_product") also need the cluster's: texels reflect
-                // only into their own hemisphere, so nothing reaches p from below the cluster's
-                // tangent plane. The papers' form (horizon clamp of the lobe axis) and the
-                // specular ASG form vanish there already and are left as they are.
-                var fade = 1.0;
-                if (params.plane_fade == 1u) {
-                    let plane = tile_plane[t];
-                    fade = vsgl_tangent_plane_fade(VsglTangentPlane(plane.xyz, plane.w), position, p);
+                if (PIXELS_PER_THREAD > 2u) {
+                    shade_pair(&pixel2, light);
                 }
-                let seen = position_seen_from(position, p);
-                // Each lobe: radiance SG per unit power (amplitude 1/A(λ)), times its rgb
-                // power. A lobe without power (vsgl2's records carry one lobe each; metal
-                // clusters have no diffuse lobe) is skipped: it would add exactly 0.
-                let has_diffuse = any(diffuse_power > vec3f(0.0));
-                let lobe_d4 = tile_diffuse_lobe[t];
-                if (params.exact_texels == 1u && has_diffuse && tile_target_level[t].w == 0.0) {
-                    // The texel is a patch, not a point (issue 18, item 2): its positional
-                    // variance σ² is its footprint (vsgl_moments.wgsl).
-                    let texel_irradiance = lambert_patch_irradiance(position.mean, lobe_d4.xyz, position.variance, p, n);
-                    diffuse += diffuse_power * (texel_irradiance * INV_PI);
-                    if (HAS_SPECULAR) {
-                        // The receiver's specular keeps the texel's SG with its footprint (as
-                        // "exact_compact" does): a point emitter in a sharp GGX lobe is a spike
-                        // wherever it sits in the mirror direction. Measured on an H200 at 256²
-                        // (docs/rendering.md, "Issue 18's acceptance on a GPU"): node VSGLs at
-                        // N = 16384 gave 22.97 on caustics_ring and 0.97 on mirror_panel against
-                        // 0.59 and 0.10 at N = 4096, all of it in indirect_specular.
-                        let in_d = incoming_radiance(lobe_d4.xyz, lobe_d4.w, diffuse_power_amplitude.w, seen);
-                        specular += diffuse_power * specular_over_rs(in_d, spec_rcv);
-                    }
-                } else if (has_diffuse) {
-                    let in_d = incoming_radiance(lobe_d4.xyz, lobe_d4.w, diffuse_power_amplitude.w, seen);
-                    var from_diffuse_lobe = fade * diffuse_over_rd(in_d, n);
-                    if (params.lambert_lobe == 2u) {
-                        // The receiver's specular keeps the SG: a point emitter would put a
-                        // spike into every glossy receiver.
-                        let w = lambert_exact_weight(position.mean, position.variance, p);
-                        // A point emitter (σ² = 0): the weight leaves the near field to the SG,
-                        // and d² + 2σ² would bias it low off its axis (measured: cornell_box
-                        // 0.061 → 0.050 at N = 4096, lit_floor_corner 0.211 → 0.186).
-                        let exact = lambert_patch_irradiance(position.mean, lobe_d4.xyz, 0.0, p, n) * INV_PI;
-                        from_diffuse_lobe = mix(from_diffuse_lobe, exact, w);
-                    }
-                    diffuse += diffuse_power * from_diffuse_lobe;
-                    if (HAS_SPECULAR) {
-                        specular += diffuse_power * specular_over_rs(in_d, spec_rcv);
-                    }
-                }
-                // Without specular materials no record has specular power (and R_s = 0 here).
-                if (HAS_SPECULAR) {
-                    let specular_power_amplitude = tile_specular_power[t];
-                    let specular_power = specular_power_amplitude.xyz * lit;
-                    if (any(specular_power > vec3f(0.0))) {
-                        let lobe_s4 = tile_specular_lobe[t];
-                        let in_s = incoming_radiance(lobe_s4.xyz, lobe_s4.w, specular_power_amplitude.w, seen);
-                        diffuse += specular_power * (fade * diffuse_over_rd(in_s, n));
-                        specular += specular_power * specular_over_rs(in_s, spec_rcv);
-                    }
+                if (PIXELS_PER_THREAD > 3u) {
+                    shade_pair(&pixel3, light);
                 }
             }
         }
         workgroupBarrier();
     }
-    if (has_surface) {
-        let scale = f32(stride);
-        indirect_diffuse[index] += vec4f(min(rd * diffuse * scale, vec3f(FLT_MAX)), 0.0);
-        if (HAS_SPECULAR) {
-            indirect_specular[index] += vec4f(min(rs * specular * scale, vec3f(FLT_MAX)), 0.0);
-        }
-    }
+    write_block_pixel(pixel0, stride);
+    write_block_pixel(pixel1, stride);
+    write_block_pixel(pixel2, stride);
+    write_block_pixel(pixel3, stride);
 }

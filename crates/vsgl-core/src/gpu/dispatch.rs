@@ -12,7 +12,14 @@ pub fn groups(threads: u32, group: u32) -> u32 {
 /// Workgroups of an interleaved shading pass over `size` pixels (`wgsl/common/interleave.wgsl`):
 /// per axis, k classes × the workgroups one class's pixels need.
 pub fn interleaved_groups(size: (u32, u32), k: u32, group: u32) -> (u32, u32, u32) {
-    (k * groups(size.0.div_ceil(k), group), k * groups(size.1.div_ceil(k), group), 1)
+    interleaved_block_groups(size, k, (group, group))
+}
+
+/// [`interleaved_groups`] for workgroups that each cover `footprint` pixels of their class along
+/// x and y (`interleaved_block_pixel` in `wgsl/common/interleave.wgsl`): threads that shade
+/// several pixels each.
+pub fn interleaved_block_groups(size: (u32, u32), k: u32, footprint: (u32, u32)) -> (u32, u32, u32) {
+    (k * groups(size.0.div_ceil(k), footprint.0), k * groups(size.1.div_ceil(k), footprint.1), 1)
 }
 
 /// Bind group entries for buffers/views in binding order 0, 1, 2, …

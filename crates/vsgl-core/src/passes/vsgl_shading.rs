@@ -2,11 +2,18 @@
 
 use crate::error::Result;
 use crate::frame::{GBuffer, IndirectTargets};
-use crate::gpu::{for_each_chunk, interleaved_groups, Gpu, PipelineVariants, Recorder};
+use crate::gpu::{for_each_chunk, interleaved_block_groups, Gpu, PipelineVariants, Recorder};
 use crate::methods::visibility::VirtualLightVisibility;
 use crate::plan::ShaderFeatures;
 
 const WORKGROUP: u32 = 8;
+/// Pixels each thread shades (register blocking; the shader's override `PIXELS_PER_THREAD`,
+/// 1 … 4): every VSGL read from the workgroup tile serves that many (pixel, VSGL) pairs. The
+/// pixels are neighbours of one interleave class along x, so a workgroup covers
+/// (WORKGROUP·PIXELS_PER_THREAD) × WORKGROUP pixels of its class. The only place it is chosen
+/// (docs/rendering.md, "What the shading loop keeps per VSGL").
+pub const PIXELS_PER_THREAD: u32 = 2;
+const _: () = assert!(PIXELS_PER_THREAD >= 1 && PIXELS_PER_THREAD <= 4, "vsgl_shading.wgsl keeps 1 … 4 pixels per thread");
 
 #[repr(C)]
 #[derive(Clone, Copy, bytemuck::Pod, bytemuck::Zeroable)]
@@ -134,7 +141,7 @@ pub struct VsglShadingPass {
 
 impl VsglShadingPass {
     pub fn new(gpu: &Gpu) -> Result<Self> {
-        Ok(Self { pipelines: PipelineVariants::new(gpu, "passes/vsgl_shading.wgsl", "main")? })
+        Ok(Self { pipelines: PipelineVariants::with_constants(gpu, "passes/vsgl_shading.wgsl", "main", &[("PIXELS_PER_THREAD", f64::from(PIXELS_PER_THREAD))])? })
     }
 
     #[allow(clippy::too_many_arguments)]
@@ -171,7 +178,7 @@ impl VsglShadingPass {
                 &label,
                 &pipeline,
                 &[&[frame.as_entire_binding()], &out.shading_bindings(&uniform, vsgls, gbuffer), &visibility.bindings()],
-                interleaved_groups(size, interleave, WORKGROUP),
+                interleaved_block_groups(size, interleave, (WORKGROUP * PIXELS_PER_THREAD, WORKGROUP)),
             );
         });
     }
