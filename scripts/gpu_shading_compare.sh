@@ -13,6 +13,7 @@
 #   - issue 19's sequence benchmark on cave_flashlight, cut to fit (K = 1, 4; 20 frames; 512-spp truth).
 #   bash ../shared/tools/gpu-prep.sh; mkdir -p .whl-old && cp <previous wheel> .whl-old/
 #   optional diagnostic builds in .whl-var/NAME.whl (timed once each, vsgl at interleave 1)
+#   SHADING_ONLY=1: stop after the builds' timings; FULL_METHODS=vsgl: leave vpl out of them
 #   device (carry .gl .whl .whl-old .whl-var): <gpu-prep lines> bash scripts/gpu_shading_compare.sh
 set -uo pipefail
 source "$(dirname "$0")/gpu_common.sh"  # $FINAL_OUT, $RES, pack; cd to the repository root
@@ -26,7 +27,7 @@ common=(--size "$SIZE" --frames 20 --scenes cornell_box,diffuse_cornell,glossy_c
 strip() { grep -v adapter | sed -E 's/  (visibility|shadow_map|material|direct|rsm_[a-z]+|aov_pack|pdf_mips|vsgl_moments|moment_mips|vsgl_gen|vpl_sample)=[^ ]+//g' | cut -c1-230; }
 time_build() {  # NAME PYTHONPATH FULL: k1 vsgl (and vpl, k8 vsgl when FULL=1)
   local name=$1 path=$2 full=$3 methods=vsgl
-  [ "$full" = 1 ] && methods=vsgl,vpl
+  [ "$full" = 1 ] && methods=${FULL_METHODS:-vsgl,vpl}
   echo "-- $name"
   PYTHONPATH=$path timeout 90 python3 scripts/gpu_timings.py "${common[@]}" --methods $methods --interleave 1 --vpl-interleave 1 --tag "_k1_$name" 2>&1 | strip
   [ "$full" = 1 ] && PYTHONPATH=$path timeout 60 python3 scripts/gpu_timings.py "${common[@]}" --methods vsgl --tag "_k8_$name" 2>&1 | strip
@@ -39,6 +40,7 @@ time_build old_1 /tmp/old 1
 time_build new_1 /tmp/site 1
 for v in /tmp/var_*; do [ -d "$v" ] && time_build "${v#/tmp/var_}" "$v" 0; done
 time_build new_2 /tmp/site 0  # the same build again: the drift over the comparison
+if [ "${SHADING_ONLY:-0}" = 1 ]; then pack; exit 0; fi  # the builds' timings only (a caller's step)
 echo "== issue 18, 256², no shadows"
 timeout 100 python3 scripts/issue18_acceptance.py --size "$ACC_SIZE" --lights "$ACC_LIGHTS" --brsm \
   --cache "$RES/truth" --out "$RES/issue18_none.json" > "$RES/issue18_none.log" 2>&1
