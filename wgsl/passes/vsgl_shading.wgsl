@@ -53,7 +53,7 @@ const WORKGROUP: u32 = 8u;
 const TILE: u32 = 64u; // = WORKGROUP², one VSGL loaded per thread
 // Pixels each thread shades, 1 … 4 (register blocking): each VSGL the loop reads from the tile
 // serves this many (pixel, VSGL) pairs, whose receivers stay in registers. Set by the host
-// (crates/vsgl-core/src/passes/vsgl_shading.rs, PIXELS_PER_THREAD), whose dispatch size
+// (crates/vsgl-core/src/passes/vsgl_shading.rs: 2 for diffuse-only variants, 1 with specular), whose dispatch size
 // depends on it; a constant of each pipeline, so the unused pixels compile out.
 override PIXELS_PER_THREAD: u32;
 

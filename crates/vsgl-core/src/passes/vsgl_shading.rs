@@ -10,10 +10,16 @@ const WORKGROUP: u32 = 8;
 /// Pixels each thread shades (register blocking; the shader's override `PIXELS_PER_THREAD`,
 /// 1 … 4): every VSGL read from the workgroup tile serves that many (pixel, VSGL) pairs. The
 /// pixels are neighbours of one interleave class along x, so a workgroup covers
-/// (WORKGROUP·PIXELS_PER_THREAD) × WORKGROUP pixels of its class. The only place it is chosen
-/// (docs/rendering.md, "What the shading loop keeps per VSGL").
-pub const PIXELS_PER_THREAD: u32 = 2;
-const _: () = assert!(PIXELS_PER_THREAD >= 1 && PIXELS_PER_THREAD <= 4, "vsgl_shading.wgsl keeps 1 … 4 pixels per thread");
+/// (WORKGROUP·P) × WORKGROUP pixels of its class. Chosen here only, per variant, from an H200
+/// at 1080p and 1024 VSGLs per pixel (docs/rendering.md, "What the shading loop keeps per VSGL"):
+/// diffuse-only scenes 6.87 / 6.38 / 6.48 ms at P = 1 / 2 / 4; with specular lobes P = 2 gains
+/// under 1% at interleave 1, loses 5% at 8×8 (0.383 → 0.403 ms) and P = 4 spills (16.2 → 24.9 ms).
+pub const PIXELS_PER_THREAD_DIFFUSE_ONLY: u32 = 2;
+pub const PIXELS_PER_THREAD_WITH_SPECULAR: u32 = 1;
+const _: () = assert!(
+    PIXELS_PER_THREAD_DIFFUSE_ONLY >= 1 && PIXELS_PER_THREAD_DIFFUSE_ONLY <= 4 && PIXELS_PER_THREAD_WITH_SPECULAR >= 1 && PIXELS_PER_THREAD_WITH_SPECULAR <= 4,
+    "vsgl_shading.wgsl keeps 1 … 4 pixels per thread"
+);
 
 #[repr(C)]
 #[derive(Clone, Copy, bytemuck::Pod, bytemuck::Zeroable)]
@@ -136,12 +142,16 @@ impl LambertLobe {
 }
 
 pub struct VsglShadingPass {
-    pipelines: PipelineVariants,
+    /// Variants of scenes without specular materials (HAS_SPECULAR = false), and the rest: each
+    /// with its own pixels per thread.
+    diffuse_only: PipelineVariants,
+    with_specular: PipelineVariants,
 }
 
 impl VsglShadingPass {
     pub fn new(gpu: &Gpu) -> Result<Self> {
-        Ok(Self { pipelines: PipelineVariants::with_constants(gpu, "passes/vsgl_shading.wgsl", "main", &[("PIXELS_PER_THREAD", f64::from(PIXELS_PER_THREAD))])? })
+        let with_p = |p: u32| PipelineVariants::with_constants(gpu, "passes/vsgl_shading.wgsl", "main", &[("PIXELS_PER_THREAD", f64::from(p))]);
+        Ok(Self { diffuse_only: with_p(PIXELS_PER_THREAD_DIFFUSE_ONLY)?, with_specular: with_p(PIXELS_PER_THREAD_WITH_SPECULAR)? })
     }
 
     #[allow(clippy::too_many_arguments)]
@@ -165,7 +175,9 @@ impl VsglShadingPass {
         let gpu = rec.gpu;
         let [specular] = features.specular_flags();
         let [traced, ism] = visibility.flags();
-        let pipeline = self.pipelines.get(gpu, &[specular, traced, ism]);
+        let (variants, pixels_per_thread) =
+            if specular.1 { (&self.with_specular, PIXELS_PER_THREAD_WITH_SPECULAR) } else { (&self.diffuse_only, PIXELS_PER_THREAD_DIFFUSE_ONLY) };
+        let pipeline = variants.get(gpu, &[specular, traced, ism]);
         // `frame.passes` names the visibility variant.
         let label = format!("vsgl_shading{}", visibility.label_suffix());
         // Chunks are multiples of k² so the interleaved subsets stay j ≡ t (mod k²).
@@ -178,7 +190,7 @@ impl VsglShadingPass {
                 &label,
                 &pipeline,
                 &[&[frame.as_entire_binding()], &out.shading_bindings(&uniform, vsgls, gbuffer), &visibility.bindings()],
-                interleaved_block_groups(size, interleave, (WORKGROUP * PIXELS_PER_THREAD, WORKGROUP)),
+                interleaved_block_groups(size, interleave, (WORKGROUP * pixels_per_thread, WORKGROUP)),
             );
         });
     }
