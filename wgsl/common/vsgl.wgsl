@@ -52,27 +52,76 @@ fn vsgl_position_from_moments(sum_weight: f32, sum_weighted_position: vec3f, sum
     return VsglPosition(mean, variance);
 }
 
-// Incoming radiance at shading point y_p from a VSGL as one SG [Tok15 Eq. 5; Tok16s Eq. 7]:
-//   L_in(ω) ≈ c_v/(2πσ²)·G(ω; −ξ_v, λ_v)·G(ω; ξ_μ, λσ) = c_in G(ω; ξ_in, λ_in),
-//   ξ_μ = (μ_v − y_p)/‖μ_v − y_p‖, λσ = ‖μ_v − y_p‖²/σ², (Eq. 6: the positional Gaussian seen
-//   from y_p, on the sphere of radius ‖μ_v − y_p‖), λ_in = ‖λσ ξ_μ − λ_v ξ_v‖,
-//   c_in = c_v/(2πσ²)·exp(λ_in − λ_v − λσ).
-// Stable form (DESIGN.md): the exponent comes from sg_product as the log-amplitude
-// −λ_v λσ ‖ξ_v + ξ_μ‖²/(λ_in + λ_v + λσ), never as the difference λ_in − λ_v − λσ.
-// Clamp: σ² is floored at d²/SG_SHARPNESS_MAX so that λσ ≤ SG_SHARPNESS_MAX. The coefficient is
-// formed from the same floored σ², so c_in·A(λ_in) → I_v(−ξ_μ)/d² (the point-light limit) is
-// kept exactly when the clamp is active. σ² ≥ FLT_MIN only guards d = σ = 0.
-// The visibility V(y_p, μ_v) of [Tok15 Eq. 5] is left to the caller (multiply the amplitude).
-fn vsgl_incoming_radiance(lobe: Sg, position: VsglPosition, shading_position: vec3f) -> Sg {
+// The positional Gaussian N(μ_v, σ_v²) of a VSGL as seen from a shading point y_p [Tok15 Eq. 6]:
+// on the sphere of radius d = ‖μ_v − y_p‖ around y_p it is the SG G(ω; ξ_μ, λσ) with
+// ξ_μ = (μ_v − y_p)/d and λσ = d²/σ². It depends on the pair (y_p, VSGL) but not on the lobe, so
+// the shading loop forms it once per pair and both lobes of the VSGL share it
+// (vsgl_incoming_radiance_seen).
+// Clamp: σ² is floored at d²/SG_SHARPNESS_MAX so that λσ ≤ SG_SHARPNESS_MAX (to rounding: the
+// floor is d² times the constant's reciprocal, a product instead of a division), and at FLT_MIN,
+// which only guards d = σ = 0. The coefficient c_v/(2πσ²) of Eq. 5 is formed from the same
+// floored σ² (inv_variance), so c_in·A(λ_in) → I_v(−ξ_μ)/d² (the point-light limit) is kept
+// exactly when the clamp is active.
+// ξ_μ is t·(d²)^(−1/2) with the d² already formed (t = μ_v − y_p), not safe_normalize's three
+// divisions by the largest component, which guard vectors whose squared length underflows: here
+// d² < FLT_MIN means y_p within 1e-19 of μ_v, where λσ ≈ 0 and ξ_μ does not matter (has_axis is
+// false and vsgl_incoming_radiance_seen takes −ξ_v instead).
+struct VsglPositionSeen {
+    // 1/σ², σ² floored as above.
+    inv_variance: f32,
+    // λσ = d²/σ².
+    sharpness: f32,
+    // ξ_μ, valid where has_axis (d² ≥ FLT_MIN); else t unnormalized (|t| < 1.1e-19).
+    axis: vec3f,
+    has_axis: bool,
+}
+
+fn vsgl_position_seen_from(position: VsglPosition, shading_position: vec3f) -> VsglPositionSeen {
     let to_mean = position.mean - shading_position;
     let dist2 = dot(to_mean, to_mean);
-    let variance = max(max(position.variance, dist2 / SG_SHARPNESS_MAX), FLT_MIN);
-    let sharpness_sigma = dist2 / variance;
+    let variance = max(max(position.variance, dist2 * (1.0 / SG_SHARPNESS_MAX)), FLT_MIN);
+    let inv_variance = 1.0 / variance;
+    let has_axis = dist2 >= FLT_MIN;
+    return VsglPositionSeen(inv_variance, dist2 * inv_variance, to_mean * inverseSqrt(select(1.0, dist2, has_axis)), has_axis);
+}
+
+// Incoming radiance at y_p from one lobe of a VSGL as one SG [Tok15 Eq. 5; Tok16s Eq. 7], given
+// the positional Gaussian as seen from y_p (vsgl_position_seen_from):
+//   L_in(ω) ≈ c_v/(2πσ²)·G(ω; −ξ_v, λ_v)·G(ω; ξ_μ, λσ) = c_in G(ω; ξ_in, λ_in),
+//   λ_in = ‖λσ ξ_μ − λ_v ξ_v‖, ξ_in = (λσ ξ_μ − λ_v ξ_v)/λ_in, c_in = c_v/(2πσ²)·exp(λ_in − λ_v − λσ).
+// The lobe comes as (ξ_v, λ_v, c_v/(2π)): the 1/(2π) depends on the VSGL alone (the shading
+// loop folds it in once per VSGL and workgroup), so the coefficient is one product with 1/σ².
+// Stable form (DESIGN.md; the product of sg_product, inlined): the exponent is the log-amplitude
+// −λ_v λσ ‖ξ_v + ξ_μ‖²/(λ_in + λ_v + λσ), never the difference λ_in − λ_v − λσ. ξ_in is
+// v·‖v‖⁻¹ with the ‖v‖² that λ_in = ‖v‖ needs; ‖v‖² < FLT_MIN means λ_in ≈ 0, where the axis is
+// sg_product's fallback: the sharper input's axis.
+// The visibility V(y_p, μ_v) of [Tok15 Eq. 5] is left to the caller (multiply the amplitude).
+fn vsgl_incoming_radiance_seen(lobe_axis: vec3f, lobe_sharpness: f32, amplitude_over_two_pi: f32, seen: VsglPositionSeen) -> Sg {
+    let axis1 = -lobe_axis;
+    let sharpness_sigma = seen.sharpness;
     // At the mean itself (d = 0) λσ = 0 and ξ_μ is irrelevant.
-    let axis_mu = safe_normalize(to_mean, -lobe.axis);
-    let p = sg_product(-lobe.axis, lobe.sharpness, axis_mu, sharpness_sigma);
-    let coefficient = min(lobe.amplitude / (TWO_PI * variance), FLT_MAX);
-    return Sg(p.axis, p.sharpness, coefficient * exp(p.log_amplitude));
+    let axis_mu = select(axis1, seen.axis, seen.has_axis);
+    let v = lobe_sharpness * axis1 + sharpness_sigma * axis_mu;
+    let v_len2 = dot(v, v);
+    let sharpness = sqrt(v_len2);
+    var axis = select(axis_mu, axis1, lobe_sharpness >= sharpness_sigma);
+    if (v_len2 >= FLT_MIN) {
+        axis = v * inverseSqrt(v_len2);
+    }
+    let d = axis1 - axis_mu;
+    let ratio = sharpness_sigma / max(sharpness + lobe_sharpness + sharpness_sigma, FLT_MIN);
+    let log_amplitude = -lobe_sharpness * ratio * dot(d, d);
+    let coefficient = min(amplitude_over_two_pi * seen.inv_variance, FLT_MAX);
+    return Sg(axis, sharpness, coefficient * exp(log_amplitude));
+}
+
+// Incoming radiance at shading point y_p from a VSGL lobe (ξ_v, λ_v, c_v) as one SG [Tok15 Eq. 5;
+// Tok16s Eq. 7]: vsgl_incoming_radiance_seen with the positional Gaussian seen from y_p formed
+// here, for callers that shade one lobe per (point, VSGL). One implementation of the formula:
+// the shading loop calls the two parts itself to share the seen Gaussian between the lobes.
+fn vsgl_incoming_radiance(lobe: Sg, position: VsglPosition, shading_position: vec3f) -> Sg {
+    let seen = vsgl_position_seen_from(position, shading_position);
+    return vsgl_incoming_radiance_seen(lobe.axis, lobe.sharpness, lobe.amplitude / TWO_PI, seen);
 }
 
 // Diffuse reflected radiance over R_d, cosine pulled out of the integral [Tok16s §4.2;
@@ -107,6 +156,23 @@ fn vsgl_diffuse_sg_product(radiance: Sg, normal: vec3f) -> f32 {
     return min(radiance.amplitude * lambert.amplitude * integral, FLT_MAX);
 }
 
+// What vsgl_specular needs of the receiver alone (unit normal n, unit view ω_o, GGX α), formed
+// once per pixel by the shading loop instead of once per (pixel, VSGL) pair: n·ω_o, the view's
+// Smith Λ(ω_o) [Heitz 2014, Eq. 99] and the GGX lobe's ASG at y_p [Tok16s §4.2; ggx_lobe_asg].
+struct VsglSpecularReceiver {
+    n: vec3f,
+    w_o: vec3f,
+    alpha: f32,
+    n_dot_v: f32,
+    lambda_v: f32,
+    asg: Asg,
+}
+
+fn vsgl_specular_receiver_from(normal: vec3f, w_o: vec3f, alpha: f32) -> VsglSpecularReceiver {
+    let n_dot_v = dot(normal, w_o);
+    return VsglSpecularReceiver(normal, w_o, alpha, n_dot_v, ggx_smith_lambda(n_dot_v, alpha), ggx_lobe_asg(normal, w_o, alpha));
+}
+
 // Specular reflected radiance over R_s for the GGX BRDF (Fresnel = 1) [Tok16s §4.2 boxed;
 // Tok15s App. B]:
 //   L_s ≈ π c_in C(ξ_in) Ĝ(ξ_in; x, y, z, ηxν/(ηx+ν), ηyν/(ηy+ν)) / √((ηx+ν)(ηy+ν)), ν = λ_in/2,
@@ -118,19 +184,29 @@ fn vsgl_diffuse_sg_product(radiance: Sg, normal: vec3f) -> f32 {
 // while no bandwidth is clamped, and it keeps the lobe's energy (→ c_in R_s G2 for a broad
 // light) when ggx_lobe_asg clamps ηy at grazing view, where C's 1/(n·ω_o) would blow up.
 // Zero when the light axis or the view is below the surface (G2 → 0 there continuously).
+// G2 = 1/(1 + Λ(ξ_in) + Λ(ω_o)) [Heitz 2014, Eq. 99], the height-correlated Smith G2 as
+// ggx_smith_g2 forms it, with Λ(ω_o) from the receiver.
 // Accuracy (oracle test vsgl_specular_vs_quadrature, against the exact GGX integral): exact in
 // the point-light limit (< 1e-3); for extended lights +0…+21% (α = 0.05…0.2), because the SG
 // NDF G(h; n, 2/α²) has GGX's peak and projected area but a wider core and no long tails.
-fn vsgl_specular(radiance: Sg, normal: vec3f, w_o: vec3f, alpha: f32) -> f32 {
-    let n_dot_l = dot(normal, radiance.axis);
-    let n_dot_v = dot(normal, w_o);
-    if (n_dot_l <= 0.0 || n_dot_v <= 0.0) {
+fn vsgl_specular_with_receiver(radiance: Sg, receiver: VsglSpecularReceiver) -> f32 {
+    let n_dot_l = dot(receiver.n, radiance.axis);
+    if (n_dot_l <= 0.0 || receiver.n_dot_v <= 0.0) {
         return 0.0;
     }
-    let asg = ggx_lobe_asg(normal, w_o, alpha);
-    let g2 = ggx_smith_g2(n_dot_l, n_dot_v, alpha);
-    let lobe = sg_asg_product_integral_over_asg_integral(radiance.axis, radiance.sharpness, asg);
+    let g2 = 1.0 / (1.0 + ggx_smith_lambda(n_dot_l, receiver.alpha) + receiver.lambda_v);
+    let lobe = sg_asg_product_integral_over_asg_integral(radiance.axis, radiance.sharpness, receiver.asg);
     return min(radiance.amplitude * g2 * lobe, FLT_MAX);
+}
+
+// vsgl_specular_with_receiver for one (receiver, radiance SG) pair, the receiver formed here. The
+// test below the surface comes first so that callers that shade per pair do not build the ASG
+// for lights behind it (the result is the same: 0).
+fn vsgl_specular(radiance: Sg, normal: vec3f, w_o: vec3f, alpha: f32) -> f32 {
+    if (dot(normal, radiance.axis) <= 0.0 || dot(normal, w_o) <= 0.0) {
+        return 0.0;
+    }
+    return vsgl_specular_with_receiver(radiance, vsgl_specular_receiver_from(normal, w_o, alpha));
 }
 
 // Bounds of α² in the filtered NDF of vsgl_specular_accurate. MIN: GGX_ALPHA_MIN², so √det Σ'

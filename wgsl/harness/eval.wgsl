@@ -138,6 +138,26 @@ fn main(@builtin(global_invocation_id) gid: vec3u) {
         case 37u: { out1(0u, lambert_brdf_over_rd(in3(0u), in3(3u))); }
         // vsgl.wgsl (added after the ggx block: ids are append-only)
         case 38u: { out1(0u, vsgl_specular_accurate(in_sg(0u), in3(5u), in3(8u), in1(11u))); }
+        // vsgl.wgsl, the split forms of vsgl_incoming_radiance and vsgl_specular (append-only ids)
+        case 39u: {
+            let s = vsgl_position_seen_from(VsglPosition(in3(0u), in1(3u)), in3(4u));
+            out1(0u, s.inv_variance);
+            out1(1u, s.sharpness);
+            out3(2u, s.axis);
+            out1(5u, select(0.0, 1.0, s.has_axis));
+        }
+        case 40u: { out_sg(vsgl_incoming_radiance_seen(in3(0u), in1(3u), in1(4u), vsgl_position_seen_from(VsglPosition(in3(5u), in1(8u)), in3(9u)))); }
+        case 41u: {
+            let r = vsgl_specular_receiver_from(in3(0u), in3(3u), in1(6u));
+            out1(0u, r.n_dot_v);
+            out1(1u, r.lambda_v);
+            out3(2u, r.asg.x_axis);
+            out1(5u, r.asg.x_bandwidth);
+            out3(6u, r.asg.y_axis);
+            out1(9u, r.asg.y_bandwidth);
+            out3(10u, r.asg.z_axis);
+        }
+        case 42u: { out1(0u, vsgl_specular_with_receiver(in_sg(0u), vsgl_specular_receiver_from(in3(5u), in3(8u), in1(11u)))); }
         // Ids come from HarnessFunction only; anything else leaves the zeros.
         default: {}
     }

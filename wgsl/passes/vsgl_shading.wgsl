@@ -92,7 +92,7 @@ var<workgroup> tile_target_level: array<vec4f, TILE>;
 // the Lambert gain params.lambert_lobe selects (vsgl_record_diffuse_lobe), the specular one
 // normalized (vsgl_record_specular_lobe). Each is exp + division + a series branch
 // (sg_integral) that depends on the VSGL only; the 1/(2π) of the incoming radiance's
-// coefficient (incoming_radiance) is folded in here too.
+// coefficient (vsgl_incoming_radiance_seen) is folded in here too.
 fn store_tile_light(slot: u32, v: VsglRaw) {
     let gain = select(1.0, LAMBERT_LOBE_HEMISPHERE_GAIN, params.lambert_lobe != 0u);
     let lobe_d = vsgl_record_diffuse_lobe(v, gain);
@@ -147,96 +147,17 @@ fn diffuse_over_rd(radiance: Sg, n: vec3f) -> f32 {
     return vsgl_diffuse_approx(radiance, n);
 }
 
-// vsgl_incoming_radiance (common/vsgl.wgsl) [Tok15 Eq. 5; Tok16s Eq. 7] with its sg_product
-// inlined, written for the inner loop, where it runs once per (pixel, VSGL) pair:
-//   L_in(ω) = c_v/(2πσ²)·G(ω; −ξ_v, λ_v)·G(ω; ξ_μ, λσ), λσ = d²/σ², ξ_μ = (μ_v − p)/d.
-// The same formulas, clamps and stable log-amplitude −λ_v·(λσ/(λ_in + λ_v + λσ))·‖ξ_v + ξ_μ‖²
-// (sg_product); what differs is only how often it divides, which the GPU pays for per pair:
-//  - the positional Gaussian as seen from p (d², 1/σ², λσ, ξ_μ: PositionSeen) is formed once
-//    per pair and serves both lobes;
-//  - c_v/(2π) comes from the tile (amplitude_over_two_pi), so the coefficient and λσ share one
-//    reciprocal 1/σ² instead of two divisions;
-//  - ξ_μ is (μ_v − p)·(d²)^(−1/2) with the d² already formed, and ξ_in is v·‖v‖⁻¹ with the ‖v‖²
-//    that λ_in = ‖v‖ needs, instead of safe_normalize's three divisions by the largest component
-//    (which guards vectors whose squared length underflows: here d² < FLT_MIN means p within
-//    1e-19 of μ_v, where λσ ≈ 0 and ξ_μ does not matter, and ‖v‖² < FLT_MIN means λ_in ≈ 0,
-//    where the fallback is sg_product's: the sharper input's axis);
-//  - d²/SG_SHARPNESS_MAX is a product with the constant's reciprocal.
-// Each replaced division rounds differently in the last bit or two: the result differs from
-// vsgl_incoming_radiance by a few ULP (scripts/shading_cost_compare.py --check measures it).
-struct PositionSeen {
-    // 1/σ², σ² floored as in vsgl_incoming_radiance (λσ ≤ SG_SHARPNESS_MAX to rounding).
-    inv_variance: f32,
-    // λσ = d²/σ².
-    sharpness: f32,
-    // ξ_μ, valid where has_axis (d² ≥ FLT_MIN); else the caller's lobe decides (−ξ_v).
-    axis: vec3f,
-    has_axis: bool,
-}
+// The incoming radiance of a lobe (vsgl_incoming_radiance_seen) and the specular form
+// (vsgl_specular_with_receiver) are those of common/vsgl.wgsl, in their split form: the
+// positional Gaussian seen from p (vsgl_position_seen_from) is formed once per (pixel, VSGL)
+// pair and serves both lobes, and the receiver's ASG, n·ω_o and Λ(ω_o)
+// (vsgl_specular_receiver_from) once per pixel.
 
-fn position_seen_from(position: VsglPosition, shading_position: vec3f) -> PositionSeen {
-    let to_mean = position.mean - shading_position;
-    let dist2 = dot(to_mean, to_mean);
-    let variance = max(max(position.variance, dist2 * (1.0 / SG_SHARPNESS_MAX)), FLT_MIN);
-    let inv_variance = 1.0 / variance;
-    let has_axis = dist2 >= FLT_MIN;
-    return PositionSeen(inv_variance, dist2 * inv_variance, to_mean * inverseSqrt(select(1.0, dist2, has_axis)), has_axis);
-}
-
-fn incoming_radiance(lobe_axis: vec3f, lobe_sharpness: f32, amplitude_over_two_pi: f32, seen: PositionSeen) -> Sg {
-    let axis1 = -lobe_axis;
-    let sharpness_sigma = seen.sharpness;
-    // At the mean itself (d = 0) λσ = 0 and ξ_μ is irrelevant.
-    let axis_mu = select(axis1, seen.axis, seen.has_axis);
-    let v = lobe_sharpness * axis1 + sharpness_sigma * axis_mu;
-    let v_len2 = dot(v, v);
-    let sharpness = sqrt(v_len2);
-    var axis = select(axis_mu, axis1, lobe_sharpness >= sharpness_sigma);
-    if (v_len2 >= FLT_MIN) {
-        axis = v * inverseSqrt(v_len2);
-    }
-    let d = axis1 - axis_mu;
-    let ratio = sharpness_sigma / max(sharpness + lobe_sharpness + sharpness_sigma, FLT_MIN);
-    let log_amplitude = -lobe_sharpness * ratio * dot(d, d);
-    let coefficient = min(amplitude_over_two_pi * seen.inv_variance, FLT_MAX);
-    return Sg(axis, sharpness, coefficient * exp(log_amplitude));
-}
-
-// What the specular forms need of the receiver alone, formed once per pixel: n·ω_o, the GGX
-// lobe's ASG [Tok16s §4.2; ggx_lobe_asg] and the view's Smith Λ(ω_o) [Heitz 2014, Eq. 99],
-// which vsgl_specular would rebuild per VSGL.
-struct SpecularReceiver {
-    n: vec3f,
-    v: vec3f,
-    alpha: f32,
-    n_dot_v: f32,
-    lambda_v: f32,
-    asg: Asg,
-}
-
-fn specular_receiver(n: vec3f, v: vec3f, alpha: f32) -> SpecularReceiver {
-    let n_dot_v = dot(n, v);
-    return SpecularReceiver(n, v, alpha, n_dot_v, ggx_smith_lambda(n_dot_v, alpha), ggx_lobe_asg(n, v, alpha));
-}
-
-// vsgl_specular (common/vsgl.wgsl: [Tok16s §4.2 boxed; Tok15s App. B]) with the receiver's
-// ASG, n·ω_o and Λ(ω_o) taken from `r` instead of recomputed: the same operations on the same
-// values (G2 = 1/(1 + Λ(ω_i) + Λ(ω_o)) as ggx_smith_g2 forms it).
-fn vsgl_specular_receiver(radiance: Sg, r: SpecularReceiver) -> f32 {
-    let n_dot_l = dot(r.n, radiance.axis);
-    if (n_dot_l <= 0.0 || r.n_dot_v <= 0.0) {
-        return 0.0;
-    }
-    let g2 = 1.0 / (1.0 + ggx_smith_lambda(n_dot_l, r.alpha) + r.lambda_v);
-    let lobe = sg_asg_product_integral_over_asg_integral(radiance.axis, radiance.sharpness, r.asg);
-    return min(radiance.amplitude * g2 * lobe, FLT_MAX);
-}
-
-fn specular_over_rs(radiance: Sg, r: SpecularReceiver) -> f32 {
+fn specular_over_rs(radiance: Sg, r: VsglSpecularReceiver) -> f32 {
     if (params.lighting_mode == 1u) {
-        return vsgl_specular_accurate(radiance, r.n, r.v, r.alpha);
+        return vsgl_specular_accurate(radiance, r.n, r.w_o, r.alpha);
     }
-    return vsgl_specular_receiver(radiance, r);
+    return vsgl_specular_with_receiver(radiance, r);
 }
 
 // The workgroup's footprint in pixels of its class: PIXELS_PER_THREAD blocks of WORKGROUP²
@@ -253,7 +174,7 @@ struct BlockPixel {
     p: vec3f,
     n: vec3f,
     shadowing: ShadowReceiver,
-    specular_receiver: SpecularReceiver,
+    specular_receiver: VsglSpecularReceiver,
     diffuse: vec3f,
     specular: vec3f,
 }
@@ -280,7 +201,7 @@ fn block_pixel(wg: vec3u, lid: vec3u, slot: u32) -> BlockPixel {
     px.n = rcv.n;
     px.shadowing = shadow_receiver(rcv.has_surface, geo_normal, ip.pixel);
     if (HAS_SPECULAR && rcv.has_surface) {
-        px.specular_receiver = specular_receiver(rcv.n, rcv.v, rcv.alpha);
+        px.specular_receiver = vsgl_specular_receiver_from(rcv.n, rcv.v, rcv.alpha);
     }
     px.diffuse = vec3f(0.0);
     px.specular = vec3f(0.0);
@@ -359,7 +280,7 @@ fn shade_pair(px: ptr<function, BlockPixel>, light: TileLight) {
         let plane = light.plane;
         fade = vsgl_tangent_plane_fade(VsglTangentPlane(plane.xyz, plane.w), position, p);
     }
-    let seen = position_seen_from(position, p);
+    let seen = vsgl_position_seen_from(position, p);
     // Each lobe: radiance SG per unit power (amplitude 1/A(λ)), times its rgb
     // power. A lobe without power (vsgl2's records carry one lobe each; metal
     // clusters have no diffuse lobe) is skipped: it would add exactly 0.
@@ -377,11 +298,11 @@ fn shade_pair(px: ptr<function, BlockPixel>, light: TileLight) {
             // (docs/rendering.md, "Issue 18's acceptance on a GPU"): node VSGLs at
             // N = 16384 gave 22.97 on caustics_ring and 0.97 on mirror_panel against
             // 0.59 and 0.10 at N = 4096, all of it in indirect_specular.
-            let in_d = incoming_radiance(lobe_d4.xyz, lobe_d4.w, diffuse_power_amplitude.w, seen);
+            let in_d = vsgl_incoming_radiance_seen(lobe_d4.xyz, lobe_d4.w, diffuse_power_amplitude.w, seen);
             (*px).specular += diffuse_power * specular_over_rs(in_d, (*px).specular_receiver);
         }
     } else if (has_diffuse) {
-        let in_d = incoming_radiance(lobe_d4.xyz, lobe_d4.w, diffuse_power_amplitude.w, seen);
+        let in_d = vsgl_incoming_radiance_seen(lobe_d4.xyz, lobe_d4.w, diffuse_power_amplitude.w, seen);
         var from_diffuse_lobe = fade * diffuse_over_rd(in_d, n);
         if (params.lambert_lobe == 2u) {
             // The receiver's specular keeps the SG: a point emitter would put a
@@ -403,7 +324,7 @@ fn shade_pair(px: ptr<function, BlockPixel>, light: TileLight) {
         let specular_power = specular_power_amplitude.xyz * lit;
         if (any(specular_power > vec3f(0.0))) {
             let lobe_s4 = light.specular_lobe;
-            let in_s = incoming_radiance(lobe_s4.xyz, lobe_s4.w, specular_power_amplitude.w, seen);
+            let in_s = vsgl_incoming_radiance_seen(lobe_s4.xyz, lobe_s4.w, specular_power_amplitude.w, seen);
             (*px).diffuse += specular_power * (fade * diffuse_over_rd(in_s, n));
             (*px).specular += specular_power * specular_over_rs(in_s, (*px).specular_receiver);
         }

@@ -91,13 +91,19 @@ pub enum HarnessFunction {
     LambertBrdfOverRd = 37,
     // vsgl.wgsl, lighting="accurate"
     VsglSpecularAccurate = 38,
+    // vsgl.wgsl, the split forms the shading loop calls (vsgl_incoming_radiance and vsgl_specular
+    // are wrappers over them)
+    VsglPositionSeenFrom = 39,
+    VsglIncomingRadianceSeen = 40,
+    VsglSpecularReceiverFrom = 41,
+    VsglSpecularWithReceiver = 42,
 }
 
 use HarnessFunction as F;
 
 impl HarnessFunction {
     /// Every function, in id order.
-    pub const ALL: [HarnessFunction; 39] = [
+    pub const ALL: [HarnessFunction; 43] = [
         F::Expm1OverX,
         F::Expm1,
         F::Mulsign,
@@ -137,6 +143,10 @@ impl HarnessFunction {
         F::GgxBrdfOverRs,
         F::LambertBrdfOverRd,
         F::VsglSpecularAccurate,
+        F::VsglPositionSeenFrom,
+        F::VsglIncomingRadianceSeen,
+        F::VsglSpecularReceiverFrom,
+        F::VsglSpecularWithReceiver,
     ];
 
     /// The id of the function in the shader's switch.
@@ -173,6 +183,7 @@ impl HarnessFunction {
             F::GgxNdfSgSharpness | F::GgxAlphaFromRoughness => 1,
             F::Mulsign | F::GgxSmithLambda => 2,
             F::OrthonormalBasis | F::SgFromToksvigMeanDirection | F::LambertLobeSg | F::GgxD | F::GgxSmithG2 => 3,
+            F::VsglPositionSeenFrom | F::VsglSpecularReceiverFrom => 7,
             F::SgToksvigMeanDirection | F::VsglLobeFromMoments => 4,
             F::VsglPositionFromMoments => 5,
             F::SafeNormalize | F::LambertBrdfOverRd => 6,
@@ -181,6 +192,7 @@ impl HarnessFunction {
             F::VsglDiffuse | F::VsglDiffuseApprox | F::VsglDiffuseAccurate | F::VsglDiffuseSgProduct => 8,
             F::GgxBrdfOverRs => 10,
             F::VsglIncomingRadiance | F::VsglSpecular | F::VsglSpecularAccurate => 12,
+            F::VsglIncomingRadianceSeen | F::VsglSpecularWithReceiver => 12,
             F::AsgEvaluate => 14,
             F::SgAsgProductIntegral | F::SgAsgProductIntegralOverAsgIntegral => 15,
         }
@@ -275,6 +287,34 @@ impl HarnessFunction {
             F::VsglSpecularAccurate => {
                 ("vsgl_specular_accurate", V, "radiance Sg 0-4, normal 5-7, w_o 8-10, alpha 11", "value 0", 1)
             }
+            F::VsglPositionSeenFrom => (
+                "vsgl_position_seen_from",
+                V,
+                "position mean 0-2, variance 3, shading position 4-6",
+                "1/σ² 0, λσ 1, axis ξμ 2-4, has_axis (0 or 1) 5",
+                6,
+            ),
+            F::VsglIncomingRadianceSeen => (
+                "vsgl_incoming_radiance_seen",
+                V,
+                "lobe axis 0-2, sharpness 3, amplitude/(2π) 4, seen from position mean 5-7, variance 8, shading position 9-11",
+                SG_OUT,
+                5,
+            ),
+            F::VsglSpecularReceiverFrom => (
+                "vsgl_specular_receiver_from",
+                V,
+                "normal 0-2, w_o 3-5, alpha 6",
+                "n·ω_o 0, Λ(ω_o) 1, asg 2-12 (x 2-4, ηx 5, y 6-8, ηy 9, z 10-12)",
+                13,
+            ),
+            F::VsglSpecularWithReceiver => (
+                "vsgl_specular_with_receiver",
+                V,
+                "radiance Sg 0-4, receiver from normal 5-7, w_o 8-10, alpha 11",
+                "value 0",
+                1,
+            ),
             F::GgxAlphaFromRoughness => ("ggx_alpha_from_roughness", G, "roughness 0", "value 0", 1),
             F::GgxD => ("ggx_d", G, "n·h 0, ‖n×h‖² 1, alpha 2", "value 0", 1),
             F::GgxSmithLambda => ("ggx_smith_lambda", G, "cos θ 0, alpha 1", "value 0", 1),
@@ -368,6 +408,31 @@ impl HarnessFunction {
             F::VsglDiffuseSgProduct => o[0] = oracle::vsgl_diffuse_sg_product(sg(0), v(5)),
             F::VsglSpecular => o[0] = oracle::vsgl_specular(sg(0), v(5), v(8), a(11)),
             F::VsglSpecularAccurate => o[0] = oracle::vsgl_specular_accurate(sg(0), v(5), v(8), a(11)),
+            F::VsglPositionSeenFrom => {
+                let s = oracle::vsgl_position_seen_from(oracle::VsglPosition { mean: v(0), variance: a(3) }, v(4));
+                o[0] = s.inv_variance;
+                o[1] = s.sharpness;
+                put3(&mut o, 2, s.axis);
+                o[5] = if s.has_axis { 1.0 } else { 0.0 };
+            }
+            F::VsglIncomingRadianceSeen => {
+                let pos = oracle::VsglPosition { mean: v(5), variance: a(8) };
+                let seen = oracle::vsgl_position_seen_from(pos, v(9));
+                put_sg(&mut o, oracle::vsgl_incoming_radiance_seen(v(0), a(3), a(4), seen))
+            }
+            F::VsglSpecularReceiverFrom => {
+                let r = oracle::vsgl_specular_receiver_from(v(0), v(3), a(6));
+                o[0] = r.n_dot_v;
+                o[1] = r.lambda_v;
+                put3(&mut o, 2, r.asg.x_axis);
+                o[5] = r.asg.x_bandwidth;
+                put3(&mut o, 6, r.asg.y_axis);
+                o[9] = r.asg.y_bandwidth;
+                put3(&mut o, 10, r.asg.z_axis);
+            }
+            F::VsglSpecularWithReceiver => {
+                o[0] = oracle::vsgl_specular_with_receiver(sg(0), &oracle::vsgl_specular_receiver_from(v(5), v(8), a(11)))
+            }
             F::GgxAlphaFromRoughness => o[0] = oracle::ggx_alpha_from_roughness(a(0)),
             F::GgxD => o[0] = oracle::ggx_d(a(0), a(1), a(2)),
             F::GgxSmithLambda => o[0] = oracle::ggx_smith_lambda(a(0), a(1)),

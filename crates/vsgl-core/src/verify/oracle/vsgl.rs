@@ -72,6 +72,48 @@ pub fn vsgl_incoming_radiance(lobe: Sg, position: VsglPosition, shading_position
     }
 }
 
+/// The positional Gaussian N(μ_v, σ_v²) seen from y_p [Tok15 Eq. 6]: the SG G(ω; ξ_μ, λσ) on the
+/// sphere of radius d = ‖μ_v − y_p‖, ξ_μ = (μ_v − y_p)/d, λσ = d²/σ², with σ² floored at
+/// d²/SG_SHARPNESS_MAX (and FLT_MIN) as in vsgl.wgsl, and 1/σ² of the same floored σ².
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct VsglPositionSeen {
+    pub inv_variance: f64,
+    pub sharpness: f64,
+    /// ξ_μ where `has_axis` (d² ≥ FLT_MIN, the f32 test of vsgl.wgsl); μ_v − y_p otherwise
+    /// (shorter than 1.1e-19: the direction is undefined there and unused).
+    pub axis: DVec3,
+    pub has_axis: bool,
+}
+
+/// `vsgl_position_seen_from` (vsgl.wgsl): Eq. 6 of [Tok15] at y_p.
+pub fn vsgl_position_seen_from(position: VsglPosition, shading_position: DVec3) -> VsglPositionSeen {
+    let t = position.mean - shading_position;
+    let d2 = t.length_squared();
+    let variance = position.variance.max(d2 / SG_SHARPNESS_MAX).max(FLT_MIN);
+    let has_axis = d2 >= FLT_MIN;
+    VsglPositionSeen {
+        inv_variance: 1.0 / variance,
+        sharpness: d2 / variance,
+        axis: if has_axis { t / d2.sqrt() } else { t },
+        has_axis,
+    }
+}
+
+/// `vsgl_incoming_radiance_seen` (vsgl.wgsl): [Tok15 Eq. 5] with the seen Gaussian given,
+/// L_in = (c_v/2π)·(1/σ²)·G(ω; −ξ_v, λ_v)·G(ω; ξ_μ, λσ) as one SG (the product by sg_product);
+/// the lobe's amplitude is given as c_v/(2π). At d = 0 (no axis) ξ_μ is taken as −ξ_v.
+pub fn vsgl_incoming_radiance_seen(lobe_axis: DVec3, lobe_sharpness: f64, amplitude_over_two_pi: f64, seen: VsglPositionSeen) -> Sg {
+    let toward = -lobe_axis;
+    let axis_mu = if seen.has_axis { seen.axis } else { toward };
+    let p = sg_product(toward, lobe_sharpness, axis_mu, seen.sharpness);
+    let coefficient = (amplitude_over_two_pi * seen.inv_variance).min(FLT_MAX);
+    Sg {
+        axis: p.axis,
+        sharpness: p.sharpness,
+        amplitude: coefficient * p.log_amplitude.exp(),
+    }
+}
+
 /// L_d/R_d ≈ c_in/π·A(λ_in)·max(ξ_in·n, 0) [Tok16s §4.2].
 pub fn vsgl_diffuse(radiance: Sg, normal: DVec3) -> f64 {
     (radiance.amplitude * FRAC_1_PI * sg_integral(radiance.sharpness) * radiance.axis.dot(normal).max(0.0)).min(FLT_MAX)
@@ -105,6 +147,43 @@ pub fn vsgl_specular(radiance: Sg, normal: DVec3, w_o: DVec3, alpha: f64) -> f64
     let asg = ggx_lobe_asg(normal, w_o, alpha);
     let g2 = ggx_smith_g2(n_dot_l, n_dot_v, alpha);
     (radiance.amplitude * g2 * sg_asg_product_integral_over_asg_integral(radiance.axis, radiance.sharpness, asg)).min(FLT_MAX)
+}
+
+/// What the specular form needs of the receiver alone (`VsglSpecularReceiver` in vsgl.wgsl):
+/// n·ω_o, the view's Smith Λ(ω_o) [Heitz 2014, Eq. 99] and the GGX lobe ASG [Tok16s §4.2].
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct VsglSpecularReceiver {
+    pub normal: DVec3,
+    pub w_o: DVec3,
+    pub alpha: f64,
+    pub n_dot_v: f64,
+    pub lambda_v: f64,
+    pub asg: super::sg::Asg,
+}
+
+/// `vsgl_specular_receiver_from` (vsgl.wgsl).
+pub fn vsgl_specular_receiver_from(normal: DVec3, w_o: DVec3, alpha: f64) -> VsglSpecularReceiver {
+    let n_dot_v = normal.dot(w_o);
+    VsglSpecularReceiver {
+        normal,
+        w_o,
+        alpha,
+        n_dot_v,
+        lambda_v: ggx_smith_lambda(n_dot_v, alpha),
+        asg: ggx_lobe_asg(normal, w_o, alpha),
+    }
+}
+
+/// `vsgl_specular_with_receiver` (vsgl.wgsl): L_s/R_s ≈ c_in·G2·(SG–ASG product over the ASG's
+/// integral) [Tok16s §4.2 boxed], G2 = 1/(1 + Λ(ξ_in) + Λ(ω_o)) the height-correlated Smith
+/// masking-shadowing [Heitz 2014, Eq. 99]; 0 when the light axis or the view is below the surface.
+pub fn vsgl_specular_with_receiver(radiance: Sg, receiver: &VsglSpecularReceiver) -> f64 {
+    let n_dot_l = receiver.normal.dot(radiance.axis);
+    if n_dot_l <= 0.0 || receiver.n_dot_v <= 0.0 {
+        return 0.0;
+    }
+    let g2 = 1.0 / (1.0 + ggx_smith_lambda(n_dot_l, receiver.alpha) + receiver.lambda_v);
+    (radiance.amplitude * g2 * sg_asg_product_integral_over_asg_integral(radiance.axis, radiance.sharpness, receiver.asg)).min(FLT_MAX)
 }
 
 /// Same as `VSGL_FILTERED_ALPHA2_MIN` in vsgl.wgsl: α² ≥ GGX_ALPHA_MIN² in the filtered NDF.
@@ -278,6 +357,34 @@ mod tests {
                 variance,
             },
         )
+    }
+
+    #[test]
+    fn split_forms_equal_the_one_call_forms() {
+        // The shading loop's split forms (the seen Gaussian shared by both lobes, the receiver
+        // formed once per pixel) compose to vsgl_incoming_radiance and vsgl_specular, which are
+        // written as one call each from the same equations (tolerance: f64 rounding).
+        for (k, y_p) in [DVec3::new(0.1, 0.2, 0.0), DVec3::new(0.5, -0.3, 2.0), DVec3::new(-4.0, 1.0, 9.0)].into_iter().enumerate() {
+            for sharpness in [0.0, 1e-6, 0.3, 10.0, 1e4, 1e9] {
+                for variance in [0.0, 1e-8, 1e-3, 0.5, 30.0] {
+                    let (lobe, pos) = test_vsgl(sharpness, 7.0, variance);
+                    let one = vsgl_incoming_radiance(lobe, pos, y_p);
+                    let seen = vsgl_position_seen_from(pos, y_p);
+                    let split = vsgl_incoming_radiance_seen(lobe.axis, lobe.sharpness, lobe.amplitude / (2.0 * PI), seen);
+                    assert!((split.axis - one.axis).length() <= 1e-12, "{k} {sharpness} {variance}: {split:?} {one:?}");
+                    assert!((split.sharpness - one.sharpness).abs() <= 1e-12 * one.sharpness.max(1.0), "{split:?} {one:?}");
+                    assert!((split.amplitude - one.amplitude).abs() <= 1e-12 * one.amplitude, "{split:?} {one:?}");
+                    for alpha in [1e-4, 0.1, 0.7] {
+                        for (j, w_o) in [DVec3::Z, dir(0.3, 1.0), dir(1.5, -2.0), dir(1.8, 0.5)].into_iter().enumerate() {
+                            let n = DVec3::Z;
+                            let a = vsgl_specular(one, n, w_o, alpha);
+                            let b = vsgl_specular_with_receiver(one, &vsgl_specular_receiver_from(n, w_o, alpha));
+                            assert!((a - b).abs() <= 1e-12 * a, "{j} {alpha}: {a} {b}");
+                        }
+                    }
+                }
+            }
+        }
     }
 
     #[test]

@@ -56,13 +56,13 @@ fn bound_sg_asg_product_over(i: &Input, r: &Output64) -> f64 {
 /// (y·z = 2.3e-2 at θo ≈ 1e-7 on lavapipe; vsgl_specular 8e-7 instead of 0.9998 at the mirror
 /// direction) and, with FMA contraction on an H100, a collapsed frame at ω_o = n exactly
 /// (y·z = 0.99999996; vsgl_specular 1.9e-22 instead of 1.0).
-fn frame_residuals(o: &[f64]) -> Vec<f64> {
+pub(super) fn frame_residuals(o: &[f64]) -> Vec<f64> {
     let v = |k: usize| DVec3::new(o[k], o[k + 1], o[k + 2]);
     let (x, y, z) = (v(0), v(4), v(8));
     vec![x.dot(y), y.dot(z), z.dot(x), x.length_squared() - 1.0, y.length_squared() - 1.0, z.length_squared() - 1.0]
 }
 
-fn bound_ggx_lobe_asg(i: &Input, r: &Output64, slots: Range<usize>, c0_abs: f64, c0_rel: f64) -> f64 {
+pub(super) fn bound_ggx_lobe_asg(i: &Input, r: &Output64, slots: Range<usize>, c0_abs: f64, c0_rel: f64) -> f64 {
     let norm = slots.clone().map(|j| r[j] * r[j]).sum::<f64>().sqrt();
     perturbation(F::GgxLobeAsg, i, slots, 4.0, &[0, 3]) + c0_abs * ULP + c0_rel * ULP * norm
 }

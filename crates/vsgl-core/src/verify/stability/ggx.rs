@@ -18,7 +18,7 @@ fn bound_ggx_d(_: &Input, r: &Output64) -> f64 {
 /// the rounding of c² (it is the input cos θ that fixes sin²θ; near normal incidence Λ ≈ 0 and G2 is
 /// unaffected), /c² (2.5), α²· (1): tan term ≤ (4 + ½·c²/(1 − c²)) ULP; Λ = t/(2(1 + √(1 + t))) has
 /// d ln Λ/d ln t ≤ 1 and adds 1 + t (½), sqrt (4.5), 1 + (½), the division (2.5) → 8 ULP.
-fn rel_smith_lambda(c: f64, alpha: f64) -> f64 {
+pub(super) fn rel_smith_lambda(c: f64, alpha: f64) -> f64 {
     let c2 = (c * c).max(FLT_MIN);
     if alpha == 0.0 || c2 >= 1.0 {
         return 0.0; // Λ = 0 exactly on both sides

@@ -8,8 +8,10 @@ use super::grids::{
     SHARPNESS,
 };
 use super::lobes::{toksvig_amplitude_bound, toksvig_sharpness_bound};
+use super::asg::{bound_ggx_lobe_asg, frame_residuals};
+use super::ggx::rel_smith_lambda;
 use super::sg::{bound_sg_product_integral, clamped_cosine_abs_bound};
-use super::{check, Family, FloorFn, FLT_MAX, FLT_MIN, ULP};
+use super::{check, Check, Family, FloorFn, FLT_MAX, FLT_MIN, ULP};
 use crate::rng::SplitMix64;
 use crate::verify::harness::{HarnessFunction as F, Input, Output64};
 use crate::verify::oracle;
@@ -58,16 +60,61 @@ fn bound_position_variance(i: &Input, r: &Output64) -> f64 {
 /// the product's (λv + λσ)/λ_in (a lobe pointing away from the shading point), |ℓ|, and
 /// ‖μ‖/‖μ − y_p‖ (the perturbation moves μ and y_p by ULPs of their own size; the GPU's t is in fact
 /// rounded relative to itself, so this part is conservative).
-fn bound_incoming(i: &Input, r: &Output64, slots: Range<usize>, c0_abs: f64, c0_rel: f64) -> f64 {
+/// Since vsgl_incoming_radiance is vsgl_incoming_radiance_seen(vsgl_position_seen_from(…)), the
+/// same chain holds for both: the split form replaces the divisions by 2π, σ² and the clamp's 1e9
+/// with one reciprocal 1/σ² (2.5) and products (½ each), and ξμ = t·inverseSqrt(d²) (2.5), ξ_in =
+/// v·inverseSqrt(‖v‖²) (2.5 + the dot's 1.5), each no longer than the division chains they replace,
+/// so c, c₀ are unchanged. `two_pi` is 2π where slot 4 holds c_v (vsgl_incoming_radiance) and 1
+/// where it holds c_v/(2π) already (vsgl_incoming_radiance_seen).
+fn bound_incoming(f: F, two_pi: f64, i: &Input, r: &Output64, slots: Range<usize>, c0_abs: f64, c0_rel: f64) -> f64 {
     let norm = slots.clone().map(|j| r[j] * r[j]).sum::<f64>().sqrt();
     // exp(ℓ) may flush to 0 before it is multiplied by the coefficient c_v/(2πσ²)
-    let flush = if slots.start == 4 { FLT_MIN * (a(i, 4) / (2.0 * PI * a(i, 8).max(FLT_MIN))).min(FLT_MAX) } else { 0.0 };
-    perturbation(F::VsglIncomingRadiance, i, slots, 20.0, &[0, 5, 9]) + c0_abs * ULP + c0_rel * ULP * norm + flush + FLT_MIN
+    let flush = if slots.start == 4 { FLT_MIN * (a(i, 4) / (two_pi * a(i, 8).max(FLT_MIN))).min(FLT_MAX) } else { 0.0 };
+    perturbation(f, i, slots, 20.0, &[0, 5, 9]) + c0_abs * ULP + c0_rel * ULP * norm + flush + FLT_MIN
+}
+fn incoming_variance(i: &Input) -> f64 {
+    let to_mean = v3(i, 5) - v3(i, 9);
+    a(i, 8).max(to_mean.length_squared() / oracle::SG_SHARPNESS_MAX).max(FLT_MIN)
 }
 fn floor_incoming_amplitude(i: &Input, _: &Output64) -> f64 {
-    let to_mean = v3(i, 5) - v3(i, 9);
-    let var = a(i, 8).max(to_mean.length_squared() / oracle::SG_SHARPNESS_MAX).max(FLT_MIN);
-    fl(1e-30 * a(i, 4) / (2.0 * PI * var))
+    fl(1e-30 * a(i, 4) / (2.0 * PI * incoming_variance(i)))
+}
+fn floor_incoming_seen_amplitude(i: &Input, _: &Output64) -> f64 {
+    fl(1e-30 * a(i, 4) / incoming_variance(i))
+}
+
+/// vsgl_position_seen_from: t = μ − y_p (½ ULP), d² (1.5), the clamp d²·(1/1e9) (the constant's
+/// reciprocal rounded to f32, ½, and the product, ½): c = 3 ULP per input (the perturbation
+/// moves μ and y_p by ULPs of their own size, which also covers the cancellation in t). Then
+/// 1/σ² (c₀ = 2.5, the division), λσ = d²·(1/σ²) (c₀ = 2.5 + ½; under the clamp λσ ≈ 1e9
+/// whatever d is, and the GPU's f32 1e-9 differs from the oracle's 1/1e9 by ½ ULP: c₀ = 4.5),
+/// ξμ = t·inverseSqrt(d²) (c₀ = 2 + ½ absolute, 3). Where d² < FLT_MIN (y_p at μ) the axis is
+/// unused and both sides return t itself.
+fn bound_seen(i: &Input, r: &Output64, slots: Range<usize>, c0_abs: f64, c0_rel: f64) -> f64 {
+    let norm = slots.clone().map(|j| r[j] * r[j]).sum::<f64>().sqrt();
+    perturbation(F::VsglPositionSeenFrom, i, slots, 3.0, &[0, 4]) + c0_abs * ULP + c0_rel * ULP * norm + FLT_MIN
+}
+
+/// vsgl_specular_receiver_from: n·ω_o is one dot (1.5 ULP × Σ|nᵢωᵢ|, absolute: a grazing view's
+/// cosine is known only that well); Λ(ω_o) = ggx_smith_lambda of that cosine: the dot's error
+/// reaches it through the perturbation (c = 1.5 per input, vectors moved by their length), plus
+/// Λ's own roundings (rel_smith_lambda, the bound of the ggx_smith_lambda rows); the ASG is
+/// ggx_lobe_asg on the same record (its bound and its frame-orthonormality check, slots + 2).
+fn bound_receiver_lambda(i: &Input, r: &Output64) -> f64 {
+    perturbation(F::VsglSpecularReceiverFrom, i, 1..2, 1.5, &[0, 3]) + rel_smith_lambda(r[0], a(i, 6)) * r[1] + FLT_MIN
+}
+fn bound_receiver_asg(i: &Input, slots: Range<usize>, c0_abs: f64, c0_rel: f64) -> f64 {
+    let inner = F::GgxLobeAsg.oracle(i);
+    bound_ggx_lobe_asg(i, &inner, slots.start - 2..slots.end - 2, c0_abs, c0_rel)
+}
+fn receiver_frame_residuals(o: &[f64]) -> Vec<f64> {
+    frame_residuals(&o[2..])
+}
+
+/// vsgl_specular_with_receiver(L, vsgl_specular_receiver_from(n, ω_o, α)) performs the same
+/// roundings as vsgl_specular (which is now that composition): the same c = 10, c₀ = 16.
+fn bound_vsgl_specular_with_receiver(i: &Input, r: &Output64) -> f64 {
+    perturbation(F::VsglSpecularWithReceiver, i, 0..1, 10.0, &[0, 5, 8]) + 16.0 * ULP * r[0] + FLT_MIN * a(i, 4)
 }
 
 /// Radiance SG inputs: slots 0–4 (axis, sharpness, amplitude c_in), normal 5–7.
@@ -239,19 +286,80 @@ pub(super) fn vsgl_families(f: &mut Vec<Family>) {
             }
         }
     }
+    const TWO_PI: f64 = 2.0 * PI;
     let incoming_checks = || {
         vec![
-            check("axis", 0..3, floor_unit, |i, r| bound_incoming(i, r, 0..3, 6.0, 0.0)),
-            check("sharpness", 3..4, floor_tiny, |i, r| bound_incoming(i, r, 3..4, 0.0, 5.5)),
-            check("amplitude", 4..5, floor_incoming_amplitude, |i, r| bound_incoming(i, r, 4..5, 0.0, 6.5)),
+            check("axis", 0..3, floor_unit, |i, r| bound_incoming(F::VsglIncomingRadiance, TWO_PI, i, r, 0..3, 6.0, 0.0)),
+            check("sharpness", 3..4, floor_tiny, |i, r| bound_incoming(F::VsglIncomingRadiance, TWO_PI, i, r, 3..4, 0.0, 5.5)),
+            check("amplitude", 4..5, floor_incoming_amplitude, |i, r| bound_incoming(F::VsglIncomingRadiance, TWO_PI, i, r, 4..5, 0.0, 6.5)),
         ]
     };
+    let seen_incoming_checks = || {
+        vec![
+            check("axis", 0..3, floor_unit, |i, r| bound_incoming(F::VsglIncomingRadianceSeen, 1.0, i, r, 0..3, 6.0, 0.0)),
+            check("sharpness", 3..4, floor_tiny, |i, r| bound_incoming(F::VsglIncomingRadianceSeen, 1.0, i, r, 3..4, 0.0, 5.5)),
+            check("amplitude", 4..5, floor_incoming_seen_amplitude, |i, r| {
+                bound_incoming(F::VsglIncomingRadianceSeen, 1.0, i, r, 4..5, 0.0, 6.5)
+            }),
+        ]
+    };
+    // vsgl_position_seen_from on the positions of the same records (mean 0-2, σ² 3, y_p 4-6).
+    // has_axis is a decision on d² ≥ FLT_MIN: no case lies within rounding of that threshold
+    // (d = 0 exactly, or d² ≥ 1e-4), so it must agree exactly (bound 0).
+    let seen_checks = || {
+        vec![
+            check("inv_variance", 0..1, floor_tiny, |i, r| bound_seen(i, r, 0..1, 0.0, 2.5)),
+            check("sharpness", 1..2, floor_tiny, |i, r| bound_seen(i, r, 1..2, 0.0, 4.5)),
+            check("axis", 2..5, floor_unit, |i, r| bound_seen(i, r, 2..5, 3.0, 0.0)),
+            check("has_axis", 5..6, floor_unit, |_, _| 0.0),
+        ]
+    };
+    let positions = |ins: &[Input]| {
+        let mut out: Vec<Input> = Vec::new();
+        for i in ins {
+            let p = rec(&[a(i, 5), a(i, 6), a(i, 7), a(i, 8), a(i, 9), a(i, 10), a(i, 11)]);
+            if !out.contains(&p) {
+                out.push(p);
+            }
+        }
+        out
+    };
+    // The same records with c_v/(2π) in slot 4 (the seen form's amplitude argument).
+    let over_two_pi = |ins: &[Input]| {
+        ins.iter()
+            .map(|i| {
+                let mut r = *i;
+                r[4] = (a(i, 4) / TWO_PI) as f32;
+                r
+            })
+            .collect::<Vec<Input>>()
+    };
+    let mut near_positions = positions(&toward);
+    for p in positions(&away) {
+        if !near_positions.contains(&p) {
+            near_positions.push(p);
+        }
+    }
+    f.push(Family {
+        function: F::VsglPositionSeenFrom,
+        name: "σ²/d² 0, 1e-12…1e3 near the local origin",
+        inputs: near_positions,
+        checks: seen_checks(),
+    });
+    f.push(Family { function: F::VsglPositionSeenFrom, name: "shading point at the mean (d = 0)", inputs: positions(&at_mean), checks: seen_checks() });
+    f.push(Family {
+        function: F::VsglPositionSeenFrom,
+        name: "scene 1e5 m from the origin, light as local origin",
+        inputs: positions(&offset),
+        checks: seen_checks(),
+    });
     for (name, ins) in [
         ("lobe toward y_p; σ²/d² 0, 1e-12…1e3; λv 0…1e5; I 0, 1e-8…1e8", toward),
         ("lobe away from y_p (the SG product cancels), same grids", away),
         ("shading point at the mean (d = 0)", at_mean),
         ("scene 1e5 m from the origin, light as local origin", offset),
     ] {
+        f.push(Family { function: F::VsglIncomingRadianceSeen, name, inputs: over_two_pi(&ins), checks: seen_incoming_checks() });
         f.push(Family { function: F::VsglIncomingRadiance, name, inputs: ins, checks: incoming_checks() });
     }
     // Diffuse and specular shading from a radiance SG: λ_in × lobe/normal angle × c_in.
@@ -331,6 +439,35 @@ pub(super) fn vsgl_families(f: &mut Vec<Family>) {
             name,
             inputs: ins.clone(),
             checks: vec![check("value", 0..1, |i, _| fl(1e-30 * a(i, 4)), bound_vsgl_specular)],
+        });
+        f.push(Family {
+            function: F::VsglSpecularWithReceiver,
+            name,
+            inputs: ins.clone(),
+            checks: vec![check("value", 0..1, |i, _| fl(1e-30 * a(i, 4)), bound_vsgl_specular_with_receiver)],
+        });
+        // The receiver alone, on the (n, ω_o, α) of the same records (slots 5-11 → 0-6).
+        let mut receivers: Vec<Input> = Vec::new();
+        for i in &ins {
+            let r = rec(&[a(i, 5), a(i, 6), a(i, 7), a(i, 8), a(i, 9), a(i, 10), a(i, 11)]);
+            if !receivers.contains(&r) {
+                receivers.push(r);
+            }
+        }
+        f.push(Family {
+            function: F::VsglSpecularReceiverFrom,
+            name,
+            inputs: receivers,
+            checks: vec![
+                check("n_dot_v", 0..1, floor_unit, |i, _| 1.5 * ULP * dot_scale(v3(i, 0), v3(i, 3))),
+                check("lambda_v", 1..2, floor_tiny, bound_receiver_lambda),
+                check("x_axis", 2..5, floor_unit, |i, _| bound_receiver_asg(i, 2..5, 8.0, 0.0)),
+                check("x_bandwidth", 5..6, floor_tiny, |i, _| bound_receiver_asg(i, 5..6, 0.0, 4.5)),
+                check("y_axis", 6..9, floor_unit, |i, _| bound_receiver_asg(i, 6..9, 8.0, 0.0)),
+                check("y_bandwidth", 9..10, floor_tiny, |i, _| bound_receiver_asg(i, 9..10, 0.0, 4.5)),
+                check("z_axis", 10..13, floor_unit, |i, _| bound_receiver_asg(i, 10..13, 8.0, 0.0)),
+                Check { output: "frame orthonormality", slots: 2..13, derive: Some(receiver_frame_residuals), floor: floor_unit, bound: |_, _| 16.0 * ULP },
+            ],
         });
         f.push(Family {
             function: F::VsglSpecularAccurate,
