@@ -635,7 +635,11 @@ mod tests {
         //     per λ_in over the grid; the filtered form's bound per λ (asserted) is stated below.
         let n = DVec3::Z;
         let c_in = 1.7;
-        let alphas = [0.05, 0.1, 0.2, 0.35, 0.5];
+        // VSGL_ALPHAS=0.7,1.0 prints the same grid at other roughnesses (docs/rendering.md, "SG
+        // lighting": rough receivers); the assertions below hold for the default grid only and
+        // are skipped then.
+        let custom_alphas: Option<Vec<f64>> = std::env::var("VSGL_ALPHAS").ok().map(|s| s.split(',').map(|x| x.trim().parse().expect("VSGL_ALPHAS: comma-separated numbers")).collect());
+        let alphas = custom_alphas.clone().unwrap_or_else(|| vec![0.05, 0.1, 0.2, 0.35, 0.5]);
         let lambdas = [1e6, 1e4, 1e3, 100.0, 30.0, 10.0, 3.0, 1.0];
         let views = [0.0, 0.5, 1.0, 1.3, 1.52];
         let mut rows = Vec::new();
@@ -687,6 +691,9 @@ mod tests {
         }
         println!("quadrature reference: largest disagreement of two rules {ref_err:.1e}");
         assert!(ref_err < 1e-3);
+        if custom_alphas.is_some() {
+            return;
+        }
         // What the option claims (docs/rendering.md, "SG lighting"): for lights from point-like to
         // λ_in = 30 the filtered form's median error is below the ASG form's, and no case of the
         // grid is off by more than 80% (the ASG form's worst is 78%).
