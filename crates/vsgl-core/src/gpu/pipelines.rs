@@ -86,9 +86,10 @@ pub struct PipelineVariants {
     entry: String,
     /// `Some`: one explicit bind group 0 of these bindings (see `compute_pipeline_explicit`).
     bindings: Option<Vec<wgpu::BindingType>>,
-    /// Override constants every variant gets (numeric build settings of the pass, such as
-    /// vsgl_shading's pixels per thread), after the flags.
-    fixed: Vec<(&'static str, f64)>,
+    /// Numeric override constants of a variant, a function of its flags (build settings of the
+    /// pass that its host code must agree on, such as vsgl_shading's pixels per thread), given
+    /// after the flags. Being a function of the flags keeps the flags the cache key.
+    numeric: fn(&[(&'static str, bool)]) -> Vec<(&'static str, f64)>,
     compiled: std::sync::Mutex<Vec<(Vec<(&'static str, bool)>, wgpu::ComputePipeline)>>,
 }
 
@@ -101,13 +102,14 @@ impl PipelineVariants {
     /// Variants of `module`'s `entry`, with an explicit bind group 0 of `bindings` when given.
     pub fn from_module(module: wgpu::ShaderModule, path: &str, entry: &str, bindings: Option<Vec<wgpu::BindingType>>) -> Self {
         let label = format!("{}_{entry}", path.trim_start_matches("passes/").trim_end_matches(".wgsl"));
-        Self { label, path: path.into(), module, entry: entry.into(), bindings, fixed: Vec::new(), compiled: Default::default() }
+        Self { label, path: path.into(), module, entry: entry.into(), bindings, numeric: |_| Vec::new(), compiled: Default::default() }
     }
 
-    /// Variants with automatic layouts whose pipelines all get the override constants `fixed`
-    /// too (a pass's numeric settings that its host code and shader must agree on).
-    pub fn with_constants(gpu: &Gpu, path: &str, entry: &str, fixed: &[(&'static str, f64)]) -> Result<Self> {
-        Ok(Self { fixed: fixed.to_vec(), ..Self::new(gpu, path, entry)? })
+    /// Variants with automatic layouts whose pipelines also get the numeric override constants
+    /// `numeric(flags)` (a pass's numeric settings that its host code and shader must agree on;
+    /// the host computes them from the same flags). One shader module serves every variant.
+    pub fn with_numeric_constants(gpu: &Gpu, path: &str, entry: &str, numeric: fn(&[(&'static str, bool)]) -> Vec<(&'static str, f64)>) -> Result<Self> {
+        Ok(Self { numeric, ..Self::new(gpu, path, entry)? })
     }
 
     /// The pipeline with these boolean override constants (compiled now if it is the first use).
@@ -117,7 +119,7 @@ impl PipelineVariants {
         if let Some((_, p)) = compiled.iter().find(|(k, _)| k.as_slice() == flags) {
             return p.clone();
         }
-        let constants: Vec<(&str, f64)> = flags.iter().map(|&(n, v)| (n, if v { 1.0 } else { 0.0 })).chain(self.fixed.iter().copied()).collect();
+        let constants: Vec<(&str, f64)> = flags.iter().map(|&(n, v)| (n, if v { 1.0 } else { 0.0 })).chain((self.numeric)(flags)).collect();
         let names: Vec<String> = flags.iter().map(|(n, v)| format!("{n}={}", *v as u8)).collect();
         let label = format!("{}_pipeline[{}]", self.label, names.join(","));
         let p = match &self.bindings {

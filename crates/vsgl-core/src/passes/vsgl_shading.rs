@@ -142,16 +142,27 @@ impl LambertLobe {
 }
 
 pub struct VsglShadingPass {
-    /// Variants of scenes without specular materials (HAS_SPECULAR = false), and the rest: each
-    /// with its own pixels per thread.
-    diffuse_only: PipelineVariants,
-    with_specular: PipelineVariants,
+    pipelines: PipelineVariants,
+}
+
+/// The pixels per thread of a variant, from its HAS_SPECULAR flag: what the shader's override
+/// gets and what the dispatch is sized by.
+fn pixels_per_thread(has_specular: bool) -> u32 {
+    if has_specular {
+        PIXELS_PER_THREAD_WITH_SPECULAR
+    } else {
+        PIXELS_PER_THREAD_DIFFUSE_ONLY
+    }
+}
+
+fn numeric_constants(flags: &[(&'static str, bool)]) -> Vec<(&'static str, f64)> {
+    let has_specular = flags.iter().any(|&(name, on)| name == "HAS_SPECULAR" && on);
+    vec![("PIXELS_PER_THREAD", f64::from(pixels_per_thread(has_specular)))]
 }
 
 impl VsglShadingPass {
     pub fn new(gpu: &Gpu) -> Result<Self> {
-        let with_p = |p: u32| PipelineVariants::with_constants(gpu, "passes/vsgl_shading.wgsl", "main", &[("PIXELS_PER_THREAD", f64::from(p))]);
-        Ok(Self { diffuse_only: with_p(PIXELS_PER_THREAD_DIFFUSE_ONLY)?, with_specular: with_p(PIXELS_PER_THREAD_WITH_SPECULAR)? })
+        Ok(Self { pipelines: PipelineVariants::with_numeric_constants(gpu, "passes/vsgl_shading.wgsl", "main", numeric_constants)? })
     }
 
     #[allow(clippy::too_many_arguments)]
@@ -175,9 +186,8 @@ impl VsglShadingPass {
         let gpu = rec.gpu;
         let [specular] = features.specular_flags();
         let [traced, ism] = visibility.flags();
-        let (variants, pixels_per_thread) =
-            if specular.1 { (&self.with_specular, PIXELS_PER_THREAD_WITH_SPECULAR) } else { (&self.diffuse_only, PIXELS_PER_THREAD_DIFFUSE_ONLY) };
-        let pipeline = variants.get(gpu, &[specular, traced, ism]);
+        let pipeline = self.pipelines.get(gpu, &[specular, traced, ism]);
+        let pixels_per_thread = pixels_per_thread(specular.1);
         // `frame.passes` names the visibility variant.
         let label = format!("vsgl_shading{}", visibility.label_suffix());
         // Chunks are multiples of k² so the interleaved subsets stay j ≡ t (mod k²).
