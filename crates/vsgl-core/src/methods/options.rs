@@ -337,10 +337,12 @@ pub mod common {
         help: "keep the first light's RSM for Frame.rsm(name)",
         note: "",
     };
+    /// The largest interleave tile side (the denoiser's workgroup span holds 2·this taps).
+    pub const INTERLEAVE_MAX: i64 = 16;
     /// Interleaved sampling (`wgsl/common/interleave.wgsl`); the default differs by method
     /// (8 for VSGLs as in the papers, 1 for VPLs so `vpl` stays the every-pixel baseline).
     pub const fn interleave(default: i64) -> OptionSpec {
-        int("interleave", 1, 16, default, "interleaved sampling tile side k: each pixel evaluates num_lights/k² virtual lights")
+        int("interleave", 1, INTERLEAVE_MAX, default, "interleaved sampling tile side k: each pixel evaluates num_lights/k² virtual lights")
     }
     pub const DENOISE: OptionSpec = OptionSpec {
         name: "denoise",

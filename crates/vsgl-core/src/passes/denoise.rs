@@ -10,7 +10,8 @@ use crate::plan::ShaderFeatures;
 /// them, so the x pass dispatches ceil(W/TILE) × H workgroups and the y pass ceil(H/TILE) × W.
 const TILE: u32 = 64;
 /// The largest radius the shader's workgroup span holds (`MAX_RADIUS`): the largest interleave.
-pub const MAX_RADIUS: u32 = 16;
+const MAX_RADIUS: u32 = 16;
+const _: () = assert!(MAX_RADIUS as i64 == crate::methods::options::common::INTERLEAVE_MAX, "denoise.wgsl's MAX_RADIUS must be the interleave option's largest value");
 
 #[repr(C)]
 #[derive(Clone, Copy, bytemuck::Pod, bytemuck::Zeroable)]
