@@ -1,7 +1,7 @@
 """Error against run time: ``python -m vsgl bench`` and ``vsgl.bench.run(...)``.
 
 Sweeps methods × light counts × RSM sizes × VSGL kernels (× K with ``--K``, × the SG lighting forms of
-vsgl and vsgl2 with ``--lighting asg,accurate``, × any other method option with ``-O NAME=V1,V2``,
+vsgl and vsgl2 with ``--lighting asg,accurate,blend``, × any other method option with ``-O NAME=V1,V2``,
 for the methods that take it) over scenes at one resolution. For each
 configuration it reports GPU time per pass and in total (median, interquartile range and
 extremes over frames rendered back to back after a warm-up of ``--warmup-seconds`` of sustained
@@ -424,8 +424,15 @@ def run(
         raise ValueError("seeds: expected at least one seed")
     if not Ks or any(K is not None and not (isinstance(K, (int, float)) and np.isfinite(K) and K > 0) for K in Ks):
         raise ValueError(f"Ks: expected kernel masses K > 0 (or None for the default), got {list(Ks)}")
-    if not lightings or any(x not in (None, "asg", "accurate") for x in lightings):
-        raise ValueError(f"lightings: expected \"asg\" and/or \"accurate\" (or None for the default), got {list(lightings)}")
+    if not lightings:
+        raise ValueError("lightings: expected SG lighting forms of vsgl (or None for the default), got none")
+    for lighting in lightings:
+        if lighting is not None:
+            # The core's option spec is the one list of forms (vsgl.method_options("vsgl")).
+            try:
+                vsgl.check_method_options("vsgl", lighting=lighting)
+            except vsgl.ArgumentError as e:
+                raise ValueError(f"lightings: {e}") from e
     bad_importance = [i for i in importances if i not in ("rsm", "brsm")]
     if bad_importance or not importances:
         raise ValueError(f"importances: expected a non-empty list of \"rsm\" and \"brsm\", got {list(importances)}")
@@ -1084,8 +1091,8 @@ def main(argv: list[str] | None = None) -> int:
     p.add_argument("--rsm-sizes", type=_ints, default=None, help="comma-separated RSM sides (default: 256; 128 on a CPU adapter)")
     p.add_argument("--K", type=lambda t: [float(x) for x in t.split(",")], default=None, metavar="K1,K2,...",
                    help="vsgl kernel masses K to sweep, e.g. 1,2,4 (default: the method's, 1); larger K is smoother in space and time")
-    p.add_argument("--lighting", type=_strs, default=None, metavar="asg,accurate",
-                   help="SG lighting forms of vsgl and vsgl2 to sweep: asg (the papers'), accurate (filtered-NDF specular, clamped-cosine diffuse) (default: the methods' own, asg)")
+    p.add_argument("--lighting", type=_strs, default=None, metavar="asg,accurate,blend",
+                   help="SG lighting forms of vsgl and vsgl2 to sweep: asg (the papers'), accurate (filtered-NDF specular, clamped-cosine diffuse), blend (the two specular forms weighted by the receiver's share of the widened lobe, clamped-cosine diffuse) (default: the methods' own, asg)")
     p.add_argument("--importance", type=_strs, default=["rsm"], metavar="rsm,brsm",
                    help="RSM sampling densities of vpl and vsgl to compare: rsm (reflected power), brsm (bidirectional importance from the camera's view); default: rsm")
     p.add_argument("--importance-interleave", type=int, default=None, metavar="K",

@@ -266,10 +266,18 @@ const VSGL_FILTERED_INV_HALF_LENGTH_MAX: f32 = 5.0e8;
 // 0.05…0.5, view angles 0…1.52 rad): see docs/rendering.md "SG lighting" for the table.
 // Zero when the light axis or the view is below the surface (as vsgl_specular).
 fn vsgl_specular_accurate(radiance: Sg, normal: vec3f, w_o: vec3f, alpha: f32) -> f32 {
+    return vsgl_specular_filtered(radiance, normal, w_o, alpha).x;
+}
+
+// vsgl_specular_accurate's value (x) and the receiver's share of the widened lobe (y), α/α' with
+// α'⁴ = σ₊σ₋ = det Σ' (the widened lobe's geometric-mean roughness): 1 for a point light, → 0 when
+// the light's spread dominates. vsgl_specular_blend weights the two forms by it. (0, 1) below the
+// surface.
+fn vsgl_specular_filtered(radiance: Sg, normal: vec3f, w_o: vec3f, alpha: f32) -> vec2f {
     let n_dot_l = dot(normal, radiance.axis);
     let n_dot_v = dot(normal, w_o);
     if (n_dot_l <= 0.0 || n_dot_v <= 0.0) {
-        return 0.0;
+        return vec2f(0.0, 1.0);
     }
     let u = radiance.axis + w_o;
     let u_len2 = dot(u, u);
@@ -322,5 +330,36 @@ fn vsgl_specular_accurate(radiance: Sg, normal: vec3f, w_o: vec3f, alpha: f32) -
         }
     }
     let g2 = 1.0 / (1.0 + ggx_smith_lambda(n_dot_l, alpha_lv.x) + ggx_smith_lambda(n_dot_v, alpha_lv.y));
-    return min(radiance.amplitude * sg_integral(radiance.sharpness) * d * g2 / (4.0 * n_dot_v), FLT_MAX);
+    let value = min(radiance.amplitude * sg_integral(radiance.sharpness) * d * g2 / (4.0 * n_dot_v), FLT_MAX);
+    // σ± ≥ a2 (the widening is ≥ 0), so the share is ≤ 1; one inverseSqrt per σ keeps σ₊σ₋ in range.
+    let receiver_share = min(sqrt(a2 * inverseSqrt(s_plus) * inverseSqrt(s_minus)), 1.0);
+    return vec2f(value, receiver_share);
+}
+
+// Specular reflected radiance over R_s, lighting="blend": the filtered-NDF form
+// (vsgl_specular_accurate) and the papers' SG–ASG product (vsgl_specular) weighted by the
+// receiver's share w = α/α' of the filtered lobe (vsgl_specular_filtered):
+//   L_s ≈ w·L_filtered + (1 − w)·L_ASG.
+// Why: each form fails where the other holds. The filtered form is exact for a point light and
+// good while the light is narrower than the lobe (w → 1), but over-lights a sharp receiver under a
+// broad light; the ASG product is good there (both lobes near-Gaussian, w → 0) but, being a
+// small-angle warp of the NDF, loses up to 60% of a rough lobe's light from any direction
+// (α ≥ 0.5, even for point lights). w is a measured choice, not a derivation: over light axes on
+// the whole hemisphere (oracle test specular_forms_over_the_hemisphere) it halves the summed L1
+// error of the better single form; docs/rendering.md, "SG lighting", has the table.
+fn vsgl_specular_blend(radiance: Sg, normal: vec3f, w_o: vec3f, alpha: f32) -> f32 {
+    if (dot(normal, radiance.axis) <= 0.0 || dot(normal, w_o) <= 0.0) {
+        return 0.0;
+    }
+    return vsgl_specular_blend_with_receiver(radiance, vsgl_specular_receiver_from(normal, w_o, alpha));
+}
+
+// vsgl_specular_blend with the receiver formed once per pixel (vsgl_specular_receiver_from); the
+// ASG product is skipped where the filtered form has all the weight.
+fn vsgl_specular_blend_with_receiver(radiance: Sg, receiver: VsglSpecularReceiver) -> f32 {
+    let filtered = vsgl_specular_filtered(radiance, receiver.n, receiver.w_o, receiver.alpha);
+    if (filtered.y >= 1.0) {
+        return filtered.x;
+    }
+    return filtered.y * filtered.x + (1.0 - filtered.y) * vsgl_specular_with_receiver(radiance, receiver);
 }

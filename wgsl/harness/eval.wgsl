@@ -158,6 +158,14 @@ fn main(@builtin(global_invocation_id) gid: vec3u) {
             out3(10u, r.asg.z_axis);
         }
         case 42u: { out1(0u, vsgl_specular_with_receiver(in_sg(0u), vsgl_specular_receiver_from(in3(5u), in3(8u), in1(11u)))); }
+        // vsgl.wgsl, lighting="blend" (append-only ids)
+        case 43u: { out1(0u, vsgl_specular_blend(in_sg(0u), in3(5u), in3(8u), in1(11u))); }
+        case 44u: {
+            let f = vsgl_specular_filtered(in_sg(0u), in3(5u), in3(8u), in1(11u));
+            out1(0u, f.x);
+            out1(1u, f.y);
+        }
+        case 45u: { out1(0u, vsgl_specular_blend_with_receiver(in_sg(0u), vsgl_specular_receiver_from(in3(5u), in3(8u), in1(11u)))); }
         // Ids come from HarnessFunction only; anything else leaves the zeros.
         default: {}
     }

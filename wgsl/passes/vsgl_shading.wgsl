@@ -41,7 +41,9 @@ struct ShadeParams {
     // mean tangent plane (vsgl_tangent_plane_fade; issue 18, item 4).
     plane_fade: u32,
     // 0 = lighting="asg": the papers' SG–ASG specular (vsgl_specular); 1 = lighting="accurate":
-    // the filtered-NDF specular (vsgl_specular_accurate; the host also selects diffuse_mode 1).
+    // the filtered-NDF specular (vsgl_specular_accurate); 2 = lighting="blend": the two weighted
+    // by the receiver's share of the filtered lobe (vsgl_specular_blend). With 1 and 2 the host
+    // also selects diffuse_mode 1.
     lighting_mode: u32,
     // 1 = lambert_lobe="hemisphere": the diffuse lobes carry LAMBERT_LOBE_HEMISPHERE_GAIN;
     // 2 = "exact_compact": that, blended with the exact Lambert emission (lambert_exact_weight);
@@ -156,6 +158,9 @@ fn diffuse_over_rd(radiance: Sg, n: vec3f) -> f32 {
 fn specular_over_rs(radiance: Sg, r: VsglSpecularReceiver) -> f32 {
     if (params.lighting_mode == 1u) {
         return vsgl_specular_accurate(radiance, r.n, r.w_o, r.alpha);
+    }
+    if (params.lighting_mode == 2u) {
+        return vsgl_specular_blend_with_receiver(radiance, r);
     }
     return vsgl_specular_with_receiver(radiance, r);
 }

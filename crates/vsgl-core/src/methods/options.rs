@@ -362,12 +362,13 @@ pub mod common {
         &["hemisphere", "exact_compact", "papers"],
         "each cluster's Lambert lobe: \"hemisphere\" (the SG normalized over each texel's hemisphere, so all its diffuse power reaches where a Lambertian texel can light), \"exact_compact\" (that SG blended with an exact Lambertian point emitter where the cluster is compact as seen from the receiver: better on the closed diffuse box, worse at grazing floor-to-wall transfer) or \"papers\" (normalized over the sphere: 9.2% of it lies below the texel and is lost)",
     );
-    /// SG lighting forms (docs/rendering.md, "SG lighting"): the papers' (ASG specular, `diffuse=`)
-    /// or the accurate ones (filtered-NDF specular and the clamped-cosine diffuse).
+    /// SG lighting forms (docs/rendering.md, "SG lighting"): the papers' (ASG specular, `diffuse=`),
+    /// the accurate ones (filtered-NDF specular and the clamped-cosine diffuse), or the blend of
+    /// the two specular forms (with the clamped-cosine diffuse).
     pub const LIGHTING: OptionSpec = choice(
         "lighting",
-        &["asg", "accurate"],
-        "SG lighting: \"asg\" (the papers' SG–ASG specular, diffuse as diffuse= says) or \"accurate\" (GGX with its NDF widened by the light's spread, after Tokuyoshi et al. 2024, and the clamped-cosine diffuse)",
+        &["asg", "accurate", "blend"],
+        "SG lighting: \"asg\" (the papers' SG–ASG specular, diffuse as diffuse= says), \"accurate\" (GGX with its NDF widened by the light's spread, after Tokuyoshi et al. 2024, and the clamped-cosine diffuse) or \"blend\" (the two specular forms weighted by the receiver's share α/α' of the widened lobe: accurate for lights narrower than the lobe, the papers' for broad lights on sharp receivers; the clamped-cosine diffuse)",
     );
 }
 

@@ -98,12 +98,14 @@ struct Vsgl {
 /// (the clamped cosine, `diffuse="accurate"`); another one given with it is an error rather than
 /// silently replaced.
 pub(super) fn diffuse_mode(o: &Options) -> Result<DiffuseMode> {
-    if lighting_mode(o)? == LightingMode::Accurate {
+    let lighting = lighting_mode(o)?;
+    if lighting.brings_clamped_cosine_diffuse() {
         let diffuse = o.str("diffuse")?;
         if o.was_given("diffuse") && diffuse != "accurate" {
+            let name = o.str("lighting")?;
             return Err(Error::invalid(
                 "diffuse",
-                format!("diffuse={diffuse:?} is a form of lighting=\"asg\"; lighting=\"accurate\" shades diffuse by the clamped-cosine integral (diffuse=\"accurate\"): leave diffuse out or give \"accurate\""),
+                format!("diffuse={diffuse:?} is a form of lighting=\"asg\"; lighting={name:?} shades diffuse by the clamped-cosine integral (diffuse=\"accurate\"): leave diffuse out or give \"accurate\""),
             ));
         }
         return Ok(DiffuseMode::Accurate);
@@ -119,7 +121,7 @@ pub(super) fn diffuse_mode(o: &Options) -> Result<DiffuseMode> {
 /// `frame.settings` shows the diffuse form the frame used (it had shown "papers" under
 /// `lighting="accurate"`, which shades the clamped cosine).
 pub(super) fn with_diffuse_of_lighting(mut o: Options) -> Result<Options> {
-    if lighting_mode(&o)? == LightingMode::Accurate {
+    if lighting_mode(&o)?.brings_clamped_cosine_diffuse() {
         o.resolve_default("diffuse", super::options::OptionValue::Str("accurate".into()));
     }
     Ok(o)
@@ -129,6 +131,7 @@ pub(super) fn with_diffuse_of_lighting(mut o: Options) -> Result<Options> {
 pub(super) fn lighting_mode(o: &Options) -> Result<LightingMode> {
     Ok(match o.str("lighting")? {
         "accurate" => LightingMode::Accurate,
+        "blend" => LightingMode::Blend,
         _ => LightingMode::Asg,
     })
 }

@@ -93,6 +93,9 @@ pub enum LightingMode {
     /// The GGX NDF widened by the light's spread through the reflection Jacobian
     /// (`vsgl_specular_accurate`, after Tokuyoshi et al. 2024).
     Accurate,
+    /// The two weighted by the receiver's share α/α' of the widened lobe
+    /// (`vsgl_specular_blend`; docs/rendering.md, "SG lighting").
+    Blend,
 }
 
 impl LightingMode {
@@ -101,7 +104,14 @@ impl LightingMode {
         match self {
             LightingMode::Asg => 0,
             LightingMode::Accurate => 1,
+            LightingMode::Blend => 2,
         }
+    }
+
+    /// Whether the form shades diffuse by the clamped-cosine integral (`diffuse="accurate"`)
+    /// whatever `diffuse=` says: every form but the papers'.
+    pub fn brings_clamped_cosine_diffuse(self) -> bool {
+        self != LightingMode::Asg
     }
 }
 

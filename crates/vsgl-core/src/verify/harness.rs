@@ -97,13 +97,17 @@ pub enum HarnessFunction {
     VsglIncomingRadianceSeen = 40,
     VsglSpecularReceiverFrom = 41,
     VsglSpecularWithReceiver = 42,
+    // vsgl.wgsl, lighting="blend"
+    VsglSpecularBlend = 43,
+    VsglSpecularFiltered = 44,
+    VsglSpecularBlendWithReceiver = 45,
 }
 
 use HarnessFunction as F;
 
 impl HarnessFunction {
     /// Every function, in id order.
-    pub const ALL: [HarnessFunction; 43] = [
+    pub const ALL: [HarnessFunction; 46] = [
         F::Expm1OverX,
         F::Expm1,
         F::Mulsign,
@@ -147,6 +151,9 @@ impl HarnessFunction {
         F::VsglIncomingRadianceSeen,
         F::VsglSpecularReceiverFrom,
         F::VsglSpecularWithReceiver,
+        F::VsglSpecularBlend,
+        F::VsglSpecularFiltered,
+        F::VsglSpecularBlendWithReceiver,
     ];
 
     /// The id of the function in the shader's switch.
@@ -191,7 +198,8 @@ impl HarnessFunction {
             F::SgProduct | F::SgProductIntegral => 8,
             F::VsglDiffuse | F::VsglDiffuseApprox | F::VsglDiffuseAccurate | F::VsglDiffuseSgProduct => 8,
             F::GgxBrdfOverRs => 10,
-            F::VsglIncomingRadiance | F::VsglSpecular | F::VsglSpecularAccurate => 12,
+            F::VsglIncomingRadiance | F::VsglSpecular | F::VsglSpecularAccurate | F::VsglSpecularBlend => 12,
+            F::VsglSpecularFiltered | F::VsglSpecularBlendWithReceiver => 12,
             F::VsglIncomingRadianceSeen | F::VsglSpecularWithReceiver => 12,
             F::AsgEvaluate => 14,
             F::SgAsgProductIntegral | F::SgAsgProductIntegralOverAsgIntegral => 15,
@@ -287,6 +295,17 @@ impl HarnessFunction {
             F::VsglSpecularAccurate => {
                 ("vsgl_specular_accurate", V, "radiance Sg 0-4, normal 5-7, w_o 8-10, alpha 11", "value 0", 1)
             }
+            F::VsglSpecularBlend => ("vsgl_specular_blend", V, "radiance Sg 0-4, normal 5-7, w_o 8-10, alpha 11", "value 0", 1),
+            F::VsglSpecularFiltered => {
+                ("vsgl_specular_filtered", V, "radiance Sg 0-4, normal 5-7, w_o 8-10, alpha 11", "value 0, receiver share α/α' 1", 2)
+            }
+            F::VsglSpecularBlendWithReceiver => (
+                "vsgl_specular_blend_with_receiver",
+                V,
+                "radiance Sg 0-4, receiver from normal 5-7, w_o 8-10, alpha 11",
+                "value 0",
+                1,
+            ),
             F::VsglPositionSeenFrom => (
                 "vsgl_position_seen_from",
                 V,
@@ -408,6 +427,15 @@ impl HarnessFunction {
             F::VsglDiffuseSgProduct => o[0] = oracle::vsgl_diffuse_sg_product(sg(0), v(5)),
             F::VsglSpecular => o[0] = oracle::vsgl_specular(sg(0), v(5), v(8), a(11)),
             F::VsglSpecularAccurate => o[0] = oracle::vsgl_specular_accurate(sg(0), v(5), v(8), a(11)),
+            F::VsglSpecularBlend => o[0] = oracle::vsgl_specular_blend(sg(0), v(5), v(8), a(11)),
+            F::VsglSpecularFiltered => {
+                let (value, share) = oracle::vsgl_specular_filtered(sg(0), v(5), v(8), a(11));
+                o[0] = value;
+                o[1] = share;
+            }
+            F::VsglSpecularBlendWithReceiver => {
+                o[0] = oracle::vsgl_specular_blend_with_receiver(sg(0), &oracle::vsgl_specular_receiver_from(v(5), v(8), a(11)))
+            }
             F::VsglPositionSeenFrom => {
                 let s = oracle::vsgl_position_seen_from(oracle::VsglPosition { mean: v(0), variance: a(3) }, v(4));
                 o[0] = s.inv_variance;

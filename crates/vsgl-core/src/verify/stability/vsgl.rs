@@ -168,6 +168,20 @@ fn bound_vsgl_specular_accurate(i: &Input, r: &Output64) -> f64 {
     perturbation(F::VsglSpecularAccurate, i, 0..1, 12.0, &[0, 5, 8]) + 18.0 * ULP * r[0] + FLT_MIN * a(i, 4)
 }
 
+/// vsgl_specular_blend = w·filtered + (1 − w)·asg: both forms' bounds (each at most the larger
+/// form's value: the bounds are taken at each form's own value) and the share w = √(α²·σ₊^-½·σ₋^-½)
+/// (2 inverseSqrt, sqrt, products: 6 ULP), which enters as |filtered − asg|·δw; the perturbation
+/// covers the inputs' rounding through all three (c = 12 ULP per input as the filtered form).
+fn bound_vsgl_specular_blend(i: &Input, r: &Output64) -> f64 {
+    let filtered = F::VsglSpecularAccurate.oracle(i)[0];
+    let asg = F::VsglSpecular.oracle(i)[0];
+    perturbation(F::VsglSpecularBlend, i, 0..1, 12.0, &[0, 5, 8])
+        + 18.0 * ULP * filtered.max(asg)
+        + 6.0 * ULP * (filtered - asg).abs()
+        + 3.0 * ULP * r[0]
+        + FLT_MIN * a(i, 4)
+}
+
 pub(super) fn vsgl_families(f: &mut Vec<Family>) {
     // vsgl_lobe_from_moments: single lobes and mixtures × powers 1e-8…1e8; zero power.
     let (mut broad, mut sharp, mut zero) = (Vec::new(), Vec::new(), Vec::new());
@@ -472,8 +486,29 @@ pub(super) fn vsgl_families(f: &mut Vec<Family>) {
         f.push(Family {
             function: F::VsglSpecularAccurate,
             name,
-            inputs: ins,
+            inputs: ins.clone(),
             checks: vec![check("value", 0..1, |i, _| fl(1e-30 * a(i, 4)), bound_vsgl_specular_accurate)],
+        });
+        f.push(Family {
+            function: F::VsglSpecularFiltered,
+            name,
+            inputs: ins.clone(),
+            checks: vec![
+                check("value", 0..1, |i, _| fl(1e-30 * a(i, 4)), bound_vsgl_specular_accurate),
+                check("receiver share", 1..2, floor_unit, |i, r| perturbation(F::VsglSpecularFiltered, i, 1..2, 12.0, &[0, 5, 8]) + 8.0 * ULP * r[1]),
+            ],
+        });
+        f.push(Family {
+            function: F::VsglSpecularBlend,
+            name,
+            inputs: ins.clone(),
+            checks: vec![check("value", 0..1, |i, _| fl(1e-30 * a(i, 4)), bound_vsgl_specular_blend)],
+        });
+        f.push(Family {
+            function: F::VsglSpecularBlendWithReceiver,
+            name,
+            inputs: ins,
+            checks: vec![check("value", 0..1, |i, _| fl(1e-30 * a(i, 4)), bound_vsgl_specular_blend)],
         });
     }
 }
