@@ -159,6 +159,30 @@ impl<'a> Recorder<'a> {
     }
 }
 
+/// Most virtual lights per pixel one shading dispatch loops over with shadow rays
+/// (`visibility="raytrace"`), where every light also loops over BVH nodes.
+///
+/// lavapipe (Mesa's llvmpipe) ends shader loops once an invocation has run 65535 loop
+/// iterations in all, counted over every loop of the invocation, nested ones included. An
+/// invocation past the cap loses its whole output: measured on glossy_cornell at 64², the
+/// workgroups of the back wall behind the sphere, whose shadow rays pass the sphere's 4096
+/// triangles, wrote 0 for every pixel from 896 VSGLs per dispatch on (1024 at 1000), while
+/// 768 were right. So on a CPU adapter a dispatch takes `CPU_TRACED_LIGHTS_PER_DISPATCH`,
+/// which leaves ~1000 BVH iterations per shadow ray; GPUs have no such cap and keep
+/// `TRACED_LIGHTS_PER_DISPATCH` (fewer dispatches, each re-reading the G-buffer).
+pub fn traced_lights_per_dispatch(gpu: &Gpu) -> u32 {
+    if gpu.adapter.device_type == "Cpu" {
+        CPU_TRACED_LIGHTS_PER_DISPATCH
+    } else {
+        TRACED_LIGHTS_PER_DISPATCH
+    }
+}
+
+/// See [`traced_lights_per_dispatch`].
+pub const TRACED_LIGHTS_PER_DISPATCH: u32 = 1024;
+/// See [`traced_lights_per_dispatch`].
+pub const CPU_TRACED_LIGHTS_PER_DISPATCH: u32 = 64;
+
 /// Calls `dispatch(first, count)` for consecutive chunks of at most `chunk` of `total` items:
 /// the shading passes split long light lists over dispatches (lavapipe ends shader loops after
 /// 65536 iterations) that add into the same targets.

@@ -20,7 +20,7 @@ pub use bind_groups::PipelineRef;
 pub use buffers::{kept_staging_buffer, read_staging, read_staging_with, storage_buffer};
 pub use device::{adapters, AdapterSummary, Gpu};
 pub use pass_cache::{Pass, PassCache};
-pub use dispatch::{entries, for_each_chunk, groups, interleaved_block_groups, interleaved_groups, Recorder};
+pub use dispatch::{entries, for_each_chunk, groups, interleaved_block_groups, interleaved_groups, traced_lights_per_dispatch, Recorder};
 pub use pipelines::{storage_binding, uniform_binding, PipelineVariants};
 pub use resources::FrameResources;
 pub use timer::PassTimer;

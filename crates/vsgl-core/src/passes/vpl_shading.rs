@@ -3,7 +3,7 @@
 use crate::frame::IndirectTargets;
 use crate::error::Result;
 use crate::frame::GBuffer;
-use crate::gpu::{for_each_chunk, interleaved_groups, Gpu, PipelineVariants, Recorder};
+use crate::gpu::{for_each_chunk, interleaved_groups, traced_lights_per_dispatch, Gpu, PipelineVariants, Recorder};
 use crate::methods::visibility::VirtualLightVisibility;
 use crate::plan::ShaderFeatures;
 
@@ -20,10 +20,9 @@ struct ShadeParamsRaw {
 
 /// Most VPLs one dispatch loops over. lavapipe (Mesa 22.3) silently ends shader loops after
 /// 65536 iterations in all (seen: 131072 VPLs shaded as 65536), so long VPL lists are split
-/// over several dispatches that add into the same targets.
+/// over several dispatches that add into the same targets. With shadow rays:
+/// `traced_lights_per_dispatch`.
 const VPLS_PER_DISPATCH: u32 = 16384;
-/// The same with `visibility="raytrace"`.
-const TRACED_VPLS_PER_DISPATCH: u32 = 1024;
 
 
 pub struct VplShadingPass {
@@ -59,7 +58,7 @@ impl VplShadingPass {
         // Chunks are multiples of k² so the interleaved classes stay j ≡ c (mod k²).
         // With shadow rays each VPL also loops over BVH nodes: fewer VPLs per dispatch keep
         // lavapipe under its loop-iteration cap (and a GPU dispatch short).
-        let per_dispatch = if visibility.traced { TRACED_VPLS_PER_DISPATCH } else { VPLS_PER_DISPATCH };
+        let per_dispatch = if visibility.traced { traced_lights_per_dispatch(gpu) } else { VPLS_PER_DISPATCH };
         for_each_chunk(vpl_count, per_dispatch * interleave * interleave, |first, count| {
             let uniform = rec.uniform("vpl_shading_params_uniform_buffer", &ShadeParamsRaw { vpl_count: count, min_distance2, first, interleave });
             rec.compute(

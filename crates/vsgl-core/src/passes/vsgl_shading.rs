@@ -2,7 +2,7 @@
 
 use crate::error::Result;
 use crate::frame::{GBuffer, IndirectTargets};
-use crate::gpu::{for_each_chunk, interleaved_block_groups, Gpu, PipelineVariants, Recorder};
+use crate::gpu::{for_each_chunk, interleaved_block_groups, traced_lights_per_dispatch, Gpu, PipelineVariants, Recorder};
 use crate::methods::visibility::VirtualLightVisibility;
 use crate::plan::ShaderFeatures;
 
@@ -37,9 +37,8 @@ struct ShadeParamsRaw {
 /// Most loop iterations (VSGLs per pixel) one dispatch runs: lavapipe (Mesa 22.3) silently
 /// ends shader loops after 65536 iterations (seen: 131072 VSGLs at interleave=1 shaded as
 /// 65536), so long lists are split over dispatches that add into the same targets.
+/// With `visibility="raytrace"` (each VSGL also loops over BVH nodes): `traced_lights_per_dispatch`.
 const VSGLS_PER_PIXEL_PER_DISPATCH: u32 = 16384;
-/// The same with `visibility="raytrace"` (each VSGL also loops over BVH nodes).
-const TRACED_VSGLS_PER_PIXEL_PER_DISPATCH: u32 = 1024;
 
 /// Diffuse shading form.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -201,7 +200,7 @@ impl VsglShadingPass {
         // `frame.passes` names the visibility variant.
         let label = format!("vsgl_shading{}", visibility.label_suffix());
         // Chunks are multiples of k² so the interleaved subsets stay j ≡ t (mod k²).
-        let per_dispatch = if visibility.traced { TRACED_VSGLS_PER_PIXEL_PER_DISPATCH } else { VSGLS_PER_PIXEL_PER_DISPATCH };
+        let per_dispatch = if visibility.traced { traced_lights_per_dispatch(gpu) } else { VSGLS_PER_PIXEL_PER_DISPATCH };
         let chunk = per_dispatch * interleave * interleave;
         for_each_chunk(count, chunk, |first, n| {
             let params = ShadeParamsRaw { count: n, interleave, diffuse_mode: diffuse.shader_code(), first, exact_texels: u32::from(exact_texels), plane_fade: u32::from(diffuse.fades_below_tangent_plane()), lighting_mode: lighting.shader_code(), lambert_lobe: lambert_lobe.shader_code() };
