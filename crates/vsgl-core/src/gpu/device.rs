@@ -77,6 +77,14 @@ pub struct Gpu {
 }
 
 impl Gpu {
+    /// Whether the adapter ends the loops of a shader invocation once it has run 65535 loop
+    /// iterations in all, nested loops counted (lavapipe, a CPU adapter; an invocation past the
+    /// cap loses its output). Passes whose loops grow with their input take smaller pieces of it
+    /// per dispatch there (`traced_lights_per_dispatch`, the path tracer's samples per dispatch).
+    pub fn caps_loop_iterations(&self) -> bool {
+        self.adapter.device_type == "Cpu"
+    }
+
     /// Opens the best adapter, or the first whose name contains `filter` (case-insensitive);
     /// `filter = None` falls back to the `VSGL_ADAPTER` environment variable.
     pub fn new(filter: Option<&str>) -> Result<Arc<Self>> {

@@ -171,7 +171,7 @@ impl<'a> Recorder<'a> {
 /// which leaves ~1000 BVH iterations per shadow ray; GPUs have no such cap and keep
 /// `TRACED_LIGHTS_PER_DISPATCH` (fewer dispatches, each re-reading the G-buffer).
 pub fn traced_lights_per_dispatch(gpu: &Gpu) -> u32 {
-    if gpu.adapter.device_type == "Cpu" {
+    if gpu.caps_loop_iterations() {
         CPU_TRACED_LIGHTS_PER_DISPATCH
     } else {
         TRACED_LIGHTS_PER_DISPATCH
