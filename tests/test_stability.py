@@ -29,7 +29,7 @@ FUNCTIONS = [
     "vsgl_diffuse_sg_product", "vsgl_specular", "ggx_alpha_from_roughness", "ggx_d", "ggx_smith_lambda",
     "ggx_smith_g2", "ggx_brdf_over_rs", "lambert_brdf_over_rd", "vsgl_specular_accurate",
     "vsgl_position_seen_from", "vsgl_incoming_radiance_seen", "vsgl_specular_receiver_from",
-    "vsgl_specular_with_receiver",
+    "vsgl_specular_with_receiver", "vsgl_specular_blend", "vsgl_specular_filtered", "vsgl_specular_blend_with_receiver",
 ]
 
 
