@@ -343,10 +343,11 @@ fn vsgl_specular_filtered(radiance: Sg, normal: vec3f, w_o: vec3f, alpha: f32) -
 // Why: each form fails where the other holds. The filtered form is exact for a point light and
 // good while the light is narrower than the lobe (w → 1), but over-lights a sharp receiver under a
 // broad light; the ASG product is good there (both lobes near-Gaussian, w → 0) but, being a
-// small-angle warp of the NDF, loses up to 60% of a rough lobe's light from any direction
+// small-angle warp of the NDF, loses 27–63% of a rough lobe's light from the hemisphere
 // (α ≥ 0.5, even for point lights). w is a measured choice, not a derivation: over light axes on
-// the whole hemisphere (oracle test specular_forms_over_the_hemisphere) it halves the summed L1
-// error of the better single form; docs/rendering.md, "SG lighting", has the table.
+// the whole hemisphere (oracle test specular_forms_over_the_hemisphere) its summed L1 error is
+// 0.68× the better single form's (4.85 against 7.10); docs/rendering.md, "SG lighting", has the
+// table.
 fn vsgl_specular_blend(radiance: Sg, normal: vec3f, w_o: vec3f, alpha: f32) -> f32 {
     if (dot(normal, radiance.axis) <= 0.0 || dot(normal, w_o) <= 0.0) {
         return 0.0;
