@@ -216,15 +216,16 @@ def test_vsgl_shadow_rays_keep_the_share_of_light_that_texel_visibility_keeps(ma
     assert abs(kept_by_vsgls - kept_by_texels) < bound, (kept_by_vsgls, kept_by_texels)
 
 
-@pytest.mark.parametrize("method", ["vpl", "vsgl"])
-def test_shadow_rays_of_a_thousand_lights_leave_no_workgroup_dark(make_renderer, method):
+def test_shadow_rays_of_a_thousand_lights_leave_no_workgroup_dark(make_renderer):
     """lavapipe ends every loop of a shader invocation past 65535 loop iterations in all, and an
     invocation past that cap lost its whole output: with 1024 lights per dispatch, the 8×8-pixel
     workgroups of glossy_cornell's back wall behind the sphere, whose shadow rays pass the
     sphere's 4096 triangles, came out 0 (docs/rendering.md, "Visibility of virtual lights"). On a
     CPU adapter traced dispatches now take 64 lights (gpu::traced_lights_per_dispatch). Every
     8×8 block lit without shadows must keep some of its light with them (the lowest kept here:
-    0.18 for vpl, 0.31 for vsgl; the dark workgroups kept 0.000)."""
+    0.31; the dark workgroups kept 0.000). `vsgl` only: `vpl`, whose loop is lighter, stayed
+    under the cap with the old 1024-light chunk on this scene, so its case could not fail."""
+    method = "vsgl"
     r = make_renderer(64, 64)
     scene = vsgl.scenes.glossy_cornell()
     opts = dict(num_lights=1024, interleave=1, denoise=False, aovs=["indirect"])

@@ -270,11 +270,10 @@ pub fn vsgl_specular_filtered(radiance: Sg, normal: DVec3, w_o: DVec3, alpha: f6
 /// lighting="blend": w·[`vsgl_specular_accurate`] + (1 − w)·[`vsgl_specular`], w = α/α' the
 /// receiver's share of the widened lobe (vsgl.wgsl says why); 0 below the surface.
 pub fn vsgl_specular_blend(radiance: Sg, normal: DVec3, w_o: DVec3, alpha: f64) -> f64 {
-    let (filtered, share) = vsgl_specular_filtered(radiance, normal, w_o, alpha);
     if normal.dot(radiance.axis) <= 0.0 || normal.dot(w_o) <= 0.0 {
         return 0.0;
     }
-    share * filtered + (1.0 - share) * vsgl_specular(radiance, normal, w_o, alpha)
+    vsgl_specular_blend_with_receiver(radiance, &vsgl_specular_receiver_from(normal, w_o, alpha))
 }
 
 /// [`vsgl_specular_blend`] with the receiver formed once per pixel, as the shading loop calls it.
