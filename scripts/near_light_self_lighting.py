@@ -36,7 +36,8 @@ def main() -> int:
     truth = ref.aov("indirect").astype(float)
     print(f"reference: indirect mean {truth.mean():.4g}, share on the ceiling {truth[ceiling].sum() / truth.sum():.3f}")
     for label, kw in (("papers' diffuse (default)", {}), ("diffuse=accurate (tangent-plane fade)", dict(diffuse="accurate")),
-                      ("kernel=node", dict(kernel="node")), ("lighting=blend (its diffuse is the faded clamped cosine)", dict(lighting="blend"))):
+                      ("plane_fade=True (the papers' form, faded)", dict(plane_fade=True)),
+                      ("kernel=node", dict(kernel="node")), ("kernel=node, plane_fade=True", dict(kernel="node", plane_fade=True)), ("lighting=blend (its diffuse is the faded clamped cosine)", dict(lighting="blend"))):
         f = r.render(scene, method="vsgl", rsm_size=128, interleave=1, denoise=False, aovs=["indirect"], **kw)
         img = f.aov("indirect").astype(float)
         print(f"vsgl {label}: mean {img.mean() / truth.mean():.2f}x the reference's, share on the ceiling {img[ceiling].sum() / img.sum():.3f}")

@@ -362,6 +362,18 @@ pub mod common {
         &["hemisphere", "exact_compact", "papers"],
         "each cluster's Lambert lobe: \"hemisphere\" (the SG normalized over each texel's hemisphere, so all its diffuse power reaches where a Lambertian texel can light), \"exact_compact\" (that SG blended with an exact Lambertian point emitter where the cluster is compact as seen from the receiver: better on the closed diffuse box, worse at grazing floor-to-wall transfer) or \"papers\" (normalized over the sphere: 9.2% of it lies below the texel and is lost)",
     );
+    /// The cluster's tangent-plane fade for the papers' diffuse form too (docs/rendering.md,
+    /// "The cluster's tangent plane"); the other diffuse forms always fade. The default differs
+    /// by method: a VSGL of `vsgl` is one cluster, `vsgl2`'s plane spans the whole RSM.
+    pub const fn plane_fade(default: bool) -> OptionSpec {
+        OptionSpec {
+            name: "plane_fade",
+            kind: OptionKind::Bool,
+            default: OptionValue::Bool(default),
+            help: "with diffuse=\"papers\", also fade each VSGL's diffuse light out below its cluster's mean tangent plane, as the \"accurate\" and \"sg_product\" forms always do (False: the papers' formula, whose SG product lights the back of a lit surface and the surface itself next to a light)",
+            note: "",
+        }
+    }
     /// SG lighting forms (docs/rendering.md, "SG lighting"): the papers' (ASG specular, `diffuse=`),
     /// the accurate ones (filtered-NDF specular and the clamped-cosine diffuse), or the blend of
     /// the two specular forms (with the clamped-cosine diffuse).

@@ -62,6 +62,7 @@ const OPTIONS: &[OptionSpec] = &[
     common::DIFFUSE,
     common::LIGHTING,
     common::LAMBERT_LOBE,
+    common::plane_fade(false),
     common::VISIBILITY,
     common::ISM_SIZE,
     common::ISM_POINTS,
@@ -90,6 +91,9 @@ struct Vsgl {
     diffuse: DiffuseMode,
     lighting: LightingMode,
     lambert_lobe: LambertLobe,
+    /// Whether the diffuse term fades below each cluster's tangent plane: always for the forms
+    /// that need it, and for the papers' with `plane_fade`.
+    plane_fade: bool,
     importance: Importance,
     capture_rsm: bool,
 }
@@ -127,6 +131,12 @@ pub(super) fn with_diffuse_of_lighting(mut o: Options) -> Result<Options> {
     Ok(o)
 }
 
+/// Whether the diffuse term fades below each VSGL's tangent plane: always for the forms that
+/// need it, and for the papers' with `plane_fade`.
+pub(super) fn plane_fade(o: &Options) -> Result<bool> {
+    Ok(diffuse_mode(o)?.fades_below_tangent_plane() || o.bool("plane_fade")?)
+}
+
 /// `lighting=` as the shading pass takes it.
 pub(super) fn lighting_mode(o: &Options) -> Result<LightingMode> {
     Ok(match o.str("lighting")? {
@@ -159,6 +169,7 @@ impl Vsgl {
             diffuse: diffuse_mode(o)?,
             lighting: lighting_mode(o)?,
             lambert_lobe: LambertLobe::from_name(o.str("lambert_lobe")?),
+            plane_fade: plane_fade(o)?,
             importance: Importance::from_options(o)?,
             capture_rsm: o.bool("capture_rsm")?,
         })
@@ -176,7 +187,7 @@ impl Method for Vsgl {
     fn check(&self, gpu: &Gpu) -> Result<()> {
         check_rsm_size(gpu, self.rsm_size)?;
         let limit = gpu.limits.max_storage_buffer_binding_size as u64;
-        let bytes = MomentChains::bytes(self.rsm_size, self.diffuse.fades_below_tangent_plane());
+        let bytes = MomentChains::bytes(self.rsm_size, self.plane_fade);
         if bytes > limit {
             let n = self.rsm_size;
             return Err(Error::invalid("rsm_size", format!("the VSGL moment mips of a {n}² RSM ({bytes} bytes) exceed this adapter's storage binding limit of {limit} bytes")));
@@ -200,7 +211,7 @@ impl Method for Vsgl {
         };
         let lit = for_each_light(ctx, &rsm, |ctx, light| {
             let feat = ctx.features;
-            let chains = chains.get_or_insert_with(|| MomentChains::new(&mut ctx.rec, self.rsm_size, self.diffuse.fades_below_tangent_plane()));
+            let chains = chains.get_or_insert_with(|| MomentChains::new(&mut ctx.rec, self.rsm_size, self.plane_fade));
             pdf_mips.record(&mut ctx.rec, light.rsm);
             // Sampled by the RSM's weights, or by its importance to the view (brsm).
             let reweighted = match &view {
@@ -232,7 +243,7 @@ impl Method for Vsgl {
             gen.record_with_pdf(&mut ctx.rec, "vsgl_gen", light.rsm, pdf, chains, &settings, &buf);
             vis.build_maps(ctx, &buf, light.budget, VSGL_RECORD_WORDS)?;
             let target = shading_out.target(ctx.indirect);
-            shading.record(&mut ctx.rec, ctx.frame_uniforms, &buf, light.budget, self.interleave, self.diffuse, self.lighting, self.lambert_lobe, self.kernel == Kernel::Node, ctx.gbuffer, target, feat, ctx.size, &vis);
+            shading.record(&mut ctx.rec, ctx.frame_uniforms, &buf, light.budget, self.interleave, self.diffuse, self.lighting, self.lambert_lobe, self.kernel == Kernel::Node, self.plane_fade, ctx.gbuffer, target, feat, ctx.size, &vis);
             if ctx.vsgls.is_none() {
                 ctx.vsgls = Some(buf);
             }

@@ -28,6 +28,7 @@ const OPTIONS: &[OptionSpec] = &[
     common::DIFFUSE,
     common::LIGHTING,
     common::LAMBERT_LOBE,
+    common::plane_fade(false),
     OptionSpec {
         name: "vsgl2_reduction",
         kind: OptionKind::Choice(&["auto", "subgroup", "shared_memory"]),
@@ -51,6 +52,7 @@ struct Vsgl2 {
     diffuse: DiffuseMode,
     lighting: LightingMode,
     lambert_lobe: LambertLobe,
+    plane_fade: bool,
     reduction: Vsgl2Reduction,
     capture_rsm: bool,
 }
@@ -63,7 +65,7 @@ impl Vsgl2 {
             "shared_memory" => Vsgl2Reduction::SharedMemory,
             _ => Vsgl2Reduction::Auto,
         };
-        Ok(Self { options: o.clone(), visibility: VisibilityMode::from_options(o)?, rsm_size: o.u32("rsm_size")?, diffuse: super::vsgl::diffuse_mode(o)?, lighting: super::vsgl::lighting_mode(o)?, lambert_lobe: LambertLobe::from_name(o.str("lambert_lobe")?), reduction, capture_rsm: o.bool("capture_rsm")? })
+        Ok(Self { options: o.clone(), visibility: VisibilityMode::from_options(o)?, rsm_size: o.u32("rsm_size")?, diffuse: super::vsgl::diffuse_mode(o)?, lighting: super::vsgl::lighting_mode(o)?, lambert_lobe: LambertLobe::from_name(o.str("lambert_lobe")?), plane_fade: super::vsgl::plane_fade(o)?, reduction, capture_rsm: o.bool("capture_rsm")? })
     }
 }
 
@@ -83,7 +85,7 @@ impl Method for Vsgl2 {
             let buf = ctx.rec.storage("vsgl2_buffer", VSGL2_COUNT as u64 * VSGL_BYTES);
             reduce.record(&mut ctx.rec, light.rsm, light.raw.position, light.raw.rsm_light_dir(), light.texel_footprint(), &buf, feat, reduction)?;
             vis.build_maps(ctx, &buf, VSGL2_COUNT, VSGL_RECORD_WORDS)?;
-            shading.record(&mut ctx.rec, ctx.frame_uniforms, &buf, VSGL2_COUNT, 1, self.diffuse, self.lighting, self.lambert_lobe, false, ctx.gbuffer, ctx.indirect, feat, ctx.size, &vis);
+            shading.record(&mut ctx.rec, ctx.frame_uniforms, &buf, VSGL2_COUNT, 1, self.diffuse, self.lighting, self.lambert_lobe, false, self.plane_fade, ctx.gbuffer, ctx.indirect, feat, ctx.size, &vis);
             if ctx.vsgls.is_none() {
                 ctx.vsgls = Some(buf);
             }

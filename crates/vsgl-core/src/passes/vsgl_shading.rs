@@ -186,6 +186,7 @@ impl VsglShadingPass {
         lighting: LightingMode,
         lambert_lobe: LambertLobe,
         exact_texels: bool,
+        plane_fade: bool,
         gbuffer: &GBuffer,
         out: &IndirectTargets,
         features: ShaderFeatures,
@@ -203,7 +204,7 @@ impl VsglShadingPass {
         let per_dispatch = if visibility.traced { traced_lights_per_dispatch(gpu) } else { VSGLS_PER_PIXEL_PER_DISPATCH };
         let chunk = per_dispatch * interleave * interleave;
         for_each_chunk(count, chunk, |first, n| {
-            let params = ShadeParamsRaw { count: n, interleave, diffuse_mode: diffuse.shader_code(), first, exact_texels: u32::from(exact_texels), plane_fade: u32::from(diffuse.fades_below_tangent_plane()), lighting_mode: lighting.shader_code(), lambert_lobe: lambert_lobe.shader_code() };
+            let params = ShadeParamsRaw { count: n, interleave, diffuse_mode: diffuse.shader_code(), first, exact_texels: u32::from(exact_texels), plane_fade: u32::from(plane_fade), lighting_mode: lighting.shader_code(), lambert_lobe: lambert_lobe.shader_code() };
             let uniform = rec.uniform("vsgl_shading_params_uniform_buffer", &params);
             rec.compute(
                 &label,
