@@ -286,7 +286,8 @@ def _sg_integral(lam: np.ndarray) -> np.ndarray:
 
 @pytest.mark.parametrize("scene_name", ["diffuse_cornell", "cornell_box"])
 @pytest.mark.parametrize("lambert_lobe", ["hemisphere", "papers"])
-def test_shading_equals_a_float64_evaluation_of_the_frames_own_vsgls(renderer, scene_name, lambert_lobe):
+@pytest.mark.parametrize("plane_fade", [True, False])
+def test_shading_equals_a_float64_evaluation_of_the_frames_own_vsgls(renderer, scene_name, lambert_lobe, plane_fade):
     """indirect_diffuse of diffuse="papers" at a grid of pixels, recomputed in float64 from the
     frame's own records (Frame.vsgls()) by the papers' formulas as written, not the shader's
     stable forms: Tok15 Eq. 5 / Tok16s Eq. 7 for each lobe's incoming radiance,
@@ -296,9 +297,12 @@ def test_shading_equals_a_float64_evaluation_of_the_frames_own_vsgls(renderer, s
     count (cornell_box is dielectric, R_s = 0.04: its records carry specular lobes, and the
     shader runs its HAS_SPECULAR variant; diffuse_cornell the diffuse-only one). interleave=1:
     every pixel sums every VSGL, no denoising. The shading loop's per-VSGL invariants (the
-    amplitudes formed at tile load) and per-pair reciprocals must reproduce the formulas."""
+    amplitudes formed at tile load) and per-pair reciprocals must reproduce the formulas.
+    With plane_fade (the default) each VSGL's diffuse light is scaled by the tangent-plane fade
+    of its record (plane_normal N̄, plane_offset): 0 for H = (p − μ)·N̄ + offset ≤ τ, 1 from 2τ,
+    τ = 10⁻³·(‖p − μ‖ + σ) (docs/rendering.md, "The cluster's tangent plane")."""
     scene = vsgl.scenes.load(scene_name)
-    f = renderer.render(scene, method="vsgl", num_lights=64, rsm_size=64, interleave=1, lambert_lobe=lambert_lobe)
+    f = renderer.render(scene, method="vsgl", num_lights=64, rsm_size=64, interleave=1, lambert_lobe=lambert_lobe, plane_fade=plane_fade)
     assert ("vsgl_shading[diffuse_only]" in f.passes) == (scene_name == "diffuse_cornell")
     cam = scene.cameras[0]
     h, w = f.height, f.width
@@ -315,8 +319,10 @@ def test_shading_equals_a_float64_evaluation_of_the_frames_own_vsgls(renderer, s
         (v["diffuse_axis"], v["diffuse_sharpness"], v["diffuse_power"], gain),
         (v["specular_axis"], v["specular_sharpness"], v["specular_power"], 1.0),
     ]
+    plane_normal = v["plane_normal"].astype(np.float64)
+    plane_offset = v["plane_offset"].astype(np.float64)
     gpu = f.aov("indirect_diffuse").astype(np.float64)
-    checked = 0
+    checked = faded = 0
     for py in range(2, h, 7):
         for px in range(3, w, 9):
             if depth[py, px] <= 0:
@@ -327,6 +333,12 @@ def test_shading_equals_a_float64_evaluation_of_the_frames_own_vsgls(renderer, s
             var = np.maximum(np.maximum(variance, dist2 / SG_SHARPNESS_MAX), 1.17549435e-38)
             lam_sigma = dist2 / var
             axis_mu = to_mean / np.sqrt(dist2)[:, None]
+            fade = np.ones(len(mean))
+            if plane_fade:
+                height = (-to_mean * plane_normal).sum(axis=1) + plane_offset
+                tol = 1e-3 * (np.sqrt(dist2) + np.sqrt(variance))
+                fade = np.clip((height - tol) / tol, 0.0, 1.0)
+                faded += int((fade < 1).sum())
             total = np.zeros(3)
             for axis, lam, power, lobe_gain in lobes:
                 axis, lam, power = axis.astype(np.float64), lam.astype(np.float64), power.astype(np.float64)
@@ -336,10 +348,12 @@ def test_shading_equals_a_float64_evaluation_of_the_frames_own_vsgls(renderer, s
                 xi_in = vin / lam_in[:, None]
                 c_in = c / (2 * np.pi * var) * np.exp(lam_in - lam - lam_sigma)
                 diffuse = 2 * c_in / np.maximum(lam_in, 0.5) * np.maximum(xi_in @ n, 0.0)
-                total += (power * diffuse[:, None]).sum(axis=0)
+                total += (power * (fade * diffuse)[:, None]).sum(axis=0)
             np.testing.assert_allclose(gpu[py, px], albedo[py, px] * total, rtol=1e-5, atol=1e-9, err_msg=f"pixel ({px}, {py})")
             checked += 1
     assert checked >= 20
+    # The fade must have had something to do at the grid's pixels.
+    assert faded > 0 or not plane_fade
 
 
 def test_accurate_diffuse_is_an_option(renderer):
