@@ -62,7 +62,9 @@ const OPTIONS: &[OptionSpec] = &[
     common::DIFFUSE,
     common::LIGHTING,
     common::LAMBERT_LOBE,
-    common::plane_fade(false),
+    // On by default (docs/rendering.md, "The cluster's tangent plane"): without it the papers'
+    // form lights the back of a lit plane with about half its front's direct light.
+    common::plane_fade(true),
     common::VISIBILITY,
     common::ISM_SIZE,
     common::ISM_POINTS,

@@ -28,6 +28,8 @@ const OPTIONS: &[OptionSpec] = &[
     common::DIFFUSE,
     common::LIGHTING,
     common::LAMBERT_LOBE,
+    // Off by default: vsgl2's one plane spans the whole RSM, and on the Cornell boxes fading by
+    // it loses light (docs/rendering.md, "The cluster's tangent plane").
     common::plane_fade(false),
     OptionSpec {
         name: "vsgl2_reduction",
