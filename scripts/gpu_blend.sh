@@ -4,7 +4,7 @@
 # packed into $OUT/results.tgz after every step.
 #
 #   bash ../shared/tools/gpu-prep.sh
-#   device run (carry .gl .whl, timeout_s 460): <gpu-prep lines> bash scripts/gpu_blend.sh
+#   device run (carry .gl .whl, timeout_s 500): <gpu-prep lines> bash scripts/gpu_blend.sh
 #   locally, a smoke test of every step at toy sizes on lavapipe: SMOKE=1 bash scripts/gpu_blend.sh
 #
 # Steps (why):
@@ -12,10 +12,14 @@
 #     (glossy_cornell, caustics_ring, mirror_panel; asg, accurate, blend; both kernels): whether
 #     blend is below asg at GPU size, which decides the default;
 #   2 the same shadowed (visibility="raytrace"), where the specular shadow loss is open;
-#   3 the cost of blend per pass: vsgl_shading at 1080p, 1024 VSGLs per pixel, asg against blend.
+#   3 the cost of blend per pass: vsgl_shading at 1080p, 1024 VSGLs per pixel, asg against blend,
+#     and of the tangent-plane fade (plane_fade, vsgl's default since 2026-11-29: a sixth moment
+#     chain and one more test per pair) against the papers' form without it;
+#   4 plane_fade's error at GPU size with and without shadows (on lavapipe at 64² it halved the
+#     ring's unshadowed glow and cost the shadowed boxes 2-6%).
 set -uo pipefail
 source "$(dirname "$0")/gpu_common.sh"  # $FINAL_OUT, $RES, pack, step, require_gpu; cd to the repository root
-BUDGET=${BUDGET:-400}
+BUDGET=${BUDGET:-440}
 T0=$SECONDS
 if [ "${SMOKE:-0}" = 1 ]; then
   MID=64x48; SPP=16; BIG=96x64
@@ -36,7 +40,14 @@ TAIL=40 step bench_blend_shadowed 120 python3 -m vsgl bench --scene glossy_corne
   --reference-spp "$SPP" --no-progress --out "$RES/bench_blend_shadowed"
 pack
 TAIL=20 step shading_cost 60 python3 -m vsgl bench --scene glossy_cornell --methods vsgl --lighting asg,blend \
-  --lights 1024 --size "$BIG" --interleave 1 --seeds 1 --frames 8 --no-progress --out "$RES/shading_cost"
+  -O plane_fade=true,false --lights 1024 --size "$BIG" --interleave 1 --seeds 1 --frames 8 --no-progress --out "$RES/shading_cost"
+pack
+for VIS in none raytrace; do
+  TAIL=30 step "bench_plane_fade_$VIS" 40 python3 -m vsgl bench --scene cornell_box,caustics_ring --methods vsgl \
+    -O plane_fade=true,false --lights 1024,4096 --size "$MID" --visibility "$VIS" --rsm-sizes 256 --seeds 2 --frames 4 \
+    --reference pathtrace --reference-strategy bidirectional --reference-spp "$SPP" --no-progress --out "$RES/bench_plane_fade_$VIS"
+  pack
+done
 echo "== done in $((SECONDS - T0)) s"
 } 2>&1 | tee "$FINAL_OUT/log.txt"
 pack

@@ -47,11 +47,12 @@ from vsgl.metrics import block_means, block_rmse
 SPP = {"cornell_box": 1024, "glossy_cornell": 2048, "caustics_ring": 8192, "mirror_panel": 4096}
 # `--variants` names: the default three, and the exact Lambertian point emitter for compact clusters
 # (`lambert_lobe="exact_compact"`, docs/rendering.md "VSGLs") with either kernel, for the diffuse box;
-# the tangent-plane fade under the papers' diffuse form (`plane_fade`) with either kernel.
+# the papers' diffuse form without the tangent-plane fade (`plane_fade=False`, the default before
+# 2026-11-29) with either kernel.
 VARIANTS = {"vpl": ("vpl", {}), "vsgl": ("vsgl", {}), "vsgl node": ("vsgl", dict(kernel="node")),
             "vsgl exact_compact": ("vsgl", dict(lambert_lobe="exact_compact")),
             "vsgl node exact_compact": ("vsgl", dict(kernel="node", lambert_lobe="exact_compact")),
-            "vsgl plane_fade": ("vsgl", dict(plane_fade=True)), "vsgl node plane_fade": ("vsgl", dict(kernel="node", plane_fade=True))}
+            "vsgl no_fade": ("vsgl", dict(plane_fade=False)), "vsgl node no_fade": ("vsgl", dict(kernel="node", plane_fade=False))}
 
 
 def ground_truth(r: vsgl.Renderer, name: str, scene: vsgl.Scene, spp: int, cache: pathlib.Path) -> tuple[np.ndarray, np.ndarray]:
