@@ -50,8 +50,8 @@ def test_the_back_of_a_lit_plane_gets_no_indirect_light(tmp_path, make_renderer,
     diffuse form multiplies the texel's Lambert SG, whose axis comes from behind the receiver,
     with the positional SG seen from the receiver; near the plane the product's axis tips over
     the back's horizon. Without the tangent-plane fade the back received about half of the
-    front's direct light (0.48-0.55 at N = 256 and 4096, light 0.05-2 m from the plane, either
-    kernel), and shadow rays to the texels, which lie on the plane, do not stop it.
+    front's direct light (0.51-0.54 here; scripts/plane_fade_error.py for other distances), and
+    shadow rays to the texels, which lie on the plane, do not stop it.
     `plane_fade` is vsgl's default; vsgl2 takes it as an option."""
     quad = write_quad(tmp_path, half_size=1.0, specular=0.0)
     scene = vsgl.Scene.load(quad)

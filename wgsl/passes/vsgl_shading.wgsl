@@ -37,8 +37,9 @@ struct ShadeParams {
     // its diffuse lobe as a Lambertian point emitter, I(ω) = P_d·max(ω·n_t, 0)/π — so VSGLs
     // become VPLs as N reaches the texel count and converge with them (issue 18, item 3).
     exact_texels: u32,
-    // 1 (diffuse "accurate" and "sg_product"): their diffuse term fades out below each VSGL's
-    // mean tangent plane (vsgl_tangent_plane_fade; issue 18, item 4).
+    // 1 (diffuse "accurate" and "sg_product", and "papers" with the method's plane_fade): the
+    // diffuse term fades out below each VSGL's mean tangent plane (vsgl_tangent_plane_fade;
+    // issue 18, item 4).
     plane_fade: u32,
     // 0 = lighting="asg": the papers' SG–ASG specular (vsgl_specular); 1 = lighting="accurate":
     // the filtered-NDF specular (vsgl_specular_accurate); 2 = lighting="blend": the two weighted
@@ -275,11 +276,12 @@ fn shade_pair(px: ptr<function, BlockPixel>, light: TileLight) {
         }
         diffuse_power *= lit;
     }
-    // The diffuse forms that integrate the incoming lobe over the receiver's
-    // hemisphere ("accurate", "sg_product") also need the cluster's: texels reflect
-    // only into their own hemisphere, so nothing reaches p from below the cluster's
-    // tangent plane. The papers' form (horizon clamp of the lobe axis) and the
-    // specular ASG form vanish there already and are left as they are.
+    // Texels reflect only into their own hemisphere, so nothing reaches p from below
+    // the cluster's tangent plane. The diffuse forms that integrate the incoming lobe
+    // over the receiver's hemisphere ("accurate", "sg_product") always need the fade;
+    // the papers' form takes it with plane_fade (vsgl's default: its product axis tips
+    // over the horizon of a receiver behind the cluster's plane). The specular ASG form
+    // vanishes there already and is left as it is.
     var fade = 1.0;
     if (params.plane_fade == 1u) {
         let plane = light.plane;

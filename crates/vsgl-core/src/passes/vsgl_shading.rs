@@ -62,13 +62,13 @@ impl DiffuseMode {
         }
     }
 
-    /// Whether this form's diffuse term fades out below a cluster's mean tangent plane (issue 18,
-    /// item 4; the specular term never needs it: the ASG form vanishes there). The
-    /// papers' form needs no fade: its horizon clamp max(ξ_in·n, 0) already gives a lone plane
-    /// exactly 0, and it stays the papers' formula bit for bit. The accurate clamped cosine and
-    /// the SG product integrate the incoming lobe's part above the receiver's horizon, so a
-    /// plane lights itself (3.9% of its direct light at N = 4096) unless the cluster's own
-    /// hemisphere is enforced.
+    /// Whether this form's diffuse term always fades out below a cluster's mean tangent plane
+    /// (issue 18, item 4; the specular term never needs it: the ASG form vanishes there). The
+    /// accurate clamped cosine and the SG product integrate the incoming lobe's part above the
+    /// receiver's horizon, so a plane lights itself (3.9% of its direct light at N = 4096)
+    /// unless the cluster's own hemisphere is enforced. The papers' form fades only with the
+    /// method's `plane_fade` (vsgl's default): its horizon clamp gives the lit side of a lone
+    /// plane exactly 0, but not the back, which got about half the front's direct light.
     pub fn fades_below_tangent_plane(self) -> bool {
         self != DiffuseMode::Papers
     }
