@@ -879,14 +879,18 @@ impl PyRenderer {
     ///   bisection_steps, interleave, denoise, diffuse ("papers" | "accurate" | "sg_product"),
     ///   lighting ("asg": the papers' SG–ASG specular and diffuse= | "accurate": GGX with its
     ///   NDF widened by the light's spread, after Tokuyoshi et al. 2024, and the clamped-cosine
-    ///   diffuse; docs/rendering.md "SG lighting"), lambert_lobe ("hemisphere": each
-    ///   texel's Lambert SG normalized over its hemisphere | "exact_compact": that SG blended
-    ///   with an exact Lambertian point emitter where a cluster is compact as seen from the
-    ///   receiver | "papers": over the sphere, 9.2% of the diffuse power lost),
-    ///   visibility, ism_size, ism_points, ism_points_per_map, ism_bias, ism_pcf, importance,
+    ///   diffuse | "blend": the two specular forms weighted by the receiver's share of the
+    ///   widened lobe, and the clamped-cosine diffuse; docs/rendering.md "SG lighting"),
+    ///   lambert_lobe ("hemisphere": each texel's Lambert SG normalized over its hemisphere |
+    ///   "exact_compact": that SG blended with an exact Lambertian point emitter where a
+    ///   cluster is compact as seen from the receiver | "papers": over the sphere, 9.2% of the
+    ///   diffuse power lost), plane_fade (True: diffuse="papers" also fades each VSGL's light
+    ///   below its cluster's mean tangent plane, as the other forms always do; False: the
+    ///   papers' formula, which lights the back of a lit surface), visibility, ism_size, ism_points, ism_points_per_map, ism_bias, ism_pcf, importance,
     ///   importance_lights, importance_interleave, capture_rsm.
     /// - "vsgl2": two VSGLs per light by a parallel sum. shadow_size, rsm_size (any side
-    ///   32..4096), diffuse, lighting, lambert_lobe, vsgl2_reduction ("auto" | "subgroup" | "shared_memory"),
+    ///   32..4096), diffuse, lighting, lambert_lobe, plane_fade (default False: one plane
+    ///   spans the whole RSM), vsgl2_reduction ("auto" | "subgroup" | "shared_memory"),
     ///   visibility, ism_size, ism_points, ism_points_per_map, ism_bias, ism_pcf, capture_rsm.
     /// - "reference": every texel of an rsm_size² RSM (default 1024²) as a VPL. shadow_size,
     ///   rsm_size, vpl_clamp, visibility, ism_size, ism_points, ism_points_per_map, ism_bias,
