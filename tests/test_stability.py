@@ -17,7 +17,7 @@ import pytest
 import vsgl
 from vsgl import stability
 
-# Every function of wgsl/common/{math,sg,ggx,vsgl}.wgsl that has an oracle twin.
+# Every function of wgsl/common/{math,sg,ggx,vsgl,vsgl_tangent_plane}.wgsl that has an oracle twin.
 FUNCTIONS = [
     "expm1_over_x", "expm1", "mulsign", "erf", "safe_normalize", "orthonormal_basis",
     "sg_evaluate", "sg_integral", "sg_integral_approx", "sg_product", "sg_product_integral",
@@ -30,6 +30,7 @@ FUNCTIONS = [
     "ggx_smith_g2", "ggx_brdf_over_rs", "lambert_brdf_over_rd", "vsgl_specular_accurate",
     "vsgl_position_seen_from", "vsgl_incoming_radiance_seen", "vsgl_specular_receiver_from",
     "vsgl_specular_with_receiver", "vsgl_specular_blend", "vsgl_specular_filtered", "vsgl_specular_blend_with_receiver",
+    "vsgl_tangent_plane_from_moments", "vsgl_tangent_plane_fade",
 ]
 
 

@@ -11,6 +11,7 @@
 #include "common/sg.wgsl"
 #include "common/ggx.wgsl"
 #include "common/vsgl.wgsl"
+#include "common/vsgl_tangent_plane.wgsl"
 
 const WORKGROUP: u32 = 64u;
 const INPUT_WIDTH: u32 = 16u;
@@ -166,6 +167,13 @@ fn main(@builtin(global_invocation_id) gid: vec3u) {
             out1(1u, f.y);
         }
         case 45u: { out1(0u, vsgl_specular_blend_with_receiver(in_sg(0u), vsgl_specular_receiver_from(in3(5u), in3(8u), in1(11u)))); }
+        // vsgl_tangent_plane.wgsl (append-only ids)
+        case 46u: {
+            let plane = vsgl_tangent_plane_from_moments(in1(0u), in3(1u), in1(4u), in3(5u));
+            out3(0u, plane.normal);
+            out1(3u, plane.offset);
+        }
+        case 47u: { out1(0u, vsgl_tangent_plane_fade(VsglTangentPlane(in3(0u), in1(3u)), VsglPosition(in3(4u), in1(7u)), in3(8u))); }
         // Ids come from HarnessFunction only; anything else leaves the zeros.
         default: {}
     }

@@ -1,4 +1,4 @@
-//! GPU test harness: evaluates one pure WGSL function of `wgsl/common/{math,sg,ggx,vsgl}.wgsl`
+//! GPU test harness: evaluates one pure WGSL function of `wgsl/common/{math,sg,ggx,vsgl,vsgl_tangent_plane}.wgsl`
 //! on a buffer of fixed-width f32 records (`wgsl/harness/eval.wgsl`), and the f64 oracle twin of
 //! the same function on the same records, so the two can be compared element by element.
 //!
@@ -101,13 +101,16 @@ pub enum HarnessFunction {
     VsglSpecularBlend = 43,
     VsglSpecularFiltered = 44,
     VsglSpecularBlendWithReceiver = 45,
+    // vsgl_tangent_plane.wgsl (issue 18 item 4; on vsgl's default path since plane_fade)
+    VsglTangentPlaneFromMoments = 46,
+    VsglTangentPlaneFade = 47,
 }
 
 use HarnessFunction as F;
 
 impl HarnessFunction {
     /// Every function, in id order.
-    pub const ALL: [HarnessFunction; 46] = [
+    pub const ALL: [HarnessFunction; 48] = [
         F::Expm1OverX,
         F::Expm1,
         F::Mulsign,
@@ -154,6 +157,8 @@ impl HarnessFunction {
         F::VsglSpecularBlend,
         F::VsglSpecularFiltered,
         F::VsglSpecularBlendWithReceiver,
+        F::VsglTangentPlaneFromMoments,
+        F::VsglTangentPlaneFade,
     ];
 
     /// The id of the function in the shader's switch.
@@ -193,6 +198,8 @@ impl HarnessFunction {
             F::VsglPositionSeenFrom | F::VsglSpecularReceiverFrom => 7,
             F::SgToksvigMeanDirection | F::VsglLobeFromMoments => 4,
             F::VsglPositionFromMoments => 5,
+            F::VsglTangentPlaneFromMoments => 8,
+            F::VsglTangentPlaneFade => 11,
             F::SafeNormalize | F::LambertBrdfOverRd => 6,
             F::SgEvaluate | F::SgClampedCosineIntegral | F::GgxLobeSg | F::GgxLobeAsg => 7,
             F::SgProduct | F::SgProductIntegral => 8,
@@ -216,6 +223,7 @@ impl HarnessFunction {
         const S: &str = "common/sg.wgsl";
         const V: &str = "common/vsgl.wgsl";
         const G: &str = "common/ggx.wgsl";
+        const T: &str = "common/vsgl_tangent_plane.wgsl";
         const SG_OUT: &str = "axis 0-2, sharpness 3, amplitude 4";
         const RAD_N: &str = "radiance Sg 0-4, normal 5-7";
         const SG_ASG: &str = "sg axis 0-2, sg sharpness 3, asg 4-14 (x 4-6, ηx 7, y 8-10, ηy 11, z 12-14)";
@@ -303,6 +311,20 @@ impl HarnessFunction {
                 "vsgl_specular_blend_with_receiver",
                 V,
                 "radiance Sg 0-4, receiver from normal 5-7, w_o 8-10, alpha 11",
+                "value 0",
+                1,
+            ),
+            F::VsglTangentPlaneFromMoments => (
+                "vsgl_tangent_plane_from_moments",
+                T,
+                "sum weight 0, sum weighted normal 1-3, sum weighted height y·n 4, mean 5-7",
+                "normal N̄ 0-2, offset 3",
+                4,
+            ),
+            F::VsglTangentPlaneFade => (
+                "vsgl_tangent_plane_fade",
+                T,
+                "plane normal 0-2, offset 3, position mean 4-6, variance 7, shading position 8-10",
                 "value 0",
                 1,
             ),
@@ -435,6 +457,15 @@ impl HarnessFunction {
             }
             F::VsglSpecularBlendWithReceiver => {
                 o[0] = oracle::vsgl_specular_blend_with_receiver(sg(0), &oracle::vsgl_specular_receiver_from(v(5), v(8), a(11)))
+            }
+            F::VsglTangentPlaneFromMoments => {
+                let plane = oracle::vsgl_tangent_plane_from_moments(a(0), v(1), a(4), v(5));
+                put3(&mut o, 0, plane.normal);
+                o[3] = plane.offset;
+            }
+            F::VsglTangentPlaneFade => {
+                let plane = oracle::VsglTangentPlane { normal: v(0), offset: a(3) };
+                o[0] = oracle::vsgl_tangent_plane_fade(plane, oracle::VsglPosition { mean: v(4), variance: a(7) }, v(8));
             }
             F::VsglPositionSeenFrom => {
                 let s = oracle::vsgl_position_seen_from(oracle::VsglPosition { mean: v(0), variance: a(3) }, v(4));

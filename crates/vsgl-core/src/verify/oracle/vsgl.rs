@@ -285,6 +285,42 @@ pub fn vsgl_specular_blend_with_receiver(radiance: Sg, receiver: &VsglSpecularRe
     share * filtered + (1.0 - share) * vsgl_specular_with_receiver(radiance, receiver)
 }
 
+/// Same as `VSGL_PLANE_TOLERANCE` in vsgl_tangent_plane.wgsl.
+pub const VSGL_PLANE_TOLERANCE: f64 = 1.0e-3;
+
+/// A VSGL's mean tangent plane (issue 18, item 4; derived for vsgl): the weighted mean height
+/// H(p) = E_w[(p − y)·n] = (p − μ)·N̄ + offset, N̄ = Σw n/Σw, offset = μ·N̄ − Σw(y·n)/Σw.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct VsglTangentPlane {
+    pub normal: DVec3,
+    pub offset: f64,
+}
+
+/// The plane from the cluster sums Σw, Σw·n, Σw·(y·n) and the cluster mean μ (all relative to
+/// one local origin); no plane (N̄ = 0) without weight.
+pub fn vsgl_tangent_plane_from_moments(sum_weight: f64, sum_weighted_normal: DVec3, sum_weighted_height: f64, mean: DVec3) -> VsglTangentPlane {
+    if sum_weight.is_nan() || sum_weight <= 0.0 {
+        return VsglTangentPlane { normal: DVec3::ZERO, offset: 0.0 };
+    }
+    let normal = sum_weighted_normal / sum_weight;
+    VsglTangentPlane { normal, offset: mean.dot(normal) - sum_weighted_height / sum_weight }
+}
+
+/// Fraction of a VSGL's light kept at p: 0 for H(p) ≤ τ, 1 from 2τ, linear between,
+/// τ = VSGL_PLANE_TOLERANCE·(‖p − μ‖ + σ); 1 without a plane (N̄ = 0).
+pub fn vsgl_tangent_plane_fade(plane: VsglTangentPlane, position: VsglPosition, shading_position: DVec3) -> f64 {
+    if plane.normal == DVec3::ZERO {
+        return 1.0;
+    }
+    let to_receiver = shading_position - position.mean;
+    let height = to_receiver.dot(plane.normal) + plane.offset;
+    let tolerance = VSGL_PLANE_TOLERANCE * (to_receiver.length() + position.variance.max(0.0).sqrt());
+    if !(tolerance > 0.0) {
+        return if height > 0.0 { 1.0 } else { 0.0 };
+    }
+    ((height - tolerance) / tolerance).clamp(0.0, 1.0)
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

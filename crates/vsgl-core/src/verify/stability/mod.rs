@@ -75,7 +75,7 @@ use grids::rec;
 use lobes::lobe_families;
 use math::math_families;
 use sg::sg_families;
-use vsgl::vsgl_families;
+use vsgl::{tangent_plane_families, vsgl_families};
 
 /// One ULP of f32 at 1 (2⁻²³): the unit of every bound.
 pub const ULP: f64 = f32::EPSILON as f64;
@@ -234,6 +234,7 @@ pub fn families() -> Vec<Family> {
     asg_families(&mut f);
     ggx_families(&mut f);
     vsgl_families(&mut f);
+    tangent_plane_families(&mut f);
     f
 }
 

@@ -512,3 +512,113 @@ pub(super) fn vsgl_families(f: &mut Vec<Family>) {
         });
     }
 }
+
+/// vsgl_tangent_plane_from_moments: N̄ = Σw n/Σw (one division per component) and the offset
+/// μ·N̄ − Σw(y·n)/Σw (a dot, a division, a subtraction of terms of size ‖μ‖·|N̄| and |Σw(y·n)/Σw|,
+/// which cancel for a plane through the local origin's neighbourhood): the perturbation of the
+/// sums and of μ (c = 2; vectors by their length), and 2 ULP of the terms' sizes.
+fn bound_plane_normal(i: &Input, r: &Output64) -> f64 {
+    perturbation(F::VsglTangentPlaneFromMoments, i, 0..3, 2.0, &[1, 5]) + ULP * out3(r, 0).length() + FLT_MIN
+}
+fn bound_plane_offset(i: &Input, r: &Output64) -> f64 {
+    let w = a(i, 0);
+    let terms = if w > 0.0 { dot_scale(v3(i, 5), out3(r, 0)) + (a(i, 4) / w).abs() } else { 0.0 };
+    perturbation(F::VsglTangentPlaneFromMoments, i, 3..4, 2.0, &[1, 5]) + 2.0 * ULP * (terms + r[3].abs()) + FLT_MIN
+}
+fn floor_plane_offset(i: &Input, _: &Output64) -> f64 {
+    fl(v3(i, 5).length())
+}
+
+/// vsgl_tangent_plane_fade: a ramp of slope 1/τ in the height H = (p − μ)·N̄ + offset, so the
+/// error is H's rounding over τ: p − μ, the dot and the sum (c = 3 per input, positions and the
+/// normal moved by their length), and τ's own (length, sqrt, products: relative, inside c); the
+/// perturbation is taken on the f64 twin at finite size, so the clamp's corners count. A receiver
+/// whose H is not known in f32 to within τ (1 mm from a cluster 1 km from the local origin) gets
+/// a bound ≥ 1: the fade is then honestly either. 4 ULP for the ramp's own division.
+fn bound_plane_fade(i: &Input, _: &Output64) -> f64 {
+    perturbation(F::VsglTangentPlaneFade, i, 0..1, 3.0, &[0, 4, 8]) + 4.0 * ULP + FLT_MIN
+}
+
+/// The mean tangent plane of issue 18 item 4 (vsgl_tangent_plane.wgsl): from the cluster sums,
+/// and the fade it gives a receiver.
+pub(super) fn tangent_plane_families(f: &mut Vec<Family>) {
+    // From the moments: planar clusters and corners (half the weight on a second plane at 90°),
+    // summed in f32 relative to a local origin, as vsgl_moments.wgsl does; no weight.
+    let mut rng = SplitMix64(0x9a1e);
+    let (mut planar, mut corner, mut empty) = (Vec::new(), Vec::new(), Vec::new());
+    for n in axes() {
+        for &dist in &[0.0, 0.1, 1.0, 100.0, 1e4] {
+            for &radius in &[1e-4, 1e-2, 1.0] {
+                for two_planes in [false, true] {
+                    let centre = dist * rng.unit_vector();
+                    let m = oracle::orthonormal_basis(n);
+                    let second = tilt(n, std::f64::consts::FRAC_PI_2, 1.0 + rng.next_f64());
+                    let (mut w, mut sn, mut sh, mut sy) = (0f32, glam::Vec3::ZERO, 0f32, glam::Vec3::ZERO);
+                    for k in 0..64 {
+                        let texel_normal = if two_planes && k % 2 == 1 { second } else { n };
+                        let along = m.x_axis * (rng.next_f64() - 0.5) + m.y_axis * (rng.next_f64() - 0.5);
+                        let y = (centre + radius * along).as_vec3();
+                        let nn = texel_normal.as_vec3();
+                        let pw = (0.5 + rng.next_f64()) as f32;
+                        w += pw;
+                        sn += pw * nn;
+                        sh += pw * y.dot(nn);
+                        sy += pw * y;
+                    }
+                    let mean = sy / w;
+                    let r = rec(&[w as f64, sn.x as f64, sn.y as f64, sn.z as f64, sh as f64, mean.x as f64, mean.y as f64, mean.z as f64]);
+                    (if two_planes { &mut corner } else { &mut planar }).push(r);
+                }
+            }
+        }
+        empty.push(rec(&[0.0, n.x, n.y, n.z, 1.0, 1.0, 2.0, 3.0]));
+        empty.push(rec(&[-1.0, n.x, n.y, n.z, 1.0, 1.0, 2.0, 3.0]));
+    }
+    let plane_checks = || vec![check("normal", 0..3, floor_unit, bound_plane_normal), check("offset", 3..4, floor_plane_offset, bound_plane_offset)];
+    for (name, ins) in [
+        ("planar clusters 0…1e4 m from the local origin, radius 1e-4…1 m, f32 sums", planar),
+        ("corners (two planes at 90°), same grids", corner),
+        ("no weight", empty),
+    ] {
+        f.push(Family { function: F::VsglTangentPlaneFromMoments, name, inputs: ins, checks: plane_checks() });
+    }
+    // The fade: receivers at heights H = (−1e3 … 1e3)·τ, at distances 1e-3…1e4 m from μ, σ²/d²
+    // 0, 1e-6, 1, |N̄| 1 (a plane), 0.6 and 0.2 (corners, curved patches); μ near the local
+    // origin and 1e3 m from it; no plane (N̄ = 0: 1 exactly); d = σ = 0 (τ = 0: the step).
+    let (mut near, mut far, mut degenerate) = (Vec::new(), Vec::new(), Vec::new());
+    for n in axes() {
+        let m = oracle::orthonormal_basis(n);
+        for &shrink in &[1.0, 0.6, 0.2] {
+            let normal = shrink * n;
+            for &d in &[1e-3, 1.0, 1e2, 1e4] {
+                for &var_frac in &[0.0, 1e-6, 1.0] {
+                    for &h_over_tau in &[-1e3, -1.0, 0.0, 0.5, 1.0, 1.25, 1.5, 2.0, 3.0, 1e3] {
+                        for (mean_dist, list) in [(1.0, &mut near), (1e3, &mut far)] {
+                            let mean = mean_dist * rng.unit_vector();
+                            let variance: f64 = var_frac * d * d;
+                            let tau = oracle::VSGL_PLANE_TOLERANCE * (d + variance.sqrt());
+                            let offset = 0.3 * d * shrink * (rng.next_f64() - 0.5);
+                            let cos_phi = (h_over_tau * tau - offset) / (d * shrink);
+                            if cos_phi.abs() > 1.0 {
+                                continue;
+                            }
+                            let sin_phi = (1.0 - cos_phi * cos_phi).sqrt();
+                            let p = mean + d * (n * cos_phi + m.x_axis * sin_phi);
+                            list.push(rec(&[normal.x, normal.y, normal.z, offset, mean.x, mean.y, mean.z, variance, p.x, p.y, p.z]));
+                        }
+                    }
+                }
+            }
+        }
+        degenerate.push(rec(&[0.0, 0.0, 0.0, 0.5, 1.0, 2.0, 3.0, 0.1, 1.5, 2.0, 3.0]));
+        degenerate.push(rec(&[n.x, n.y, n.z, 0.0, 1.0, 2.0, 3.0, 0.0, 1.0, 2.0, 3.0]));
+        degenerate.push(rec(&[n.x, n.y, n.z, 1e-3, 1.0, 2.0, 3.0, 0.0, 1.0, 2.0, 3.0]));
+    }
+    for (name, ins) in [
+        ("H/τ −1e3…1e3, d 1e-3…1e4 m, σ²/d² 0…1, |N̄| 1, 0.6, 0.2; μ near the local origin", near),
+        ("same, μ 1e3 m from the local origin", far),
+        ("no plane (N̄ = 0); receiver at μ with σ = 0 (τ = 0)", degenerate),
+    ] {
+        f.push(Family { function: F::VsglTangentPlaneFade, name, inputs: ins, checks: vec![check("value", 0..1, floor_unit, bound_plane_fade)] });
+    }
+}
