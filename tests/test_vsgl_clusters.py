@@ -75,6 +75,20 @@ def test_the_back_of_a_lit_plane_gets_no_indirect_light(tmp_path, make_renderer,
     assert indirect.max() == 0.0, f"the back of the plane gets {indirect.sum() / direct:.3f} of the front's direct light"
 
 
+def test_plane_fade_false_is_refused_where_the_form_always_fades(renderer):
+    """`plane_fade=False` only unfades diffuse="papers"; with a form that always fades it names
+    the argument instead of being ignored, and `frame.settings` shows the fade a frame used."""
+    scene = vsgl.scenes.cornell_box()
+    kw = {"vsgl": dict(num_lights=64, rsm_size=64, aovs=["indirect"]), "vsgl2": dict(rsm_size=64, aovs=["indirect"])}
+    for method, form in (("vsgl", dict(diffuse="accurate")), ("vsgl", dict(lighting="blend")), ("vsgl2", dict(diffuse="sg_product"))):
+        with pytest.raises(vsgl.ArgumentError, match=r"^plane_fade: .* always fades"):
+            renderer.render(scene, method=method, plane_fade=False, **form, **kw[method])
+        assert renderer.render(scene, method=method, **form, **kw[method]).settings["plane_fade"] == "true"
+    assert renderer.render(scene, method="vsgl2", **kw["vsgl2"]).settings["plane_fade"] == "false"
+    assert renderer.render(scene, method="vsgl", **kw["vsgl"]).settings["plane_fade"] == "true"
+    assert renderer.render(scene, method="vsgl", plane_fade=False, **kw["vsgl"]).settings["plane_fade"] == "false"
+
+
 def _floor_and_wall(tmp_path):
     """A lit floor (y = 0) and an unlit wall (x = −1) facing it (the cone ends 0.56 m short of
     the wall): everything the wall receives comes from the floor's clusters, from in front of

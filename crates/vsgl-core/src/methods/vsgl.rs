@@ -125,18 +125,34 @@ pub(super) fn diffuse_mode(o: &Options) -> Result<DiffuseMode> {
 
 /// The options with `diffuse` resolved to the form `lighting` brings when it was left out, so
 /// `frame.settings` shows the diffuse form the frame used (it had shown "papers" under
-/// `lighting="accurate"`, which shades the clamped cosine).
+/// `lighting="accurate"`, which shades the clamped cosine), and `plane_fade` to True for the
+/// forms that always fade.
 pub(super) fn with_diffuse_of_lighting(mut o: Options) -> Result<Options> {
     if lighting_mode(&o)?.brings_clamped_cosine_diffuse() {
         o.resolve_default("diffuse", super::options::OptionValue::Str("accurate".into()));
+    }
+    if diffuse_mode(&o)?.fades_below_tangent_plane() {
+        o.resolve_default("plane_fade", super::options::OptionValue::Bool(true));
     }
     Ok(o)
 }
 
 /// Whether the diffuse term fades below each VSGL's tangent plane: always for the forms that
-/// need it, and for the papers' with `plane_fade`.
+/// need it, and for the papers' with `plane_fade`. `plane_fade=False` given with a form that
+/// always fades is an error rather than silently ignored.
 pub(super) fn plane_fade(o: &Options) -> Result<bool> {
-    Ok(diffuse_mode(o)?.fades_below_tangent_plane() || o.bool("plane_fade")?)
+    let diffuse = diffuse_mode(o)?;
+    if diffuse.fades_below_tangent_plane() {
+        if o.was_given("plane_fade") && !o.bool("plane_fade")? {
+            let name = diffuse.name();
+            return Err(Error::invalid(
+                "plane_fade",
+                format!("the diffuse form {name:?} always fades below each cluster's tangent plane (without it a lit plane lights itself); plane_fade=False applies to diffuse=\"papers\" only"),
+            ));
+        }
+        return Ok(true);
+    }
+    o.bool("plane_fade")
 }
 
 /// `lighting=` as the shading pass takes it.
