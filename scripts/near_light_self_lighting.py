@@ -2,9 +2,10 @@
 0.19 m below its ceiling, seen by the default camera from above the box's open front, so the top
 of the thin ceiling quad fills the top third of the image. `vsgl` (unshadowed, the papers' setting)
 against the every-texel `reference` of the same RSM (docs/rendering.md, "The cluster's tangent
-plane", the open note). The reference puts no indirect light on the ceiling (every texel that could
-light it is coplanar with it or below it); VSGLs put about half of the image's indirect light there
-with the papers' diffuse form.
+plane"). The reference puts no indirect light on the ceiling (every texel that could light it is
+coplanar with it or below it); the papers' diffuse form without the tangent-plane fade
+(`plane_fade=False`, the default before 2026-11-29) put about half of the image's indirect light
+there, lighting the back of the lit ceiling.
 
     .venv/bin/python scripts/near_light_self_lighting.py [--size 96] [--scene PATH]"""
 
@@ -35,9 +36,11 @@ def main() -> int:
     ceiling[a.size // 3:] = False
     truth = ref.aov("indirect").astype(float)
     print(f"reference: indirect mean {truth.mean():.4g}, share on the ceiling {truth[ceiling].sum() / truth.sum():.3f}")
-    for label, kw in (("papers' diffuse (default)", {}), ("diffuse=accurate (tangent-plane fade)", dict(diffuse="accurate")),
-                      ("plane_fade=True (the papers' form, faded)", dict(plane_fade=True)),
-                      ("kernel=node", dict(kernel="node")), ("kernel=node, plane_fade=True", dict(kernel="node", plane_fade=True)), ("lighting=blend (its diffuse is the faded clamped cosine)", dict(lighting="blend"))):
+    for label, kw in (("default (the papers' diffuse form with the fade)", {}),
+                      ("the papers' form without the fade (plane_fade=False)", dict(plane_fade=False)),
+                      ("diffuse=accurate (the clamped cosine, always faded)", dict(diffuse="accurate")),
+                      ("kernel=node", dict(kernel="node")), ("kernel=node, plane_fade=False", dict(kernel="node", plane_fade=False)),
+                      ("lighting=blend (its diffuse is the faded clamped cosine)", dict(lighting="blend"))):
         f = r.render(scene, method="vsgl", rsm_size=128, interleave=1, denoise=False, aovs=["indirect"], **kw)
         img = f.aov("indirect").astype(float)
         print(f"vsgl {label}: mean {img.mean() / truth.mean():.2f}x the reference's, share on the ceiling {img[ceiling].sum() / img.sum():.3f}")
