@@ -6,15 +6,23 @@ its own hemisphere; the sum the VSGLs estimate). docs/rendering.md, "The cluster
    seen from behind; its indirect light over the front's direct light (the reference's is 0).
 2. The built-in scenes at --size², RSM 128: `vsgl` (N = 4096, interleave 1, no denoiser) and
    `vsgl2`, with and without the fade; block error over 4×4 pixels (mean over the reference's).
+   The every-texel reference of the same RSM is the exact sum the VSGLs estimate: it has no
+   sampling error of its own.
+3. The fade's cost: wall clock of the render call, `vsgl` N = 1024, RSM 128, interleave 1, with
+   and without the fade alternating frame by frame (--rounds, the first dropped as warm-up); the
+   median of the paired ratios with their quartiles. On a CPU adapter only this ratio means
+   anything; on a GPU take `bench`'s timestamps instead (scripts/gpu_blend.sh).
 
-    .venv/bin/python scripts/plane_fade_error.py [--size 64] [--parts 1,2]"""
+    .venv/bin/python scripts/plane_fade_error.py [--size 64] [--parts 1,2,3] [--rounds 16]"""
 
 from __future__ import annotations
 
 import argparse
 import pathlib
 import sys
+import statistics
 import tempfile
+import time
 
 import numpy as np
 
@@ -61,16 +69,36 @@ def builtins(size: int) -> None:
         print(f"| {name} | " + " | ".join(cells) + " |", flush=True)
 
 
+def cost(size: int, rounds: int) -> None:
+    r = vsgl.Renderer(size, size)
+    for name in ("cornell_box", "glossy_cornell"):
+        scene = vsgl.scenes.builtin_scene(name)
+        times: dict[bool, list[float]] = {True: [], False: []}
+        for k in range(rounds):
+            for fade in (True, False):
+                start = time.perf_counter()
+                r.render(scene, method="vsgl", num_lights=1024, rsm_size=128, interleave=1, denoise=False, plane_fade=fade, aovs=["indirect"])
+                if k > 0:
+                    times[fade].append(time.perf_counter() - start)
+        ratios = sorted(a / b for a, b in zip(times[True], times[False]))
+        q = statistics.quantiles(ratios, n=4)
+        print(f"{name}: with {statistics.median(times[True]) * 1e3:.1f} ms, without {statistics.median(times[False]) * 1e3:.1f} ms; "
+              f"paired ratio {statistics.median(ratios):.3f} [{q[0]:.3f}, {q[2]:.3f}] over {len(ratios)} rounds", flush=True)
+
+
 def main() -> int:
     p = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     p.add_argument("--size", type=int, default=64)
-    p.add_argument("--parts", default="1,2")
+    p.add_argument("--parts", default="1,2,3")
+    p.add_argument("--rounds", type=int, default=16)
     a = p.parse_args()
     parts = set(a.parts.split(","))
     if "1" in parts:
         back_of_a_lit_plane(a.size)
     if "2" in parts:
         builtins(a.size)
+    if "3" in parts:
+        cost(a.size, a.rounds)
     return 0
 
 

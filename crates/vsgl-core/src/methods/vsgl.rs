@@ -127,7 +127,7 @@ pub(super) fn diffuse_mode(o: &Options) -> Result<DiffuseMode> {
 /// `frame.settings` shows the diffuse form the frame used (it had shown "papers" under
 /// `lighting="accurate"`, which shades the clamped cosine), and `plane_fade` to True for the
 /// forms that always fade.
-pub(super) fn with_diffuse_of_lighting(mut o: Options) -> Result<Options> {
+pub(super) fn with_resolved_diffuse_form(mut o: Options) -> Result<Options> {
     if lighting_mode(&o)?.brings_clamped_cosine_diffuse() {
         o.resolve_default("diffuse", super::options::OptionValue::Str("accurate".into()));
     }
@@ -166,7 +166,7 @@ pub(super) fn lighting_mode(o: &Options) -> Result<LightingMode> {
 
 impl Vsgl {
     fn new(given: &Options) -> Result<Self> {
-        let o = &with_diffuse_of_lighting(super::vpl::with_rsm_size_for_num_lights(given)?)?;
+        let o = &with_resolved_diffuse_form(super::vpl::with_rsm_size_for_num_lights(given)?)?;
         Ok(Self {
             options: o.clone(),
             visibility: VisibilityMode::from_options(o)?,

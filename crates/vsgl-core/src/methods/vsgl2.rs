@@ -61,7 +61,7 @@ struct Vsgl2 {
 
 impl Vsgl2 {
     fn new(given: &Options) -> Result<Self> {
-        let o = &super::vsgl::with_diffuse_of_lighting(given.clone())?;
+        let o = &super::vsgl::with_resolved_diffuse_form(given.clone())?;
         let reduction = match o.str("vsgl2_reduction")? {
             "subgroup" => Vsgl2Reduction::Subgroup,
             "shared_memory" => Vsgl2Reduction::SharedMemory,
