@@ -15,16 +15,10 @@ def _render(args: argparse.Namespace) -> int:
     import vsgl
     from vsgl.lightspec import describe_lights
 
-    if args.scene in vsgl.scenes.names():
-        scene = vsgl.scenes.load(args.scene)
-    elif os.path.exists(args.scene):
-        scene = vsgl.Scene.load(args.scene)
-    else:
-        print(
-            f"error: scene {args.scene!r} is neither a file nor a built-in scene "
-            f"({', '.join(vsgl.scenes.names())})",
-            file=sys.stderr,
-        )
+    try:
+        scene = _load_scene(args.scene)
+    except (ValueError, FileNotFoundError) as e:
+        print(f"error: {e}", file=sys.stderr)
         return 2
     if args.no_scene_lights:
         scene.lights = []
@@ -124,9 +118,14 @@ def _load_scene(name: str):
 
     if name in vsgl.scenes.names():
         return vsgl.scenes.load(name)
+    if name in vsgl.scenes.corpus_names():
+        return vsgl.scenes.corpus_scene(name).scene
     if os.path.exists(name):
         return vsgl.Scene.load(name)
-    raise ValueError(f"scene {name!r} is neither a file nor a built-in scene ({', '.join(vsgl.scenes.names())})")
+    raise ValueError(
+        f"scene {name!r} is neither a file, a built-in scene ({', '.join(vsgl.scenes.names())}) "
+        f"nor a corpus scene ({', '.join(vsgl.scenes.corpus_names())})"
+    )
 
 
 def _animate(args: argparse.Namespace) -> int:
@@ -217,7 +216,7 @@ def main(argv: list[str] | None = None) -> int:
     sub = parser.add_subparsers(dest="command", required=True)
 
     render = sub.add_parser("render", help="render a scene to an image and print timings")
-    render.add_argument("scene", nargs="?", default="cornell_box", help="built-in scene name or .gltf/.glb path (default: cornell_box)")
+    render.add_argument("scene", nargs="?", default="cornell_box", help="built-in or corpus scene name, or .gltf/.glb path (default: cornell_box)")
     render.add_argument("-o", "--output", default="out.png", help="output image, .png or .npy (default: out.png)")
     render.add_argument("--size", type=_size, default=(320, 180), help="WIDTHxHEIGHT (default: 320x180)")
     render.add_argument("--method", default="vsgl", choices=list(vsgl.METHODS), help="the method (default: vsgl); `python -m vsgl methods` describes each")

@@ -233,8 +233,11 @@ def _sm_clock_reader() -> _SmClock | None:
 
 
 def _scene(name: str) -> vsgl.Scene:
+    """A built-in, a corpus scene (lit by its committed spec) or a glTF file, by name."""
     if name in vsgl.scenes.names():
         return vsgl.scenes.load(name)
+    if name in vsgl.scenes.corpus_names():
+        return vsgl.scenes.corpus_scene(name).scene
     return vsgl.Scene.load(name)
 
 

@@ -13,9 +13,19 @@ Two are animated like glTF files (``scene.animations``, ``scene.set_time(t)``): 
 ``cave_flashlight`` the flashlight sweeps 35° left and right over 4 s (``flashlight_sweep``), in
 ``glossy_cornell`` the gold sphere rolls to the front and back over 4 s (``sphere_roll``). They
 show their rest pose until ``set_time`` is called.
+
+The real-scene corpus (``corpus()``, ``corpus_scene(name)``, ``corpus_names()``): the glTF files
+of the shared scene folder (``$VSGL_SCENES``, or ``shared/scenes`` beside a source checkout), each
+lit by a committed light spec in ``vsgl/corpus/NAME.json``; docs/rendering.md, "The real-scene
+corpus", has what each scene is for and the accuracy of each method on it.
 """
 
 from __future__ import annotations
+
+import json
+import os
+import pathlib
+from dataclasses import dataclass
 
 from vsgl._vsgl import Scene, builtin_scene, builtin_scene_names
 
@@ -52,3 +62,95 @@ def diffuse_cornell() -> Scene:
 
 def mirror_panel() -> Scene:
     return builtin_scene("mirror_panel")
+
+
+# --- The real-scene corpus ------------------------------------------------------------------
+#
+# Defaults, bounds and claims are chosen on real files, not only on the boxes above
+# (docs/rendering.md, "The real-scene corpus"). Each corpus scene is a glTF file of the shared
+# scene folder with a committed light spec (python/vsgl/corpus/NAME.json): which file, whether
+# the file's own lights are kept, the lights added, in the constructors' keyword names. The
+# camera is the file's own (its first camera node) or, without one, the renderer's default
+# framing of the scene's bounds.
+
+#: Where the corpus looks for the shared glTF scenes: $VSGL_SCENES, else the ``shared/scenes``
+#: folder beside the repository this package was built from.
+SHARED_SCENES_ENV = "VSGL_SCENES"
+
+_CORPUS_SPECS = pathlib.Path(__file__).resolve().parent / "corpus"
+_LIGHT_TYPES = {"spot": "SpotLight", "point": "PointLight", "directional": "DirectionalLight"}
+
+
+def shared_scenes_dir() -> pathlib.Path:
+    """The folder of shared glTF scenes the corpus files are read from (it may not exist:
+    ``corpus_available()`` says whether it does)."""
+    env = os.environ.get(SHARED_SCENES_ENV)
+    if env:
+        return pathlib.Path(env)
+    return pathlib.Path(__file__).resolve().parents[2] / ".." / "shared" / "scenes"
+
+
+@dataclass(frozen=True)
+class CorpusScene:
+    """One scene of the real-scene corpus: ``scene`` lit as its spec says (a fresh copy per
+    ``corpus()`` call), its name, the file it came from and the spec's one-line description."""
+
+    name: str
+    scene: Scene
+    path: pathlib.Path
+    about: str
+
+
+def corpus_names() -> list[str]:
+    """Names of the corpus scenes, whether or not their files are present."""
+    return sorted(p.stem for p in _CORPUS_SPECS.glob("*.json"))
+
+
+def _corpus_spec(name: str) -> dict:
+    path = _CORPUS_SPECS / f"{name}.json"
+    if not path.is_file():
+        raise ValueError(f"corpus scene {name!r}: no such scene; the corpus has {', '.join(corpus_names())}")
+    return json.loads(path.read_text())
+
+
+def _spec_light(name: str, spec: dict):
+    import vsgl
+
+    fields = dict(spec)
+    kind = fields.pop("type", None)
+    if kind not in _LIGHT_TYPES:
+        raise ValueError(f"corpus scene {name!r}: a light's type must be one of {', '.join(_LIGHT_TYPES)}, got {kind!r}")
+    for key in ("position", "direction", "color"):
+        if key in fields:
+            fields[key] = tuple(float(x) for x in fields[key])
+    return getattr(vsgl, _LIGHT_TYPES[kind])(**fields)
+
+
+def corpus_available(name: str | None = None) -> bool:
+    """Whether the shared scene files are here (all of them, or corpus scene ``name``'s)."""
+    names = corpus_names() if name is None else [name]
+    root = shared_scenes_dir()
+    return all((root / _corpus_spec(n)["file"]).is_file() for n in names)
+
+
+def corpus_scene(name: str) -> CorpusScene:
+    """Corpus scene ``name``, loaded and lit. ``FileNotFoundError`` naming the file and
+    ``$VSGL_SCENES`` when the shared scene folder does not have it."""
+    spec = _corpus_spec(name)
+    if pathlib.PurePosixPath(spec["file"]).is_absolute() or ".." in pathlib.PurePosixPath(spec["file"]).parts:
+        raise ValueError(f"corpus scene {name!r}: file {spec['file']!r} must be a path inside the shared scene folder")
+    path = shared_scenes_dir() / spec["file"]
+    if not path.is_file():
+        raise FileNotFoundError(f"corpus scene {name!r}: {path} not found (set ${SHARED_SCENES_ENV} to the shared glTF scene folder)")
+    scene = Scene.load(str(path))
+    if not spec.get("scene_lights", True):
+        scene.lights = []
+    for light in spec.get("lights", []):
+        scene.add_light(_spec_light(name, light))
+    return CorpusScene(name, scene, path.resolve(), spec.get("about", ""))
+
+
+def corpus(names_: list[str] | None = None) -> list[CorpusScene]:
+    """The corpus scenes whose files are present (or those named), lit as their specs say."""
+    chosen = names_ if names_ is not None else [n for n in corpus_names() if corpus_available(n)]
+    return [corpus_scene(n) for n in chosen]

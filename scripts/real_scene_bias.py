@@ -1,0 +1,105 @@
+"""How far each method's mean indirect light is from the every-texel reference on the real-scene
+corpus (vsgl.scenes.corpus(): the shared glTF files with their committed lights), diffuse and
+specular apart, with the 4x4 block error of the indirect AOV. The setting of the real-scene
+accuracy measurements: unshadowed, interleave 1, no denoiser, the reference of the same RSM
+(which is exactly what VSGLs and VPLs estimate, so its own error is 0 against that target).
+
+    .venv/bin/python scripts/real_scene_bias.py [--size 128] [--rsm 128] [--n 1024]
+        [--scene NAME ...] [--variant LABEL=opt=value,opt=value ...] [--json out.json]
+
+Each variant is a vsgl (or vpl/vsgl2, with method=...) option set; the defaults print the
+table of docs/rendering.md, "The real-scene corpus"."""
+
+from __future__ import annotations
+
+import argparse
+import json
+import sys
+
+import numpy as np
+
+import vsgl
+from vsgl.lightspec import option_value
+from vsgl.metrics import block_rmse
+
+DEFAULT_VARIANTS = [
+    "vpl=method=vpl",
+    "vsgl",
+    "no_fade=plane_fade=false",
+    "node=kernel=node",
+    "blend=lighting=blend",
+    "vsgl2=method=vsgl2",
+]
+
+
+def parse_variant(text: str) -> tuple[str, dict]:
+    label, _, rest = text.partition("=")
+    opts: dict = {}
+    for item in filter(None, rest.split(",")):
+        k, eq, v = item.partition("=")
+        if not eq:
+            raise SystemExit(f"--variant {text!r}: expected opt=value, got {item!r}")
+        opts[k] = option_value(v)
+    return label, opts
+
+
+def measure(r: vsgl.Renderer, scene: vsgl.Scene, rsm: int, n: int, variants) -> dict:
+    aovs = ["indirect_diffuse", "indirect_specular", "indirect"]
+    ref = r.render(scene, method="reference", rsm_size=rsm, aovs=aovs)
+    truth = {a: ref.aov(a).astype(np.float64) for a in aovs}
+    total = truth["indirect"].mean()
+    out = {"reference": {a: float(truth[a].mean()) for a in aovs}, "rows": {}}
+    for label, opts in variants:
+        opts = dict(opts)
+        method = opts.pop("method", "vsgl")
+        settings = dict(rsm_size=rsm, num_lights=n, **opts)
+        if method == "vsgl":
+            settings.setdefault("interleave", 1)
+            settings.setdefault("denoise", False)
+        if method == "vsgl2":
+            settings.pop("num_lights")
+        f = r.render(scene, method=method, aovs=aovs, **settings)
+        row = {}
+        for a, short in (("indirect_diffuse", "diffuse"), ("indirect_specular", "specular")):
+            ref_mean = truth[a].mean()
+            row[short] = float(f.aov(a).astype(np.float64).mean() / ref_mean) if ref_mean > 0 else float("nan")
+            row[short + "_share"] = float(ref_mean / total) if total > 0 else 0.0
+        row["block"] = float(block_rmse(f.aov("indirect"), truth["indirect"], 4)) if total > 0 else float("nan")
+        row["gpu_ms"] = float(f.timings_ms.get("total", float("nan")))
+        out["rows"][label] = row
+    return out
+
+
+def main() -> int:
+    p = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
+    p.add_argument("--size", type=int, default=128)
+    p.add_argument("--rsm", type=int, default=128)
+    p.add_argument("--n", type=int, default=1024)
+    p.add_argument("--scene", action="append", help="corpus or built-in scene name (repeatable); default: every corpus scene whose file is present")
+    p.add_argument("--variant", action="append", help="LABEL=opt=value,... (repeatable); default: the docs' table")
+    p.add_argument("--json", help="also write the numbers here")
+    a = p.parse_args()
+    variants = [parse_variant(v) for v in (a.variant or DEFAULT_VARIANTS)]
+    names = a.scene or [n for n in vsgl.scenes.corpus_names() if vsgl.scenes.corpus_available(n)]
+    if not names:
+        print(f"no corpus scene files under {vsgl.scenes.shared_scenes_dir()}", file=sys.stderr)
+        return 1
+    r = vsgl.Renderer(a.size, a.size)
+    results = {}
+    print(f"{a.size}x{a.size}, RSM {a.rsm}^2, N = {a.n}, unshadowed; mean diffuse / specular over the reference's, 4x4 block error")
+    for name in names:
+        scene = vsgl.scenes.load(name) if name in vsgl.scenes.names() else vsgl.scenes.corpus_scene(name).scene
+        res = measure(r, scene, a.rsm, a.n, variants)
+        results[name] = res
+        first = next(iter(res["rows"].values()))
+        print(f"\n{name}: reference indirect mean {res['reference']['indirect']:.4g} (diffuse {first['diffuse_share']:.2f}, specular {first['specular_share']:.2f} of it)")
+        for label, row in res["rows"].items():
+            print(f"  {label:28s} {row['diffuse']:6.3f} / {row['specular']:6.3f}   block {row['block']:.3f}   {row['gpu_ms']:8.1f} ms")
+    if a.json:
+        with open(a.json, "w") as fh:
+            json.dump({"size": a.size, "rsm": a.rsm, "n": a.n, "scenes": results}, fh, indent=1)
+    return 0
+
+
+if __name__ == "__main__":
+    raise SystemExit(main())

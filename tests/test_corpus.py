@@ -1,0 +1,130 @@
+"""The real-scene corpus (vsgl.scenes.corpus): its committed light specs, loading and lighting
+the shared glTF files by them, and the accuracy figures the docs report on it
+(docs/rendering.md, "The real-scene corpus"). Tests that need the files skip with a message when
+the shared scene folder is absent; the spec tests always run."""
+
+from __future__ import annotations
+
+import numpy as np
+import pytest
+
+import vsgl
+from vsgl import bench
+
+# The three lights of the real-scene accuracy measurements, exactly (the corpus must keep them:
+# every figure in the docs' tables was taken under them).
+MEASURED_LIGHTS = {
+    "flight_helmet": dict(position=(0.5, 0.9, 0.6), direction=(-0.6, -0.4, -0.6), intensity=3.0, inner=30.0, outer=40.0),
+    "cornell_box_original": dict(position=(0.0, 1.9, 0.0), direction=(0.2, -1.0, 0.1), intensity=4.0, inner=40.0, outer=60.0),
+    "boom_box": dict(position=(0.02, 0.03, 0.03), direction=(-0.5, -0.6, -0.8), intensity=0.002, inner=30.0, outer=45.0),
+}
+
+
+def _needs_files(name: str) -> None:
+    if not vsgl.scenes.corpus_available(name):
+        pytest.skip(f"skipping: corpus scene {name!r} needs {vsgl.scenes.shared_scenes_dir()} (the shared scene folder is absent)")
+
+
+def test_corpus_names_cover_every_shared_scene():
+    names = vsgl.scenes.corpus_names()
+    assert set(MEASURED_LIGHTS) <= set(names)
+    files = {vsgl.scenes._corpus_spec(n)["file"].split("/")[0] for n in names}
+    assert files == {"BoomBox", "CornellBox", "CornellBoxOriginal", "FlightHelmet", "LightsSpot"}
+
+
+@pytest.mark.parametrize("name", sorted(MEASURED_LIGHTS))
+def test_corpus_spec_keeps_the_measured_light(name):
+    spec = vsgl.scenes._corpus_spec(name)
+    assert spec["scene_lights"] is False
+    (light,) = [vsgl.scenes._spec_light(name, s) for s in spec["lights"]]
+    want = MEASURED_LIGHTS[name]
+    assert isinstance(light, vsgl.SpotLight)
+    for key in ("position", "direction"):
+        assert np.allclose(spec["lights"][0][key], want[key], rtol=0, atol=0), key
+    assert spec["lights"][0]["intensity"] == want["intensity"]
+    assert (spec["lights"][0]["inner_cone_deg"], spec["lights"][0]["outer_cone_deg"]) == (want["inner"], want["outer"])
+
+
+def test_every_spec_light_is_valid():
+    for name in vsgl.scenes.corpus_names():
+        for s in vsgl.scenes._corpus_spec(name)["lights"]:
+            vsgl.scenes._spec_light(name, s)
+
+
+def test_unknown_corpus_scene_names_the_choices():
+    with pytest.raises(ValueError, match="boom_box"):
+        vsgl.scenes.corpus_scene("no_such_scene")
+
+
+def test_missing_shared_folder_names_the_file_and_the_variable(monkeypatch, tmp_path):
+    monkeypatch.setenv(vsgl.scenes.SHARED_SCENES_ENV, str(tmp_path))
+    assert not vsgl.scenes.corpus_available()
+    assert vsgl.scenes.corpus() == []
+    with pytest.raises(FileNotFoundError, match=r"VSGL_SCENES"):
+        vsgl.scenes.corpus_scene("boom_box")
+
+
+@pytest.mark.parametrize("name", vsgl.scenes.corpus_names())
+def test_corpus_scene_loads_lit_and_renders(name, make_renderer):
+    _needs_files(name)
+    c = vsgl.scenes.corpus_scene(name)
+    spec = vsgl.scenes._corpus_spec(name)
+    if spec["scene_lights"]:
+        assert len(c.scene.lights) >= 1
+    else:
+        assert len(c.scene.lights) == len(spec["lights"])
+    f = make_renderer(32, 32).render(c.scene, method="vsgl", rsm_size=32, num_lights=64, aovs=["image", "indirect"])
+    assert np.isfinite(f.image).all() and f.image.max() > 0
+
+
+def test_bench_and_cli_take_corpus_names():
+    _needs_files("cornell_box_original")
+    scene = bench._scene("cornell_box_original")
+    assert scene.source.endswith("CornellBoxOriginal.glb")
+    assert len(scene.lights) == 1
+
+
+# --- Accuracy on the corpus: the setting of docs/rendering.md's corpus table ------------------
+# 128², RSM 128², N = 1024, unshadowed, interleave 1, no denoiser, against the every-texel
+# reference of the same RSM.
+
+def _ratios(renderer, scene, method, **kw):
+    aovs = ["indirect_diffuse", "indirect_specular"]
+    ref = renderer.render(scene, method="reference", rsm_size=128, aovs=aovs)
+    f = renderer.render(scene, method=method, rsm_size=128, num_lights=1024, aovs=aovs, **kw)
+    return tuple(float(f.aov(a).mean() / ref.aov(a).mean()) for a in aovs)
+
+
+@pytest.mark.parametrize("name", sorted(MEASURED_LIGHTS))
+def test_vpls_are_near_the_reference_on_the_measured_scenes(name, make_renderer):
+    # The corpus and its reference are consistent: VPLs, which estimate the reference without
+    # bias, land near it (measured 0.90-1.00 diffuse, 0.98-1.03 specular; the 15% is the Monte
+    # Carlo noise of 1024 VPLs on BoomBox, whose few lit concave texels carry its indirect light).
+    _needs_files(name)
+    d, s = _ratios(make_renderer(128, 128), vsgl.scenes.corpus_scene(name).scene, "vpl")
+    assert abs(d - 1) < 0.15 and abs(s - 1) < 0.15, (d, s)
+
+
+@pytest.mark.xfail(strict=True, reason="open: default vsgl's bias on real scenes (docs/rendering.md, 'The real-scene corpus'): BoomBox specular 9.3x, FlightHelmet 0.32/0.41")
+@pytest.mark.parametrize("name", ["boom_box", "flight_helmet"])
+def test_default_vsgl_within_10_percent_on_the_measured_scenes(name, make_renderer):
+    _needs_files(name)
+    d, s = _ratios(make_renderer(128, 128), vsgl.scenes.corpus_scene(name).scene, "vsgl", interleave=1, denoise=False)
+    assert abs(d - 1) <= 0.10 and abs(s - 1) <= 0.10, (d, s)
+
+
+@pytest.mark.parametrize("plane_fade", [True, False])
+def test_lone_plane_gets_no_indirect_light(plane_fade, make_renderer):
+    # LightsSpot is one plane under three spots: every texel is coplanar with every receiver,
+    # so the reference has no indirect light, and neither may VSGLs: each incoming-radiance SG
+    # of a coplanar cluster points below the receiver's horizon (the papers' horizon clamp, which
+    # plane_fade=False leaves alone to stop it).
+    _needs_files("lights_spot")
+    r = make_renderer(64, 64)
+    scene = vsgl.scenes.corpus_scene("lights_spot").scene
+    direct = r.render(scene, method="direct", aovs=["direct"]).aov("direct").mean()
+    ref = r.render(scene, method="reference", rsm_size=64, aovs=["indirect"]).aov("indirect").mean()
+    f = r.render(scene, method="vsgl", rsm_size=64, num_lights=256, interleave=1, denoise=False, plane_fade=plane_fade, aovs=["indirect"])
+    assert direct > 0
+    assert ref <= 1e-6 * direct
+    assert f.aov("indirect").mean() <= 1e-3 * direct
