@@ -105,7 +105,7 @@ def test_vpls_are_near_the_reference_on_the_measured_scenes(name, make_renderer)
     assert abs(d - 1) < 0.15 and abs(s - 1) < 0.15, (d, s)
 
 
-@pytest.mark.xfail(strict=True, reason="open: default vsgl's bias on real scenes (docs/rendering.md, 'The real-scene corpus'): BoomBox specular 9.3x, FlightHelmet 0.32/0.41")
+@pytest.mark.xfail(strict=True, reason="open: default vsgl against the same-RSM reference (docs/rendering.md, 'The real-scene corpus'): BoomBox 1.39/9.34 (the reference is the one that is off: 0.074x the path tracer's specular), FlightHelmet 0.46/0.51 (near-field light)")
 @pytest.mark.parametrize("name", ["boom_box", "flight_helmet"])
 def test_default_vsgl_within_10_percent_on_the_measured_scenes(name, make_renderer):
     _needs_files(name)
@@ -113,18 +113,60 @@ def test_default_vsgl_within_10_percent_on_the_measured_scenes(name, make_render
     assert abs(d - 1) <= 0.10 and abs(s - 1) <= 0.10, (d, s)
 
 
-@pytest.mark.parametrize("plane_fade", [True, False])
-def test_lone_plane_gets_no_indirect_light(plane_fade, make_renderer):
+@pytest.mark.parametrize("form", [{}, dict(lighting="asg"), dict(lighting="asg", plane_fade=False)])
+def test_lone_plane_gets_no_indirect_light(form, make_renderer):
     # LightsSpot is one plane under three spots: every texel is coplanar with every receiver,
     # so the reference has no indirect light, and neither may VSGLs: each incoming-radiance SG
     # of a coplanar cluster points below the receiver's horizon (the papers' horizon clamp, which
-    # plane_fade=False leaves alone to stop it).
+    # lighting="asg" with plane_fade=False leaves alone to stop it), and the default's
+    # clamped-cosine diffuse fades below each cluster's tangent plane.
     _needs_files("lights_spot")
     r = make_renderer(64, 64)
     scene = vsgl.scenes.corpus_scene("lights_spot").scene
     direct = r.render(scene, method="direct", aovs=["direct"]).aov("direct").mean()
     ref = r.render(scene, method="reference", rsm_size=64, aovs=["indirect"]).aov("indirect").mean()
-    f = r.render(scene, method="vsgl", rsm_size=64, num_lights=256, interleave=1, denoise=False, plane_fade=plane_fade, aovs=["indirect"])
+    f = r.render(scene, method="vsgl", rsm_size=64, num_lights=256, interleave=1, denoise=False, aovs=["indirect"], **form)
     assert direct > 0
     assert ref <= 1e-6 * direct
     assert f.aov("indirect").mean() <= 1e-3 * direct
+
+
+# --- Against the independent truth (the bidirectional path tracer, shadowed like it) ----------
+
+def _over_path_tracer(renderer, scene, runs, spp=256):
+    aovs = ["indirect_diffuse", "indirect_specular"]
+    pt = renderer.render(scene, method="pathtrace", strategy="bidirectional", spp=spp, aovs=aovs)
+    truth = [float(pt.aov(a).astype(np.float64).mean()) for a in aovs]
+    out = {}
+    for label, method, kw in runs:
+        f = renderer.render(scene, method=method, rsm_size=128, visibility="raytrace", aovs=aovs, **kw)
+        out[label] = [float(f.aov(a).astype(np.float64).mean()) / t for a, t in zip(aovs, truth)]
+    return out
+
+
+def test_the_default_lighting_is_nearer_the_path_tracer_than_the_papers(make_renderer):
+    # CornellBoxOriginal (roughness 1: rough lobes, where the papers' SG-ASG product loses half
+    # of the light) against the path tracer (its own error 0.07% of the mean at 256 spp):
+    # measured asg 0.854 / 0.388, blend 0.892 / 0.907 (scripts/real_scene_truth.py).
+    _needs_files("cornell_box_original")
+    vs = dict(num_lights=1024, interleave=1, denoise=False)
+    got = _over_path_tracer(make_renderer(128, 128), vsgl.scenes.corpus_scene("cornell_box_original").scene,
+                            [("default", "vsgl", vs), ("asg", "vsgl", dict(vs, lighting="asg"))])
+    print(got)
+    for k in range(2):
+        assert abs(got["default"][k] - 1) < abs(got["asg"][k] - 1), (k, got)
+    assert abs(got["default"][1] - 1) < 0.15, got
+
+
+def test_the_every_texel_reference_misses_most_of_boomboxs_specular(make_renderer):
+    # What the docs explain BoomBox's "vsgl specular 9x the reference" by: against the path
+    # tracer (1.1% own error) a 128² RSM's every-texel reference has 0.074 of the specular light
+    # (point VPLs on a 0.6 mm grid under metal lobes narrower than its angular spacing) and
+    # vsgl 0.57: the reference is the one that is off.
+    _needs_files("boom_box")
+    vs = dict(num_lights=1024, interleave=1, denoise=False)
+    got = _over_path_tracer(make_renderer(128, 128), vsgl.scenes.corpus_scene("boom_box").scene,
+                            [("reference", "reference", {}), ("vsgl", "vsgl", vs)])
+    print(got)
+    assert got["reference"][1] < 0.2, got
+    assert 0.4 < got["vsgl"][1] < 1.2, got

@@ -74,7 +74,11 @@ def test_raytraced_visibility_changes_nothing_where_nothing_occludes(tmp_path, m
     scene.add_light(vsgl.SpotLight(position=(0.3, 1.8, 0.3), direction=(-0.2, -1, -0.8), intensity=10.0, inner_cone_deg=30, outer_cone_deg=45))
     cam = vsgl.Camera.look_at(eye=(0, 1.0, 1.6), target=(0, 0.6, -2), fov_y_deg=60)
     r = make_renderer(24, 24)
-    opts = OPTIONS[method]
+    # vsgl with the papers' lighting: under its default "blend" the clamped-cosine diffuse lets
+    # floor-to-wall pairs at the seam count, and a few of their shadow rays graze the floor
+    # (3e-5 of the image's indirect light lost, 4e-4 of a pixel at most; docs/rendering.md,
+    # "The real-scene corpus", what was left alone).
+    opts = dict(OPTIONS[method], **({"lighting": "asg"} if method == "vsgl" else {}))
     a = r.render(scene, camera=cam, method=method, visibility="none", **opts).aov("indirect").astype(np.float64)
     # plan="full": the shadow rays are cast (the pass plan would leave them out here).
     traced = r.render(scene, camera=cam, method=method, visibility="raytrace", plan="full", **opts)

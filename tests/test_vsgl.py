@@ -302,7 +302,7 @@ def test_shading_equals_a_float64_evaluation_of_the_frames_own_vsgls(renderer, s
     of its record (plane_normal N̄, plane_offset): 0 for H = (p − μ)·N̄ + offset ≤ τ, 1 from 2τ,
     τ = 10⁻³·(‖p − μ‖ + σ) (docs/rendering.md, "The cluster's tangent plane")."""
     scene = vsgl.scenes.load(scene_name)
-    f = renderer.render(scene, method="vsgl", num_lights=64, rsm_size=64, interleave=1, lambert_lobe=lambert_lobe, plane_fade=plane_fade)
+    f = renderer.render(scene, method="vsgl", num_lights=64, rsm_size=64, interleave=1, lighting="asg", lambert_lobe=lambert_lobe, plane_fade=plane_fade)
     assert ("vsgl_shading[diffuse_only]" in f.passes) == (scene_name == "diffuse_cornell")
     cam = scene.cameras[0]
     h, w = f.height, f.width
@@ -358,8 +358,8 @@ def test_shading_equals_a_float64_evaluation_of_the_frames_own_vsgls(renderer, s
 
 def test_accurate_diffuse_is_an_option(renderer):
     scene = vsgl.scenes.cornell_box()
-    a = renderer.render(scene, method="vsgl", num_lights=64, rsm_size=64, interleave=1)
-    b = renderer.render(scene, method="vsgl", num_lights=64, rsm_size=64, interleave=1, diffuse="accurate")
+    a = renderer.render(scene, method="vsgl", num_lights=64, rsm_size=64, interleave=1, lighting="asg")
+    b = renderer.render(scene, method="vsgl", num_lights=64, rsm_size=64, interleave=1, lighting="asg", diffuse="accurate")
     assert a.settings["diffuse"] == "papers" and b.settings["diffuse"] == "accurate"
     assert not np.array_equal(a.aov("indirect_diffuse"), b.aov("indirect_diffuse"))
     assert np.isfinite(b.image).all()
@@ -379,7 +379,7 @@ def test_hemisphere_normalized_lambert_lobes_deliver_the_diffuse_power(make_rend
     r = make_renderer(32, 32)
     scene = vsgl.scenes.diffuse_cornell()
     ref = r.render(scene, method="reference", rsm_size=64, aovs=["indirect"]).aov("indirect").astype(np.float64)
-    kw = dict(num_lights=num_lights, interleave=1, denoise=False, plane_fade=False) if method == "vsgl" else {}
+    kw = dict(num_lights=num_lights, interleave=1, denoise=False, lighting="asg", plane_fade=False) if method == "vsgl" else {}
     means = {}
     for lobe in ("hemisphere", "papers"):
         f = r.render(scene, method=method, rsm_size=64, lambert_lobe=lobe, aovs=["indirect"], **kw)

@@ -27,13 +27,15 @@ def _spot_over_plane(scene: vsgl.Scene) -> tuple[vsgl.Scene, vsgl.Camera]:
     return scene, cam
 
 
-@pytest.mark.parametrize("diffuse", ["papers", "accurate", "sg_product"])
+@pytest.mark.parametrize("diffuse", ["papers", "accurate", "sg_product", None])
 @pytest.mark.parametrize("kernel", ["integral", "node", "density"])
 def test_a_lone_plane_gets_no_indirect_light_in_every_diffuse_form(tmp_path, make_renderer, diffuse, kernel):
+    # diffuse=None: the method's defaults (lighting="blend"); the others under lighting="asg".
+    form = dict(lighting="asg", diffuse=diffuse) if diffuse else {}
     scene, cam = _spot_over_plane(vsgl.Scene.load(write_quad(tmp_path, half_size=3.0, roughness=0.6, specular=0.5)))
     r = make_renderer(SIZE, SIZE)
     for n in (256, 4096):
-        f = r.render(scene, camera=cam, method="vsgl", num_lights=n, rsm_size=64, kernel=kernel, diffuse=diffuse, interleave=1, denoise=False, aovs=["direct", "indirect"])
+        f = r.render(scene, camera=cam, method="vsgl", num_lights=n, rsm_size=64, kernel=kernel, interleave=1, denoise=False, aovs=["direct", "indirect"], **form)
         direct = f.aov("direct").astype(np.float64)
         indirect = f.aov("indirect").astype(np.float64)
         assert direct.sum() > 0
@@ -52,7 +54,8 @@ def test_the_back_of_a_lit_plane_gets_no_indirect_light(tmp_path, make_renderer,
     the back's horizon. Without the tangent-plane fade the back received about half of the
     front's direct light (0.51-0.54 here; scripts/plane_fade_error.py for other distances), and
     shadow rays to the texels, which lie on the plane, do not stop it.
-    `plane_fade` is vsgl's default; vsgl2 takes it as an option."""
+    `plane_fade` is vsgl's default with lighting="asg" (its default lighting, "blend", shades the
+    clamped-cosine diffuse, which always fades); vsgl2 takes it as an option."""
     quad = write_quad(tmp_path, half_size=1.0, specular=0.0)
     scene = vsgl.Scene.load(quad)
     scene.add_light(vsgl.PointLight(position=(0.0, 0.3, 0.2), intensity=3.0))
@@ -64,15 +67,18 @@ def test_the_back_of_a_lit_plane_gets_no_indirect_light(tmp_path, make_renderer,
     extra = dict(num_lights=1024, interleave=1, denoise=False) if method == "vsgl" else {}
     reference = r.render(scene, camera=back, method="reference", rsm_size=64, aovs=["indirect"]).aov("indirect")
     assert reference.max() == 0.0
-    faded = r.render(scene, camera=back, method=method, rsm_size=64, aovs=["indirect"], **extra, **kw)
-    unfaded = r.render(scene, camera=back, method=method, rsm_size=64, aovs=["indirect"], **extra, **{**kw, "plane_fade": False})
-    assert faded.settings["plane_fade"] == "true"
+    papers = dict(lighting="asg") if method == "vsgl" else {}
+    unfaded = r.render(scene, camera=back, method=method, rsm_size=64, aovs=["indirect"], **extra, **{**kw, **papers, "plane_fade": False})
     leak = unfaded.aov("indirect").astype(np.float64).sum() / direct
     print(f"{method} {kw}: the back's indirect light over the front's direct, without the fade {leak:.3f}")
     assert leak > 0.2, "the papers' form no longer lights the back: the fade has nothing to remove here"
-    indirect = faded.aov("indirect").astype(np.float64)
-    assert np.all(np.isfinite(indirect))
-    assert indirect.max() == 0.0, f"the back of the plane gets {indirect.sum() / direct:.3f} of the front's direct light"
+    # The method's default and, for vsgl, the papers' form with the fade.
+    for form in ({}, papers) if papers else ({},):
+        faded = r.render(scene, camera=back, method=method, rsm_size=64, aovs=["indirect"], **extra, **kw, **form)
+        assert faded.settings["plane_fade"] == "true"
+        indirect = faded.aov("indirect").astype(np.float64)
+        assert np.all(np.isfinite(indirect))
+        assert indirect.max() == 0.0, f"{form}: the back of the plane gets {indirect.sum() / direct:.3f} of the front's direct light"
 
 
 def test_plane_fade_false_is_refused_where_the_form_always_fades(renderer):
@@ -80,13 +86,13 @@ def test_plane_fade_false_is_refused_where_the_form_always_fades(renderer):
     the argument instead of being ignored, and `frame.settings` shows the fade a frame used."""
     scene = vsgl.scenes.cornell_box()
     kw = {"vsgl": dict(num_lights=64, rsm_size=64, aovs=["indirect"]), "vsgl2": dict(rsm_size=64, aovs=["indirect"])}
-    for method, form in (("vsgl", dict(diffuse="accurate")), ("vsgl", dict(lighting="blend")), ("vsgl2", dict(diffuse="sg_product"))):
+    for method, form in (("vsgl", dict(lighting="asg", diffuse="accurate")), ("vsgl", dict(lighting="blend")), ("vsgl", {}), ("vsgl2", dict(diffuse="sg_product"))):
         with pytest.raises(vsgl.ArgumentError, match=r"^plane_fade: .* always fades"):
             renderer.render(scene, method=method, plane_fade=False, **form, **kw[method])
         assert renderer.render(scene, method=method, **form, **kw[method]).settings["plane_fade"] == "true"
     assert renderer.render(scene, method="vsgl2", **kw["vsgl2"]).settings["plane_fade"] == "false"
-    assert renderer.render(scene, method="vsgl", **kw["vsgl"]).settings["plane_fade"] == "true"
-    assert renderer.render(scene, method="vsgl", plane_fade=False, **kw["vsgl"]).settings["plane_fade"] == "false"
+    assert renderer.render(scene, method="vsgl", lighting="asg", **kw["vsgl"]).settings["plane_fade"] == "true"
+    assert renderer.render(scene, method="vsgl", lighting="asg", plane_fade=False, **kw["vsgl"]).settings["plane_fade"] == "false"
 
 
 def _floor_and_wall(tmp_path):
@@ -124,7 +130,7 @@ def test_the_fade_keeps_light_that_reaches_a_receiver_in_front_of_the_cluster(tm
     assert want > 0
     ratio = {}
     for kernel, form in (("node", diffuse), ("integral", diffuse), ("integral", "papers")):
-        f = r.render(scene, method="vsgl", num_lights=4096, interleave=1, denoise=False, kernel=kernel, diffuse=form, **kw)
+        f = r.render(scene, method="vsgl", num_lights=4096, interleave=1, denoise=False, kernel=kernel, lighting="asg", diffuse=form, **kw)
         ratio[kernel, form] = f.aov("indirect")[wall].astype(np.float64).sum() / want
         assert f.aov("indirect")[floor].max() == 0.0, (kernel, form)
     print(f"wall indirect vsgl / reference: {ratio}")

@@ -26,7 +26,7 @@ const OPTIONS: &[OptionSpec] = &[
     // The parallel sum tiles any side; only the mip-based methods need a power of two.
     OptionSpec { kind: OptionKind::Int { min: 32, max: 4096, power_of_two: false }, ..common::RSM_SIZE },
     common::DIFFUSE,
-    common::LIGHTING,
+    common::lighting("asg"),
     common::LAMBERT_LOBE,
     // Off by default: vsgl2's one plane spans the whole RSM, and on the Cornell boxes fading by
     // it loses light (docs/rendering.md, "The cluster's tangent plane").
