@@ -25,9 +25,11 @@ from vsgl.metrics import block_rmse
 DEFAULT_VARIANTS = [
     "vpl=method=vpl",
     "vsgl",
-    "no_fade=plane_fade=false",
+    "before=lighting=asg,coherence=0",
+    "blend_only=coherence=0",
+    "asg_coherent=lighting=asg",
+    "papers=lighting=asg,coherence=0,plane_fade=false,lambert_lobe=papers",
     "node=kernel=node",
-    "blend=lighting=blend",
     "vsgl2=method=vsgl2",
 ]
 
@@ -43,7 +45,7 @@ def parse_variant(text: str) -> tuple[str, dict]:
     return label, opts
 
 
-def measure(r: vsgl.Renderer, scene: vsgl.Scene, rsm: int, n: int, variants) -> dict:
+def measure(r: vsgl.Renderer, scene: vsgl.Scene, rsm: int, n: int, variants, out_of_the_box: bool = False) -> dict:
     aovs = ["indirect_diffuse", "indirect_specular", "indirect"]
     ref = r.render(scene, method="reference", rsm_size=rsm, aovs=aovs)
     truth = {a: ref.aov(a).astype(np.float64) for a in aovs}
@@ -52,12 +54,12 @@ def measure(r: vsgl.Renderer, scene: vsgl.Scene, rsm: int, n: int, variants) -> 
     for label, opts in variants:
         opts = dict(opts)
         method = opts.pop("method", "vsgl")
-        settings = dict(rsm_size=rsm, num_lights=n, **opts)
-        if method == "vsgl":
+        settings = dict(opts) if out_of_the_box else dict(rsm_size=rsm, num_lights=n, **opts)
+        if method == "vsgl" and not out_of_the_box:
             settings.setdefault("interleave", 1)
             settings.setdefault("denoise", False)
         if method == "vsgl2":
-            settings.pop("num_lights")
+            settings.pop("num_lights", None)
         f = r.render(scene, method=method, aovs=aovs, **settings)
         row = {}
         for a, short in (("indirect_diffuse", "diffuse"), ("indirect_specular", "specular")):
@@ -78,6 +80,8 @@ def main() -> int:
     p.add_argument("--scene", action="append", help="corpus or built-in scene name (repeatable); default: every corpus scene whose file is present")
     p.add_argument("--variant", action="append", help="LABEL=opt=value,... (repeatable); default: the docs' table")
     p.add_argument("--json", help="also write the numbers here")
+    p.add_argument("--out-of-the-box", action="store_true",
+                   help="each method with its own defaults (N, RSM, interleave, denoiser) against the reference of an RSM of --rsm")
     a = p.parse_args()
     variants = [parse_variant(v) for v in (a.variant or DEFAULT_VARIANTS)]
     names = a.scene or [n for n in vsgl.scenes.corpus_names() if vsgl.scenes.corpus_available(n)]
@@ -86,10 +90,11 @@ def main() -> int:
         return 1
     r = vsgl.Renderer(a.size, a.size)
     results = {}
-    print(f"{a.size}x{a.size}, RSM {a.rsm}^2, N = {a.n}, unshadowed; mean diffuse / specular over the reference's, 4x4 block error")
+    setting = "each method's own defaults" if a.out_of_the_box else f"RSM {a.rsm}^2, N = {a.n}, interleave 1, no denoiser"
+    print(f"{a.size}x{a.size}, {setting}, unshadowed; mean diffuse / specular over the every-texel reference's (RSM {a.rsm}^2), 4x4 block error")
     for name in names:
         scene = vsgl.scenes.load(name) if name in vsgl.scenes.names() else vsgl.scenes.corpus_scene(name).scene
-        res = measure(r, scene, a.rsm, a.n, variants)
+        res = measure(r, scene, a.rsm, a.n, variants, a.out_of_the_box)
         results[name] = res
         first = next(iter(res["rows"].values()))
         print(f"\n{name}: reference indirect mean {res['reference']['indirect']:.4g} (diffuse {first['diffuse_share']:.2f}, specular {first['specular_share']:.2f} of it)")

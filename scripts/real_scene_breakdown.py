@@ -63,6 +63,8 @@ def main() -> int:
     ap.add_argument("--receivers", type=int, default=400)
     ap.add_argument("--coherent", type=float, action="append", default=[],
                     help="also split each node while its positional variance exceeds KAPPA x 4^level x its texels' mean footprint variance (repeatable)")
+    ap.add_argument("--min-normal-coherence", type=float, default=0.0,
+                    help="with --coherent, also split while the node's mean normal |N| is below this")
     a = ap.parse_args()
     c = vsgl.scenes.corpus_scene(a.scene) if a.scene in vsgl.scenes.corpus_names() else None
     scene = c.scene if c else vsgl.scenes.load(a.scene)
@@ -108,6 +110,10 @@ def main() -> int:
     om = dv / np.sqrt(d2)[..., None]
     e = fd[m][None] / np.pi * np.maximum(-(om * nt[m][None]).sum(-1), 0) * np.maximum((om * n[:, None]).sum(-1), 0) / d2
     dist = np.sqrt(d2) / diag
+    # Each texel as a patch of its footprint, 1/(d² + 2σ²) (what kernel="node" shades a
+    # single-texel VSGL with, vsgl_shading.wgsl lambert_patch_irradiance), against a point.
+    patch = e * d2 / (d2 + 2 * footprint[m][None])
+    print(f"{a.scene}: every texel as a patch of its footprint delivers {patch.sum() / e.sum():.3f} of the point texels' light")
     print(f"{a.scene}: the reference's light at the receivers by texel distance (fraction of the bounds diagonal {diag:.3g}):")
     for edge in (0.005, 0.01, 0.02, 0.05, 0.1):
         print(f"  within {edge:5.3f}: {e[dist < edge].sum() / e.sum():.3f}")
@@ -133,7 +139,8 @@ def main() -> int:
                 mu_ = (ww[:, None] * y[idx]).sum(0) / ww.sum()
                 var_ = (ww * (y[idx] ** 2).sum(-1)).sum() / ww.sum() - mu_ @ mu_
                 vbar = (ww * footprint[idx]).sum() / ww.sum()
-                if var_ > kappa * 4**l * vbar:
+                coherence = np.linalg.norm((ww[:, None] * nt[idx]).sum(0) / ww.sum())
+                if var_ > kappa * 4**l * vbar or coherence < a.min_normal_coherence:
                     half = size // 2
                     for dy in (0, half):
                         for dx in (0, half):
@@ -202,7 +209,7 @@ def main() -> int:
                 totals[key] += [e_ref[sel].sum(), (e_sg * fade)[sel].sum(), e_sg[sel].sum(), (e_sg * front)[sel].sum(), (e_sg * soft)[sel].sum()]
             by_coherence[int(coherent)] += [e_ref.sum(), (e_sg * fade).sum(), (e_sg * front).sum()]
         whole = sum(v[0] for v in totals.values())
-        how = "" if kappa is None else f", split while sigma^2 > {kappa:g} x 4^l x footprint: {len(ids)} clusters"
+        how = f": {len(ids)} clusters" if kappa is None else f", split while sigma^2 > {kappa:g} x 4^l x footprint or |N| < {a.min_normal_coherence:g}: {len(ids)} clusters"
         print(f"{a.scene}, RSM {a.rsm}^2, clusters of {4**level} texels (level {level}{how}), {len(pick)} receivers drawn from the reference's indirect diffuse:")
         all_ = sum(totals.values())
         print(f"  all: VSGL/reference {all_[1] / whole:.3f} with the fade, {all_[2] / whole:.3f} without, {all_[3] / whole:.3f} times the exact front fraction, {all_[4] / whole:.3f} times its normal model")

@@ -8,6 +8,11 @@
 //     "integral" [Tok16 Eq. 3, Algorithm 1]: solve (4^l/M) p̄(x_i, l) = K/N by bisection;
 //     "node" (issue 18, item 1): the coarsest quadtree node on x_i's texel path whose mass
 //     P_v = W_v/W is at most K/N — the 2016 rule applied to whole nodes;
+//     with `coherence` c > 0 (derived for vsgl, not in the papers; docs/rendering.md, "The
+//     real-scene corpus"), each kernel also shrinks until its texels' mean normal has length
+//     |Σw n|/Σw ≥ c: a cluster that straddles a crease or a depth discontinuity of the RSM
+//     (a corner, a helmet's brim over its face) is not one Gaussian emitter, and the light its
+//     parts exchange at close range is lost when it is shaded as one;
 //  3. cluster totals of every moment f from the mips read trilinearly at (x_i, l_i):
 //     "density"  [Tok16 Eq. 4]: ∫f g ≈ f̄(x_i, l_i) / max(N p(x_i), 1),
 //     "integral" [Tok16 Eq. 5]: ∫f g ≈ f̄(x_i, l_i) / (N p̄(x_i, l_i)),
@@ -51,7 +56,9 @@ struct GenParams {
     planes: u32,
     // 1: `pyramid` is a density other than chain A's weight (bidirectional importance).
     importance: u32,
-    _pad1: u32,
+    // Smallest mean-normal length |Σw n|/Σw a kernel may have (0: the papers' kernels); needs
+    // chain F (planes = 1).
+    coherence: f32,
     _pad2: u32,
 }
 
@@ -128,6 +135,44 @@ fn kernel_mass(s: vec2f, level: f32, total: f32) -> f32 {
     return exp2(2.0 * level) * moment_trilinear(0u, s, level).w / total;
 }
 
+// Whether the kernel at `level` (trilinear at `s`; for "node" the node at the integer level)
+// has its texels' normals coherent enough: |Σw n| ≥ c·Σw from chains F and A.
+fn kernel_is_coherent(s: vec2f, level: f32, node: vec2u) -> bool {
+    if (params.coherence <= 0.0 || params.planes != 1u) {
+        return true;
+    }
+    var a: vec4f;
+    var f: vec4f;
+    if (params.kernel == 2u) {
+        a = moment_texel(0u, u32(level), vec2i(node));
+        f = moment_texel(5u, u32(level), vec2i(node));
+    } else {
+        a = moment_trilinear(0u, s, level);
+        f = moment_trilinear(5u, s, level);
+    }
+    return !(a.w > 0.0) || length(f.xyz) >= params.coherence * a.w;
+}
+
+// The largest level in [0, level] whose kernel is coherent (kernel_is_coherent), by bisection:
+// the normals of a kernel spread as it grows, so coherence falls with the level. Level 0 (about
+// one texel) is taken whatever its coherence.
+fn coherent_level(s: vec2f, level: f32) -> f32 {
+    if (kernel_is_coherent(s, level, vec2u(0u))) {
+        return level;
+    }
+    var lo = 0.0;
+    var hi = level;
+    for (var k = 0u; k < params.bisection_steps; k++) {
+        let mid = 0.5 * (lo + hi);
+        if (kernel_is_coherent(s, mid, vec2u(0u))) {
+            lo = mid;
+        } else {
+            hi = mid;
+        }
+    }
+    return lo;
+}
+
 // A cluster's texel-averaged moment of `chain`: "node" reads its quadtree node exactly at the
 // integer `level`; the filtered kernels read trilinearly at centre `s` and the continuous level.
 fn cluster_moment(chain: u32, level: f32, node: vec2u, s: vec2f) -> vec4f {
@@ -180,14 +225,15 @@ fn main(@builtin(global_invocation_id) gid: vec3u) {
         var l = params.levels - 1u;
         loop {
             node = warped.texel >> vec2u(l);
-            if (l == 0u || warp_weight(l, params.rsm_size, node) <= target_mass * total) {
+            // Still a partition with coherence: whether to stop depends on the node alone.
+            if (l == 0u || (warp_weight(l, params.rsm_size, node) <= target_mass * total && kernel_is_coherent(vec2f(0.0), f32(l), node))) {
                 break;
             }
             l -= 1u;
         }
         level = f32(l);
     } else if (params.kernel == 0u) {
-        level = clamp(top - 0.5 * log2(max(n * p, FLT_MIN)), 0.0, top);
+        level = coherent_level(s, clamp(top - 0.5 * log2(max(n * p, FLT_MIN)), 0.0, top));
     } else {
         // [Tok16 Algorithm 1]: the mass grows with l, so bisect on it.
         let target_mass = params.k / n;
@@ -201,7 +247,7 @@ fn main(@builtin(global_invocation_id) gid: vec3u) {
                 hi = mid;
             }
         }
-        level = 0.5 * (lo + hi);
+        level = coherent_level(s, 0.5 * (lo + hi));
     }
 
     let a = cluster_moment(0u, level, node, s);

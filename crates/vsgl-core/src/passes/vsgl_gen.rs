@@ -69,7 +69,8 @@ struct GenParamsRaw {
     k: f32,
     planes: u32,
     importance: u32,
-    _pad: [u32; 2],
+    coherence: f32,
+    _pad: u32,
 }
 
 /// What one generation dispatch needs besides the RSM.
@@ -87,6 +88,9 @@ pub struct GenSettings<'a> {
     /// The sampling pyramid is a density other than the moments' weight (bidirectional
     /// importance, `brsm_mix`): kernel masses and estimator densities are read from it.
     pub importance: bool,
+    /// Smallest mean-normal length a kernel may have (`coherence=`; 0: the papers' kernels).
+    /// Needs chains with planes ([`MomentChains::has_planes`]); ignored without.
+    pub coherence: f32,
 }
 
 pub struct VsglGenPass {
@@ -121,7 +125,8 @@ impl VsglGenPass {
             k: s.k,
             planes: u32::from(chains.has_planes()),
             importance: s.importance as u32,
-            _pad: [0; 2],
+            coherence: s.coherence,
+            _pad: 0,
         };
         let uniform = rec.uniform("vsgl_gen_params_uniform_buffer", &params);
         rec.compute(
