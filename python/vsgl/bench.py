@@ -133,7 +133,8 @@ class Row:
     block_rmse_indirect: float | None = None
     # vsgl's kernel mass K when --K sweeps it (None: the method's default, 1).
     K: float | None = None
-    # vsgl / vsgl2's lighting= when --lighting sweeps it (None: the method's default, "asg").
+    # vsgl / vsgl2's lighting= when --lighting sweeps it (None: the method's default, "blend"
+    # for vsgl, "asg" for vsgl2).
     lighting: str | None = None
     # The RSM sampling density of vpl and vsgl, "rsm" or "brsm" (bidirectional importance,
     # --importance); None for the methods that sample nothing.

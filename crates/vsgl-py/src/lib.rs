@@ -876,17 +876,20 @@ impl PyRenderer {
     ///   evaluates only the view VSGLs of its interleave class, k² times cheaper), capture_rsm.
     /// - "vsgl": num_lights VSGLs (in all) by filtered importance sampling. shadow_size,
     ///   num_lights, rsm_size, sampling, seed, kernel ("integral" | "density" | "node"), K,
-    ///   bisection_steps, interleave, denoise, diffuse ("papers" | "accurate" | "sg_product"),
-    ///   lighting ("asg": the papers' SG–ASG specular and diffuse= | "accurate": GGX with its
-    ///   NDF widened by the light's spread, after Tokuyoshi et al. 2024, and the clamped-cosine
-    ///   diffuse | "blend": the two specular forms weighted by the receiver's share of the
-    ///   widened lobe, and the clamped-cosine diffuse; docs/rendering.md "SG lighting"),
+    ///   coherence (0..1, default 0.9: each kernel shrinks until its texels' mean normal is at
+    ///   least this long, so clusters do not straddle creases; 0: the papers' kernels),
+    ///   bisection_steps, interleave, denoise, diffuse ("papers" | "accurate" | "sg_product",
+    ///   with lighting="asg"), lighting ("blend", the default: the two specular forms weighted
+    ///   by the receiver's share of the widened lobe, and the clamped-cosine diffuse | "asg":
+    ///   the papers' SG–ASG specular and diffuse= | "accurate": GGX with its NDF widened by the
+    ///   light's spread, after Tokuyoshi et al. 2024, and the clamped-cosine diffuse;
+    ///   docs/rendering.md "SG lighting" and "The real-scene corpus"),
     ///   lambert_lobe ("hemisphere": each texel's Lambert SG normalized over its hemisphere |
     ///   "exact_compact": that SG blended with an exact Lambertian point emitter where a
     ///   cluster is compact as seen from the receiver | "papers": over the sphere, 9.2% of the
-    ///   diffuse power lost), plane_fade (True: diffuse="papers" also fades each VSGL's light
-    ///   below its cluster's mean tangent plane, as the other forms always do; False: the
-    ///   papers' formula, which lights the back of a lit surface), visibility, ism_size, ism_points, ism_points_per_map, ism_bias, ism_pcf, importance,
+    ///   diffuse power lost), plane_fade (with lighting="asg" and diffuse="papers", True fades
+    ///   each VSGL's light below its cluster's mean tangent plane, as the other forms always
+    ///   do; False: the papers' formula, which lights the back of a lit surface), visibility, ism_size, ism_points, ism_points_per_map, ism_bias, ism_pcf, importance,
     ///   importance_lights, importance_interleave, capture_rsm.
     /// - "vsgl2": two VSGLs per light by a parallel sum. shadow_size, rsm_size (any side
     ///   32..4096), diffuse, lighting, lambert_lobe, plane_fade (default False: one plane
