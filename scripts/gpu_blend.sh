@@ -44,11 +44,11 @@ TAIL=20 step shading_cost 60 python3 -m vsgl bench --scene glossy_cornell --meth
 pack
 # plane_fade applies to the papers' diffuse form (lighting="asg"); blend always fades. The cost
 # steps' errors do not matter: a small reference RSM keeps the reference's time out of the cap.
-TAIL=20 step fade_cost 40 python3 -m vsgl bench --scene cornell_box,glossy_cornell --methods vsgl -O plane_fade=true,false \
+TAIL=20 step fade_cost 40 python3 -m vsgl bench --scene cornell_box,glossy_cornell --methods vsgl --lighting asg -O plane_fade=true,false \
   --lights 1024 --size "$BIG" --interleave 1 --seeds 1 --frames 8 --reference-rsm 128 --no-progress --out "$RES/fade_cost"
 pack
 for VIS in none raytrace; do
-  TAIL=30 step "bench_plane_fade_$VIS" 40 python3 -m vsgl bench --scene cornell_box,caustics_ring --methods vsgl \
+  TAIL=30 step "bench_plane_fade_$VIS" 40 python3 -m vsgl bench --scene cornell_box,caustics_ring --methods vsgl --lighting asg \
     -O plane_fade=true,false --lights 1024,4096 --size "$MID" --visibility "$VIS" --rsm-sizes 256 --seeds 2 --frames 4 \
     --reference pathtrace --reference-strategy bidirectional --reference-spp "$SPP" --no-progress --out "$RES/bench_plane_fade_$VIS"
   pack

@@ -52,7 +52,7 @@ SPP = {"cornell_box": 1024, "glossy_cornell": 2048, "caustics_ring": 8192, "mirr
 VARIANTS = {"vpl": ("vpl", {}), "vsgl": ("vsgl", {}), "vsgl node": ("vsgl", dict(kernel="node")),
             "vsgl exact_compact": ("vsgl", dict(lambert_lobe="exact_compact")),
             "vsgl node exact_compact": ("vsgl", dict(kernel="node", lambert_lobe="exact_compact")),
-            "vsgl no_fade": ("vsgl", dict(plane_fade=False)), "vsgl node no_fade": ("vsgl", dict(kernel="node", plane_fade=False))}
+            "vsgl no_fade": ("vsgl", dict(lighting="asg", coherence=0.0, plane_fade=False)), "vsgl node no_fade": ("vsgl", dict(kernel="node", lighting="asg", coherence=0.0, plane_fade=False))}
 
 
 def ground_truth(r: vsgl.Renderer, name: str, scene: vsgl.Scene, spp: int, cache: pathlib.Path) -> tuple[np.ndarray, np.ndarray]:

@@ -42,7 +42,7 @@ def main() -> int:
     print(f"truth ({a.scene} {a.size}², {a.spp} spp): diffuse mean {td.mean():.5g}, specular mean {ts.mean():.5g}\n")
     print("| N | form | diffuse mean | diffuse block | specular mean | specular block |\n|---|---|--:|--:|--:|--:|")
     for n in (int(x) for x in a.lights.split(",")):
-        for form, kw in (("asg", {}), ("asg, diffuse=accurate", dict(diffuse="accurate")), ("accurate", dict(lighting="accurate")), ("blend", dict(lighting="blend"))):
+        for form, kw in (("asg", dict(lighting="asg")), ("asg, diffuse=accurate", dict(lighting="asg", diffuse="accurate")), ("accurate", dict(lighting="accurate")), ("blend", dict(lighting="blend"))):
             f = r.render(scene, method="vsgl", num_lights=n, interleave=1, denoise=False, aovs=["indirect_diffuse", "indirect_specular"], **kw)
             d, s = f.aov("indirect_diffuse").astype(np.float64), f.aov("indirect_specular").astype(np.float64)
             print(f"| {n} | {form} | {d.mean() / td.mean():.3f}× | {block_rmse(d, td, 4):.3f} | {s.mean() / ts.mean():.3f}× | {block_rmse(s, ts, 4):.3f} |", flush=True)

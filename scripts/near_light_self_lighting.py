@@ -37,9 +37,9 @@ def main() -> int:
     truth = ref.aov("indirect").astype(float)
     print(f"reference: indirect mean {truth.mean():.4g}, share on the ceiling {truth[ceiling].sum() / truth.sum():.3f}")
     for label, kw in (("default (the papers' diffuse form with the fade)", {}),
-                      ("the papers' form without the fade (plane_fade=False)", dict(plane_fade=False)),
+                      ("the papers' form without the fade (plane_fade=False)", dict(lighting="asg", plane_fade=False)),
                       ("diffuse=accurate (the clamped cosine, always faded)", dict(diffuse="accurate")),
-                      ("kernel=node", dict(kernel="node")), ("kernel=node, plane_fade=False", dict(kernel="node", plane_fade=False)),
+                      ("kernel=node", dict(kernel="node")), ("kernel=node, plane_fade=False", dict(kernel="node", lighting="asg", plane_fade=False)),
                       ("lighting=blend (its diffuse is the faded clamped cosine)", dict(lighting="blend"))):
         f = r.render(scene, method="vsgl", rsm_size=128, interleave=1, denoise=False, aovs=["indirect"], **kw)
         img = f.aov("indirect").astype(float)

@@ -48,7 +48,7 @@ def back_of_a_lit_plane(size: int) -> None:
             for method, kernel in (("vsgl", "integral"), ("vsgl", "node"), ("vsgl2", "")):
                 extra = dict(num_lights=4096, interleave=1, denoise=False, kernel=kernel) if method == "vsgl" else {}
                 for fade in (False, True):
-                    f = r.render(scene, camera=back, method=method, rsm_size=128, plane_fade=fade, aovs=["indirect"], **extra)
+                    f = r.render(scene, camera=back, method=method, rsm_size=128, lighting="asg", coherence=0.0, plane_fade=fade, aovs=["indirect"], **extra)
                     cells.append(f"{f.aov('indirect').astype(np.float64).sum() / direct:.3f}")
             print(f"| {dist} m | " + " | ".join(cells) + " |", flush=True)
 
@@ -64,7 +64,7 @@ def builtins(size: int) -> None:
         cells = []
         for method, extra in (("vsgl", dict(num_lights=4096, interleave=1, denoise=False)), ("vsgl2", {})):
             for fade in (False, True):
-                img = r.render(scene, method=method, plane_fade=fade, **extra, **kw).aov("indirect").astype(np.float64)
+                img = r.render(scene, method=method, lighting="asg", coherence=0.0, plane_fade=fade, **extra, **kw).aov("indirect").astype(np.float64)
                 cells.append(f"{block_rmse(img, truth, 4):.3f} ({img.mean() / truth.mean():.2f}×)")
         print(f"| {name} | " + " | ".join(cells) + " |", flush=True)
 
@@ -77,7 +77,7 @@ def cost(size: int, rounds: int) -> None:
         for k in range(rounds):
             for fade in (True, False):
                 start = time.perf_counter()
-                r.render(scene, method="vsgl", num_lights=1024, rsm_size=128, interleave=1, denoise=False, plane_fade=fade, aovs=["indirect"])
+                r.render(scene, method="vsgl", num_lights=1024, rsm_size=128, interleave=1, denoise=False, lighting="asg", coherence=0.0, plane_fade=fade, aovs=["indirect"])
                 if k > 0:
                     times[fade].append(time.perf_counter() - start)
         ratios = sorted(a / b for a, b in zip(times[True], times[False]))

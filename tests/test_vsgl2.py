@@ -147,7 +147,7 @@ def test_vsgl2_equals_vsgl_with_one_whole_image_kernel_where_they_coincide(tmp_p
     scene, cam = _grey_corner_scene(tmp_path)
     rsm = 64
     one = renderer.render(scene, camera=cam, method="vsgl", num_lights=1, rsm_size=rsm, kernel="integral", K=1.0, bisection_steps=32,
-                          interleave=1, lighting="asg", capture_rsm=True)
+                          interleave=1, lighting="asg", coherence=0.0, capture_rsm=True)
     two = renderer.render(scene, camera=cam, method="vsgl2", rsm_size=rsm)
     a, b = one.vsgls(), two.vsgls()
     # The kernel reached the top level: it is the whole image.

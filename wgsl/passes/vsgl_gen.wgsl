@@ -136,7 +136,8 @@ fn kernel_mass(s: vec2f, level: f32, total: f32) -> f32 {
 }
 
 // Whether the kernel at `level` (trilinear at `s`; for "node" the node at the integer level)
-// has its texels' normals coherent enough: |Σw n| ≥ c·Σw from chains F and A.
+// has its texels' normals coherent enough: |Σw n|/Σw ≥ c from chains F and A, divided before the
+// length is taken (Σw n² overflows f32 for lights of 1e30 cd, found by the scene-level suite).
 fn kernel_is_coherent(s: vec2f, level: f32, node: vec2u) -> bool {
     if (params.coherence <= 0.0 || params.planes != 1u) {
         return true;
@@ -150,7 +151,7 @@ fn kernel_is_coherent(s: vec2f, level: f32, node: vec2u) -> bool {
         a = moment_trilinear(0u, s, level);
         f = moment_trilinear(5u, s, level);
     }
-    return !(a.w > 0.0) || length(f.xyz) >= params.coherence * a.w;
+    return !(a.w > 0.0) || length(f.xyz / a.w) >= params.coherence;
 }
 
 // The largest level in [0, level] whose kernel is coherent (kernel_is_coherent), by bisection:
