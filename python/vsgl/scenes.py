@@ -6,6 +6,9 @@
 - ``cave_flashlight``: an enclosed room lit only by a narrow spot light, glossy floor.
 - ``diffuse_cornell``: the Cornell box with purely Lambertian materials (no specular
   reflectance at all, ``KHR_materials_specular`` factor 0): a frame leaves out every specular lobe.
+- ``helmet_shell``: a helmet-like object at FlightHelmet's size (a 5 mm leather cap over a head,
+  a metal visor band under its rim, a neck, a pedestal), lit like the FlightHelmet corpus scene:
+  a curved thin shell and close-range creases, which the boxes lack.
 - ``mirror_panel``: a polished metal panel (roughness 0.02) tilted 45° under a narrow spot, which
   throws the beam onto the wall behind it as a sharp bright patch (a planar caustic).
 
@@ -64,6 +67,10 @@ def mirror_panel() -> Scene:
     return builtin_scene("mirror_panel")
 
 
+def helmet_shell() -> Scene:
+    return builtin_scene("helmet_shell")
+
+
 # --- The real-scene corpus ------------------------------------------------------------------
 #
 # Defaults, bounds and claims are chosen on real files, not only on the boxes above
@@ -71,13 +78,16 @@ def mirror_panel() -> Scene:
 # scene folder with a committed light spec (python/vsgl/corpus/NAME.json): which file, whether
 # the file's own lights are kept, the lights added, in the constructors' keyword names. The
 # camera is the file's own (its first camera node) or, without one, the renderer's default
-# framing of the scene's bounds.
+# framing of the scene's bounds. The generated corpus scenes (GENERATED_CORPUS) are built-ins
+# that carry what real files have and the boxes lack; they need no files and always load.
 
 #: Where the corpus looks for the shared glTF scenes: $VSGL_SCENES, else the ``shared/scenes``
 #: folder beside the repository this package was built from.
 SHARED_SCENES_ENV = "VSGL_SCENES"
 
 _CORPUS_SPECS = pathlib.Path(__file__).resolve().parent / "corpus"
+#: Built-in scenes that belong to the corpus (generated in Rust like the others).
+GENERATED_CORPUS = ("helmet_shell",)
 _LIGHT_TYPES = {"spot": "SpotLight", "point": "PointLight", "directional": "DirectionalLight"}
 
 
@@ -93,17 +103,19 @@ def shared_scenes_dir() -> pathlib.Path:
 @dataclass(frozen=True)
 class CorpusScene:
     """One scene of the real-scene corpus: ``scene`` lit as its spec says (a fresh copy per
-    ``corpus()`` call), its name, the file it came from and the spec's one-line description."""
+    ``corpus()`` call), its name, the file it came from (None for a generated scene) and a
+    one-line description."""
 
     name: str
     scene: Scene
-    path: pathlib.Path
+    path: pathlib.Path | None
     about: str
 
 
 def corpus_names() -> list[str]:
-    """Names of the corpus scenes, whether or not their files are present."""
-    return sorted(p.stem for p in _CORPUS_SPECS.glob("*.json"))
+    """Names of the corpus scenes (the shared files' whether or not the files are present, then
+    the generated ones)."""
+    return sorted(p.stem for p in _CORPUS_SPECS.glob("*.json")) + list(GENERATED_CORPUS)
 
 
 def _corpus_spec(name: str) -> dict:
@@ -130,12 +142,14 @@ def corpus_available(name: str | None = None) -> bool:
     """Whether the shared scene files are here (all of them, or corpus scene ``name``'s)."""
     names = corpus_names() if name is None else [name]
     root = shared_scenes_dir()
-    return all((root / _corpus_spec(n)["file"]).is_file() for n in names)
+    return all(n in GENERATED_CORPUS or (root / _corpus_spec(n)["file"]).is_file() for n in names)
 
 
 def corpus_scene(name: str) -> CorpusScene:
     """Corpus scene ``name``, loaded and lit. ``FileNotFoundError`` naming the file and
     ``$VSGL_SCENES`` when the shared scene folder does not have it."""
+    if name in GENERATED_CORPUS:
+        return CorpusScene(name, builtin_scene(name), None, "generated (vsgl.scenes.load)")
     spec = _corpus_spec(name)
     if pathlib.PurePosixPath(spec["file"]).is_absolute() or ".." in pathlib.PurePosixPath(spec["file"]).parts:
         raise ValueError(f"corpus scene {name!r}: file {spec['file']!r} must be a path inside the shared scene folder")

@@ -13,7 +13,7 @@ use std::f64::consts::PI;
 
 /// The names accepted by [`by_name`], in the order `vsgl.scenes.names()` lists them.
 pub const NAMES: &[&str] =
-    &["cornell_box", "glossy_cornell", "caustics_ring", "cave_flashlight", "diffuse_cornell", "mirror_panel"];
+    &["cornell_box", "glossy_cornell", "caustics_ring", "cave_flashlight", "diffuse_cornell", "mirror_panel", "helmet_shell"];
 
 /// A built-in scene by name, or `None` for an unknown name.
 pub fn by_name(name: &str) -> Option<Scene> {
@@ -24,6 +24,7 @@ pub fn by_name(name: &str) -> Option<Scene> {
         "cave_flashlight" => cave_flashlight(),
         "diffuse_cornell" => diffuse_cornell(),
         "mirror_panel" => mirror_panel(),
+        "helmet_shell" => helmet_shell(),
         _ => return None,
     })
 }
@@ -123,6 +124,49 @@ impl MeshBuilder {
             let phi = 2.0 * PI * j as f64 / segments as f64;
             self.vertex(at(r_in, phi, height), DVec3::Y, [0.0, 0.0]);
             self.vertex(at(r_out, phi, height), DVec3::Y, [1.0, 0.0]);
+        }
+        for j in 0..segments {
+            let (a, b, c, d) = (base + 2 * j, base + 2 * j + 1, base + 2 * j + 2, base + 2 * j + 3);
+            self.prim.indices.extend_from_slice(&[a, c, b, b, c, d]);
+        }
+    }
+
+    /// A thin spherical cap (a shell of thickness `r_out − r_in`) around +Y from the pole down to
+    /// the polar angle `theta_max`: the outer surface faces out, the inner one in (towards the
+    /// centre), and a band at `theta_max` closes the rim.
+    fn shell_cap(&mut self, center: DVec3, r_out: f64, r_in: f64, theta_max: f64, rings: u32, segments: u32) {
+        let dir = |theta: f64, phi: f64| DVec3::new(theta.sin() * phi.cos(), theta.cos(), theta.sin() * phi.sin());
+        let row = segments + 1;
+        for (r, sign) in [(r_out, 1.0), (r_in, -1.0)] {
+            let base = self.prim.positions.len() as u32;
+            for i in 0..=rings {
+                let theta = theta_max * i as f64 / rings as f64;
+                for j in 0..=segments {
+                    let phi = 2.0 * PI * j as f64 / segments as f64;
+                    let n = dir(theta, phi);
+                    self.vertex(center + r * n, sign * n, [j as f32 / segments as f32, i as f32 / rings as f32]);
+                }
+            }
+            for i in 0..rings {
+                for j in 0..segments {
+                    let (a, b) = (base + i * row + j, base + (i + 1) * row + j);
+                    // Winding so that the geometric normal agrees with the shading normal.
+                    if sign > 0.0 {
+                        self.prim.indices.extend_from_slice(&[a, a + 1, b, b, a + 1, b + 1]);
+                    } else {
+                        self.prim.indices.extend_from_slice(&[a, b, a + 1, b, b + 1, a + 1]);
+                    }
+                }
+            }
+        }
+        // The rim band between the two surfaces, facing down and out along the cap's edge.
+        let base = self.prim.positions.len() as u32;
+        for j in 0..=segments {
+            let phi = 2.0 * PI * j as f64 / segments as f64;
+            let rim = dir(theta_max, phi);
+            let n = DVec3::new(0.0, -1.0, 0.0).lerp(rim, 0.5);
+            self.vertex(center + r_out * rim, n, [j as f32 / segments as f32, 0.0]);
+            self.vertex(center + r_in * rim, n, [j as f32 / segments as f32, 1.0]);
         }
         for j in 0..segments {
             let (a, b, c, d) = (base + 2 * j, base + 2 * j + 1, base + 2 * j + 2, base + 2 * j + 3);
@@ -283,6 +327,62 @@ pub fn mirror_panel() -> Scene {
     });
     s.add_light(spot(DVec3::new(0.0, 2.6, -0.5), center, 30.0, 10.0, 14.0));
     s.cameras.push(camera(DVec3::new(1.3, 1.4, 1.5), DVec3::new(-0.3, 0.55, -1.3), 50.0));
+    s
+}
+
+/// A helmet-like object at FlightHelmet's size (docs/rendering.md, "The real-scene corpus"): a
+/// thin leather cap (a 5 mm spherical shell) over a head, a polished metal visor band around the
+/// head at eye level under the cap's rim, a neck and a wooden pedestal, lit like FlightHelmet's
+/// corpus light. What the boxes lack and the helmet has: a curved thin shell, and creases where
+/// parts meet at close range (cap over forehead, visor on the face, head on neck, neck on
+/// pedestal, rivets half sunk into the cap, a hose of touching beads, goggle lenses sunk into the
+/// face), where much of the indirect light is exchanged between surfaces a few RSM texels apart.
+/// No textures or normal maps yet.
+pub fn helmet_shell() -> Scene {
+    let mut s = Scene { source: "builtin:helmet_shell".into(), ..Default::default() };
+    add(&mut s, "pedestal", Material::dielectric("wood", [0.45, 0.25, 0.12], 0.6), |b| {
+        b.cuboid(DVec3::new(-0.15, 0.0, -0.15), DVec3::new(0.15, 0.1, 0.15), false, Some(2))
+    });
+    add(&mut s, "neck", Material::dielectric("rubber", [0.12, 0.12, 0.12], 0.8), |b| {
+        b.cuboid(DVec3::new(-0.04, 0.1, -0.04), DVec3::new(0.04, 0.27, 0.04), false, Some(2))
+    });
+    let head = DVec3::new(0.0, 0.36, 0.0);
+    add(&mut s, "head", Material::dielectric("skin", [0.6, 0.45, 0.35], 0.5), |b| b.sphere(head, 0.11, 24, 48));
+    add(&mut s, "cap", Material::dielectric("leather", [0.35, 0.22, 0.12], 0.7), |b| {
+        b.shell_cap(head, 0.125, 0.12, 1.75, 20, 48)
+    });
+    add(&mut s, "visor", Material::metal("steel", [0.9, 0.9, 0.92], 0.15), |b| {
+        // Just below the cap's rim; its inner wall cuts into the face at the top, as exported
+        // parts often interpenetrate.
+        b.ring(head + DVec3::new(0.0, -0.055, 0.0), 0.108, 0.006, 0.03, 48)
+    });
+    // Rivets: 6 mm spheres half sunk into the cap along eight meridians.
+    add(&mut s, "rivets", Material::metal("brass", [0.95, 0.78, 0.45], 0.3), |b| {
+        for m in 0..8 {
+            let phi = 2.0 * PI * m as f64 / 8.0 + 0.2;
+            for k in 1..=5 {
+                let theta = 1.6 * k as f64 / 5.5;
+                let n = DVec3::new(theta.sin() * phi.cos(), theta.cos(), theta.sin() * phi.sin());
+                b.sphere(head + 0.125 * n, 0.006, 6, 12);
+            }
+        }
+    });
+    // Goggle lenses: two glossy 18 mm spheres sunk into the face at eye level, inside the visor.
+    add(&mut s, "lenses", Material::dielectric("glass", [0.2, 0.25, 0.2], 0.1), |b| {
+        for x in [-0.04, 0.04] {
+            b.sphere(head + DVec3::new(x, -0.04, 0.085), 0.018, 12, 24);
+        }
+    });
+    // A hose of touching 9 mm beads from the chin down to the pedestal.
+    add(&mut s, "hose", Material::dielectric("rubber", [0.15, 0.15, 0.15], 0.6), |b| {
+        for k in 0..14 {
+            let t = k as f64 / 13.0;
+            let p = DVec3::new(0.02 + 0.06 * t, 0.27 - 0.16 * t, 0.09 + 0.02 * (PI * t).sin());
+            b.sphere(p, 0.009, 8, 16);
+        }
+    });
+    s.add_light(spot(DVec3::new(0.5, 0.9, 0.6), head, 3.0, 30.0, 40.0));
+    s.cameras.push(camera(DVec3::new(0.0, 0.45, 0.95), DVec3::new(0.0, 0.3, 0.0), 40.0));
     s
 }
 
