@@ -1,5 +1,5 @@
 """The scene-level stability suite (`python -m vsgl stability --scenes`; issue 20, item 9):
-every method on the built-ins moved 1e5 m, scaled 1e-3, 0.37 and 1e3 (intensities × scale²), with
+every method on three built-ins and the generated corpus scene helmet_shell moved 1e5 m, scaled 1e-3, 0.37 and 1e3 (intensities × scale²), with
 intensities × 1e-8 and at 1e30 cd, a light grazing a wall, every material at roughness 1e-4 and
 the camera inside geometry renders no NaN/Inf, and is invariant within 1e-3 (relative RMSE)
 where the scene is representable."""
@@ -15,10 +15,12 @@ from vsgl import stability
 def test_every_method_on_every_case_passes():
     rows = stability.scene_suite()
     print("\n" + stability.format_scene_table(rows))
-    assert len(rows) == 3 * 6 * 10
+    # Four scenes (the generated corpus scene helmet_shell among them) × 6 methods × 10 cases.
+    assert len(rows) == 4 * 6 * 10
+    assert {r["scene"] for r in rows} == {"cornell_box", "glossy_cornell", "caustics_ring", "helmet_shell"}
     # Every method met the near-mirror materials.
     stiff = [r for r in rows if r["case"] == "roughness 1e-4"]
-    assert len(stiff) == 3 * len(vsgl.METHODS) and {r["method"] for r in stiff} == set(vsgl.METHODS)
+    assert len(stiff) == 4 * len(vsgl.METHODS) and {r["method"] for r in stiff} == set(vsgl.METHODS)
     assert not [r for r in rows if r["nonfinite"]], "frames with NaN/Inf"
     failed = [r for r in rows if not r["passed"]]
     assert not failed, failed
