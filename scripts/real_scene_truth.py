@@ -56,7 +56,7 @@ def main() -> int:
         for label, opts in variants:
             opts = dict(opts)
             method = opts.pop("method", "vsgl")
-            settings = dict(rsm_size=a.rsm, visibility="raytrace", **opts)
+            settings = {"rsm_size": a.rsm, "visibility": "raytrace", **opts}
             if method != "reference":
                 settings.setdefault("num_lights", 1024)
             if method == "vsgl":
