@@ -55,6 +55,15 @@ def test_every_spec_light_is_valid():
             vsgl.scenes._spec_light(name, s)
 
 
+def test_a_bad_spec_light_names_the_scene_and_the_field():
+    with pytest.raises(ValueError, match=r"corpus scene 'x'.*unknown \['cone'\]"):
+        vsgl.scenes._spec_light("x", {"type": "spot", "position": [0, 1, 0], "direction": [0, -1, 0], "intensity": 1, "cone": 3})
+    with pytest.raises(ValueError, match=r"corpus scene 'x'.*missing \['intensity'\]"):
+        vsgl.scenes._spec_light("x", {"type": "point", "position": [0, 1, 0]})
+    with pytest.raises(ValueError, match="type must be one of spot, point, directional"):
+        vsgl.scenes._spec_light("x", {"type": "area"})
+
+
 def test_unknown_corpus_scene_names_the_choices():
     with pytest.raises(ValueError, match="boom_box"):
         vsgl.scenes.corpus_scene("no_such_scene")
@@ -91,10 +100,14 @@ def test_a_bench_without_scenes_runs_two_corpus_scenes_where_their_files_are(mon
 
 
 def test_bench_and_cli_take_corpus_names():
+    from vsgl.__main__ import _load_scene
+
     _needs_files("cornell_box_original")
-    scene = bench._scene("cornell_box_original")
-    assert scene.source.endswith("CornellBoxOriginal.glb")
-    assert len(scene.lights) == 1
+    for scene in (bench._scene("cornell_box_original"), _load_scene("cornell_box_original")):
+        assert scene.source.endswith("CornellBoxOriginal.glb")
+        assert len(scene.lights) == 1 and isinstance(scene.lights[0], vsgl.SpotLight)
+    with pytest.raises(ValueError, match="nor a corpus scene .*boom_box"):
+        _load_scene("no_such_scene")
 
 
 # --- Accuracy on the corpus: the setting of docs/rendering.md's corpus table ------------------

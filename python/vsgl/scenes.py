@@ -88,7 +88,6 @@ SHARED_SCENES_ENV = "VSGL_SCENES"
 _CORPUS_SPECS = pathlib.Path(__file__).resolve().parent / "corpus"
 #: Built-in scenes that belong to the corpus (generated in Rust like the others).
 GENERATED_CORPUS = ("helmet_shell",)
-_LIGHT_TYPES = {"spot": "SpotLight", "point": "PointLight", "directional": "DirectionalLight"}
 
 
 def shared_scenes_dir() -> pathlib.Path:
@@ -126,16 +125,24 @@ def _corpus_spec(name: str) -> dict:
 
 
 def _spec_light(name: str, spec: dict):
-    import vsgl
+    """A light of a corpus spec, checked like a --light (vsgl.lightspec: the types, their
+    required and optional fields in the constructors' keyword names)."""
+    # Here, not at the top: vsgl.lightspec imports vsgl, which imports this module.
+    from vsgl.lightspec import KINDS, VECTORS
 
     fields = dict(spec)
     kind = fields.pop("type", None)
-    if kind not in _LIGHT_TYPES:
-        raise ValueError(f"corpus scene {name!r}: a light's type must be one of {', '.join(_LIGHT_TYPES)}, got {kind!r}")
-    for key in ("position", "direction", "color"):
-        if key in fields:
-            fields[key] = tuple(float(x) for x in fields[key])
-    return getattr(vsgl, _LIGHT_TYPES[kind])(**fields)
+    if kind not in KINDS:
+        raise ValueError(f"corpus scene {name!r}: a light's type must be one of {', '.join(KINDS)}, got {kind!r}")
+    make, required, optional = KINDS[kind]
+    unknown = sorted(set(fields) - set(required) - set(optional))
+    missing = [f for f in required if f not in fields]
+    if unknown or missing:
+        raise ValueError(f"corpus scene {name!r}: a {kind} light takes {', '.join(required + optional)} "
+                         f"(needs {', '.join(required)}); got unknown {unknown}, missing {missing}")
+    for key in VECTORS & set(fields):
+        fields[key] = tuple(float(x) for x in fields[key])
+    return make(**fields)
 
 
 def corpus_available(name: str | None = None) -> bool:
