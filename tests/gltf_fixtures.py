@@ -231,6 +231,162 @@ def _textured(dirpath, *, with_uvs=True, missing_image=False, huge_image=False, 
     return _write_json(d / "textured.gltf", root)
 
 
+def _png_pixels(width: int, height: int, pixel) -> bytes:
+    """An 8-bit RGBA PNG whose texel (x, y) is ``pixel(x, y)`` (an RGBA tuple)."""
+
+    def chunk(kind: bytes, payload: bytes) -> bytes:
+        body = kind + payload
+        return struct.pack(">I", len(payload)) + body + struct.pack(">I", zlib.crc32(body) & 0xFFFFFFFF)
+
+    rows = b"".join(b"\x00" + b"".join(bytes(pixel(x, y)) for x in range(width)) for y in range(height))
+    return (b"\x89PNG\r\n\x1a\n" + chunk(b"IHDR", struct.pack(">IIBBBBB", width, height, 8, 6, 0, 0, 0))
+            + chunk(b"IDAT", zlib.compress(rows)) + chunk(b"IEND", b""))
+
+
+# The texture transform of ``write_texture_transform``: KHR_texture_transform's offset,
+# rotation (radians, counter-clockwise) and scale; a uniform scale, so that the mip level the
+# baked twin computes from its UVs is the one the transform's level shift gives.
+TEXTURE_TRANSFORM = {"offset": [0.25, -0.5], "rotation": 0.6, "scale": [1.5, 1.5]}
+
+
+def texture_transform_matrix(t=TEXTURE_TRANSFORM) -> list[list[float]]:
+    """The extension's M = T·R·S as two rows (uv' = M·(u, v, 1))."""
+    (ou, ov), r, (su, sv) = t["offset"], t["rotation"], t["scale"]
+    c, s = math.cos(r), math.sin(r)
+    return [[su * c, sv * s, ou], [-su * s, sv * c, ov]]
+
+
+def write_texture_transform(dirpath, *, baked: bool = False, ignored: bool = False) -> pathlib.Path:
+    """A unit quad with an 8×8 texture of four coloured quadrants and a checker, used as base
+    colour and emissive texture under KHR_texture_transform (TEXTURE_TRANSFORM), required.
+    ``baked``: the twin without the extension, whose TEXCOORD_0 is the transformed one (the
+    same image where the transform is honoured); ``ignored``: the same quad with untransformed
+    UVs and no extension (what a loader that ignored the extension would show)."""
+    d = pathlib.Path(dirpath)
+
+    def texel(x, y):
+        quadrant = [(230, 40, 30), (40, 200, 60), (30, 60, 220), (240, 220, 40)][(x >= 4) + 2 * (y >= 4)]
+        k = 1.0 if (x + y) % 2 else 0.55
+        return tuple(int(c * k) for c in quadrant) + (255,)
+
+    (d / "quadrants.png").write_bytes(_png_pixels(8, 8, texel))
+    uv = list(QUAD_UV)
+    if baked:
+        m = texture_transform_matrix()
+        uv = [v for k in range(0, len(QUAD_UV), 2)
+              for v in (m[0][0] * QUAD_UV[k] + m[0][1] * QUAD_UV[k + 1] + m[0][2],
+                        m[1][0] * QUAD_UV[k] + m[1][1] * QUAD_UV[k + 1] + m[1][2])]
+    b = _Bin()
+    attributes = {"POSITION": b.floats(QUAD_POS, "VEC3", 3), "TEXCOORD_0": b.floats(uv, "VEC2", 2)}
+    idx = b.indices(QUAD_IDX)
+    (d / "tt.bin").write_bytes(bytes(b.data))
+    transform = {} if (baked or ignored) else {"extensions": {"KHR_texture_transform": dict(TEXTURE_TRANSFORM)}}
+    extensions = {} if (baked or ignored) else {"extensionsUsed": ["KHR_texture_transform"], "extensionsRequired": ["KHR_texture_transform"]}
+    root = _root(
+        b,
+        {"uri": "tt.bin", "byteLength": len(b.data)},
+        images=[{"uri": "quadrants.png"}],
+        textures=[{"source": 0}],
+        materials=[{
+            "name": "quadrants",
+            "pbrMetallicRoughness": {"baseColorTexture": {"index": 0, **transform}, "metallicFactor": 0.0, "roughnessFactor": 1.0},
+            "emissiveFactor": [1.0, 1.0, 1.0],
+            "emissiveTexture": {"index": 0, **transform},
+        }],
+        meshes=[{"primitives": [{"attributes": attributes, "indices": idx, "material": 0}]}],
+        nodes=[{"mesh": 0}],
+        scenes=[{"nodes": [0]}],
+        **extensions,
+    )
+    return _write_json(d / "texture_transform.gltf", root)
+
+
+# A curved patch (a quarter cylinder, so normals vary) for the quantization fixture.
+def _patch(n: int = 6):
+    pos, nrm, uv, idx = [], [], [], []
+    for j in range(n + 1):
+        for i in range(n + 1):
+            a = 0.5 * math.pi * i / n
+            pos += [math.cos(a), j / n, -math.sin(a)]
+            nrm += [math.cos(a), 0.0, -math.sin(a)]
+            uv += [i / n, j / n]
+    for j in range(n):
+        for i in range(n):
+            k = j * (n + 1) + i
+            idx += [k, k + 1, k + n + 2, k, k + n + 2, k + n + 1]
+    return pos, nrm, uv, idx
+
+
+def write_quantized(dirpath, *, quantized: bool = True) -> pathlib.Path:
+    """A textured quarter cylinder under KHR_mesh_quantization, required: positions as
+    normalized SHORT with the dequantization scale and offset on the node, normals as
+    normalized BYTE, texture coordinates as normalized UNSIGNED_SHORT. ``quantized=False``:
+    the twin with the same values in FLOAT, computed from the integers, and no node scale."""
+    d = pathlib.Path(dirpath)
+    (d / "checker.png").write_bytes(_png_pixels(4, 4, lambda x, y: (220, 200, 60, 255) if (x + y) % 2 else (40, 90, 200, 255)))
+    pos, nrm, uv, idx = _patch()
+    # Positions span [-1, 1] per axis after a node scale of 1 and an offset (the usual
+    # quantizer's layout): q = round(32767·(p − centre)/half).
+    lo = [min(pos[k::3]) for k in range(3)]
+    hi = [max(pos[k::3]) for k in range(3)]
+    centre = [(a + b) / 2 for a, b in zip(lo, hi)]
+    half = max((b - a) / 2 for a, b in zip(lo, hi))
+    qpos = [round(32767 * (p - centre[k % 3]) / half) for k, p in enumerate(pos)]
+    qnrm = [round(127 * v) for v in nrm]
+    quv = [round(65535 * v) for v in uv]
+    b = _Bin()
+    node: dict = {"mesh": 0}
+    if quantized:
+        def packed(values, fmt, per, pad_to, size):
+            # Each element padded to a multiple of 4 bytes (glTF's vertex attribute alignment).
+            out = bytearray()
+            for k in range(0, len(values), per):
+                out += struct.pack(f"<{per}{fmt}", *values[k:k + per])
+                out += b"\x00" * (pad_to - per * size)
+            return bytes(out)
+
+        def accessor(payload, ctype, count, type_, stride):
+            view = b.view(payload)
+            b.views[view]["byteStride"] = stride
+            b.views[view]["target"] = 34962
+            b.accessors.append({"bufferView": view, "componentType": ctype, "normalized": True, "count": count, "type": type_})
+            return len(b.accessors) - 1
+
+        nv = len(pos) // 3
+        attributes = {
+            "POSITION": accessor(packed(qpos, "h", 3, 8, 2), 5122, nv, "VEC3", 8),
+            "NORMAL": accessor(packed(qnrm, "b", 3, 4, 1), 5120, nv, "VEC3", 4),
+            "TEXCOORD_0": accessor(packed(quv, "H", 2, 4, 2), 5123, nv, "VEC2", 4),
+        }
+        b.accessors[attributes["POSITION"]]["min"] = [min(qpos[k::3]) / 32767 for k in range(3)]
+        b.accessors[attributes["POSITION"]]["max"] = [max(qpos[k::3]) / 32767 for k in range(3)]
+        node.update(translation=centre, scale=[half] * 3)
+        extensions = {"extensionsUsed": ["KHR_mesh_quantization"], "extensionsRequired": ["KHR_mesh_quantization"]}
+    else:
+        fpos = [centre[k % 3] + half * max(q / 32767, -1.0) for k, q in enumerate(qpos)]
+        fnrm = [max(q / 127, -1.0) for q in qnrm]
+        attributes = {
+            "POSITION": b.floats(fpos, "VEC3", 3),
+            "NORMAL": b.floats(fnrm, "VEC3", 3),
+            "TEXCOORD_0": b.floats([q / 65535 for q in quv], "VEC2", 2),
+        }
+        extensions = {}
+    indices = b.indices(idx)
+    (d / "patch.bin").write_bytes(bytes(b.data))
+    root = _root(
+        b,
+        {"uri": "patch.bin", "byteLength": len(b.data)},
+        images=[{"uri": "checker.png"}],
+        textures=[{"source": 0}],
+        materials=[{"name": "checker", "pbrMetallicRoughness": {"baseColorTexture": {"index": 0}, "metallicFactor": 0.0, "roughnessFactor": 0.5}}],
+        meshes=[{"primitives": [{"attributes": attributes, "indices": indices, "material": 0}]}],
+        nodes=[node],
+        scenes=[{"nodes": [0]}],
+        **extensions,
+    )
+    return _write_json(d / "patch.gltf", root)
+
+
 # The emissive GLB's material: L_e = factor × strength × texel (texel decoded from sRGB).
 EMISSIVE_FACTOR = (1.0, 0.5, 0.25)
 EMISSIVE_STRENGTH = 40.0
@@ -609,6 +765,8 @@ VALID = {
     "spot_light_camera": (write_spot_light_camera, 2),
     "emissive_glb": (write_emissive_glb, 2),
     "animated": (write_animated, 2),
+    "texture_transform": (write_texture_transform, 2),
+    "quantized": (write_quantized, 72),
 }
 
 WARNING_CASES = {

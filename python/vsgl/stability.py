@@ -114,8 +114,122 @@ SURFACE_FRACTION = 0.02
 FLIP_FRACTION = {"pathtrace": 0.01}
 
 
+#: The scene of the suite that comes from a glTF file (written by `write_room_gltf`): the
+#: built-ins are moved through the API, which is f64 throughout, while a file carries its own
+#: offset in its node translations, which the loader must read in f64 too.
+FILE_SCENE = "room_gltf"
+#: The offset `write_room_gltf` puts into the moved file's nodes: 1e5 m, with digits below the
+#: 8 mm an f32 keeps there (100000.3 is 100000.3125 in f32).
+FILE_OFFSET = (100000.3, -99999.7, 100000.1)
+
+
+def write_room_gltf(directory, offset=(0.0, 0.0, 0.0)):
+    """Writes ``room.gltf`` into `directory` and returns its path: a closed room (floor,
+    ceiling, three walls, a red and a green one) with a turned glossy box, a spot light on a
+    node and a perspective camera on a node. Every node stands at `offset` + its place in the
+    room, and each mesh is modelled around its node, as exporters write scenes far from the
+    origin; the buffer is a data URI, so the file is the whole scene."""
+    import base64
+    import json
+    import math
+    import pathlib
+    import struct
+
+    data = bytearray()
+    views: list[dict] = []
+    accessors: list[dict] = []
+
+    def accessor(values, fmt, type_, ncomp, target):
+        while len(data) % 4:
+            data.append(0)
+        views.append({"buffer": 0, "byteOffset": len(data), "byteLength": len(values) * 4 if fmt == "f" else len(values) * 2, "target": target})
+        data.extend(struct.pack(f"<{len(values)}{fmt}", *values))
+        acc = {"bufferView": len(views) - 1, "componentType": 5126 if fmt == "f" else 5123, "count": len(values) // ncomp, "type": type_}
+        if type_ == "VEC3":
+            acc["min"] = [min(values[k::3]) for k in range(3)]
+            acc["max"] = [max(values[k::3]) for k in range(3)]
+        accessors.append(acc)
+        return len(accessors) - 1
+
+    def mesh_of(faces):
+        """faces: (corner, edge u, edge v, normal) quads, counter-clockwise seen along -normal."""
+        pos, nrm, idx = [], [], []
+        for corner, eu, ev, n in faces:
+            k = len(pos) // 3
+            for a, b in ((0, 0), (1, 0), (1, 1), (0, 1)):
+                pos += [corner[i] + a * eu[i] + b * ev[i] for i in range(3)]
+                nrm += list(n)
+            idx += [k, k + 1, k + 2, k, k + 2, k + 3]
+        return {"primitives": [{"attributes": {"POSITION": accessor(pos, "f", "VEC3", 3, 34962), "NORMAL": accessor(nrm, "f", "VEC3", 3, 34962)},
+                                "indices": accessor(idx, "H", "SCALAR", 1, 34963)}]}
+
+    w, h = 2.0, 3.0  # half width, height
+    meshes, materials, nodes = [], [], []
+
+    def add(name, faces, place, material, rotation=None):
+        meshes.append(mesh_of(faces))
+        materials.append(material)
+        meshes[-1]["primitives"][0]["material"] = len(materials) - 1
+        node = {"name": name, "mesh": len(meshes) - 1, "translation": [o + p for o, p in zip(offset, place)]}
+        if rotation is not None:
+            node["rotation"] = rotation
+        nodes.append(node)
+
+    def matte(name, rgb, roughness=0.8):
+        return {"name": name, "pbrMetallicRoughness": {"baseColorFactor": [*rgb, 1.0], "metallicFactor": 0.0, "roughnessFactor": roughness}}
+
+    add("floor", [((-w, 0, w), (2 * w, 0, 0), (0, 0, -2 * w), (0, 1, 0))], (0.0, 0.0, 0.0), matte("floor", (0.7, 0.7, 0.65), 0.5))
+    add("ceiling", [((-w, 0, -w), (2 * w, 0, 0), (0, 0, 2 * w), (0, -1, 0))], (0.0, h, 0.0), matte("ceiling", (0.75, 0.75, 0.75)))
+    add("back", [((-w, -h / 2, 0), (2 * w, 0, 0), (0, h, 0), (0, 0, 1))], (0.0, h / 2, -w), matte("back", (0.7, 0.7, 0.7)))
+    add("left", [((0, -h / 2, w), (0, 0, -2 * w), (0, h, 0), (1, 0, 0))], (-w, h / 2, 0.0), matte("red", (0.7, 0.1, 0.08)))
+    add("right", [((0, -h / 2, -w), (0, 0, 2 * w), (0, h, 0), (-1, 0, 0))], (w, h / 2, 0.0), matte("green", (0.1, 0.6, 0.12)))
+    c = 0.4
+    box = [((-c, -c, c), (2 * c, 0, 0), (0, 2 * c, 0), (0, 0, 1)), ((c, -c, -c), (-2 * c, 0, 0), (0, 2 * c, 0), (0, 0, -1)),
+           ((c, -c, c), (0, 0, -2 * c), (0, 2 * c, 0), (1, 0, 0)), ((-c, -c, -c), (0, 0, 2 * c), (0, 2 * c, 0), (-1, 0, 0)),
+           ((-c, c, c), (2 * c, 0, 0), (0, 0, -2 * c), (0, 1, 0)), ((-c, -c, -c), (2 * c, 0, 0), (0, 0, 2 * c), (0, -1, 0))]
+    turn = math.radians(20.0)
+    add("box", box, (0.5, c, -0.4), {"name": "glossy box", "pbrMetallicRoughness": {"baseColorFactor": [0.8, 0.7, 0.5, 1.0], "metallicFactor": 0.5,
+                                                                                     "roughnessFactor": 0.3}},
+        rotation=[0.0, math.sin(turn / 2), 0.0, math.cos(turn / 2)])
+    s = math.sqrt(0.5)
+    nodes.append({"name": "spot", "translation": [o + p for o, p in zip(offset, (-0.3, h - 0.1, 0.2))], "rotation": [-s, 0.0, 0.0, s],
+                  "extensions": {"KHR_lights_punctual": {"light": 0}}})
+    nodes.append({"name": "camera", "translation": [o + p for o, p in zip(offset, (0.0, 1.5, 5.5))], "camera": 0})
+    uri = "data:application/octet-stream;base64," + base64.b64encode(bytes(data)).decode()
+    root = {
+        "asset": {"version": "2.0", "generator": "vsgl.stability.write_room_gltf"},
+        "extensionsUsed": ["KHR_lights_punctual"],
+        "extensions": {"KHR_lights_punctual": {"lights": [{"type": "spot", "intensity": 30.0, "spot": {"innerConeAngle": 0.6, "outerConeAngle": 0.9}}]}},
+        "buffers": [{"uri": uri, "byteLength": len(data)}], "bufferViews": views, "accessors": accessors,
+        "materials": materials, "meshes": meshes, "nodes": nodes,
+        "cameras": [{"type": "perspective", "perspective": {"yfov": 0.9, "znear": 0.05}}],
+        "scenes": [{"nodes": list(range(len(nodes)))}], "scene": 0,
+    }
+    path = pathlib.Path(directory) / "room.gltf"
+    path.write_text(json.dumps(root))
+    return path
+
+
+def _file_scene(offset=(0.0, 0.0, 0.0)):
+    """The room of `write_room_gltf` loaded from a file written with `offset`, and its camera."""
+    import tempfile
+
+    import vsgl
+
+    with tempfile.TemporaryDirectory(prefix="vsgl-room-") as d:
+        scene = vsgl.Scene.load(write_room_gltf(d, offset))
+    return scene, scene.cameras[0]
+
+
+def _load_scene(name: str):
+    """A built-in by name, or the file scene (FILE_SCENE)."""
+    import vsgl
+
+    return _file_scene()[0] if name == FILE_SCENE else vsgl.scenes.load(name)
+
+
 def transformed_scene(name: str, scale: float = 1.0, offset=(0.0, 0.0, 0.0), intensity_scale: float = 1.0):
-    """Built-in scene `name` with every node scaled by `scale` about the origin and moved by
+    """Built-in scene `name` (or FILE_SCENE) with every node scaled by `scale` about the origin and moved by
     `offset`, its lights moved alike with intensities × `intensity_scale`, and its first camera
     moved alike. Light transport is invariant under this when intensity_scale = scale²
     (radiance ~ I/d²), and linear in intensity_scale."""
@@ -123,15 +237,22 @@ def transformed_scene(name: str, scale: float = 1.0, offset=(0.0, 0.0, 0.0), int
 
     import vsgl
 
-    scene = vsgl.scenes.load(name)
+    scene = _load_scene(name)
     offset = np.asarray(offset, dtype=float)
     m = np.eye(4)
     m[:3, :3] *= scale
     m[:3, 3] = offset
+    # Read before the nodes move: a light on a node (the file scene's spot) follows its node.
+    lights = scene.lights
     for node in scene.node_names:
-        scene.set_transform(node, m.tolist())
+        # Composed with the node's own transform (the file scene's nodes carry their places);
+        # every node of the suite's scenes is a root, so each is moved once.
+        local = np.array(scene.transform(node))
+        if not np.array_equal(local, np.array(scene.transform(node, world=True))):
+            raise ValueError(f"{name}: node {node!r} has a parent; transformed_scene moves root nodes only")
+        scene.set_transform(node, (m @ local).tolist())
     moved = []
-    for light in scene.lights:
+    for light in lights:
         pos = tuple(scale * np.array(light.position) + offset)
         if isinstance(light, vsgl.SpotLight):
             moved.append(vsgl.SpotLight(position=pos, direction=light.direction, intensity=light.intensity * intensity_scale, color=light.color,
@@ -157,6 +278,9 @@ def _scene_cases(name: str):
 
     yield "base", *transformed_scene(name), None, 1.0
     yield "moved 1e5 m", *transformed_scene(name, offset=(1e5, -1e5, 1e5)), 1.0, 1.0
+    if name == FILE_SCENE:
+        # The same file with the offset in its nodes' translations (geometry, light, camera).
+        yield "moved 1e5 m in the file", *_file_scene(FILE_OFFSET), 1.0, 1.0
     yield "scaled 1e-3 (I x 1e-6)", *transformed_scene(name, 1e-3, intensity_scale=1e-6), 1.0, 1e-3
     yield "scaled 1e3 (I x 1e6)", *transformed_scene(name, 1e3, intensity_scale=1e6), 1.0, 1e3
     # Not a power of ten: its rounding differs from the base's, so edge pixels change surface on
@@ -212,7 +336,7 @@ def widen(mask, k: int):
     return out
 
 
-def scene_suite(scenes: Sequence[str] = ("cornell_box", "glossy_cornell", "caustics_ring", "helmet_shell"), methods: Sequence[str] | None = None,
+def scene_suite(scenes: Sequence[str] = ("cornell_box", "glossy_cornell", "caustics_ring", "helmet_shell", FILE_SCENE), methods: Sequence[str] | None = None,
                 size: tuple[int, int] = (32, 24), adapter: str | None = None) -> list[dict[str, Any]]:
     """Renders every method on `scenes` under each case of `_scene_cases` and returns one row per
     (scene, method, case): ``rel_rmse`` against the base image (invariance cases, else None),
@@ -286,7 +410,7 @@ def main(argv: Sequence[str] | None = None) -> int:
     )
     parser.add_argument("--verbose", action="store_true", help="print the worst case of every failing row")
     parser.add_argument("--scenes", action="store_true",
-                        help="also run the scene-level suite: every method on built-in scenes moved 1e5 m, scaled 1e-3, 0.37 and 1e3, "
+                        help="also run the scene-level suite: every method on built-in scenes and a glTF room (also written 1e5 m out in the file) moved 1e5 m, scaled 1e-3, 0.37 and 1e3, "
                              "with intensities 1e-8 and 1e30, a grazing light, roughness 1e-4 and the camera inside geometry")
     args = parser.parse_args(argv)
     if not args.bound_scale > 0.0:

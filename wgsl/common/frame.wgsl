@@ -150,6 +150,13 @@ struct MaterialRaw {
     // Emitted radiance L_e (linear RGB): emissiveFactor × KHR_materials_emissive_strength.
     emissive: vec3f,
     _pad1: f32,
+    // KHR_texture_transform of the base colour, metallic-roughness, normal and emissive
+    // references: uv' = (u_row.xyz · (u, v, 1), v_row.xyz · (u, v, 1)); u_row.w is the mip-level
+    // shift ½·log2|det M|, v_row.w unused (identity rows without the extension).
+    base_color_uv: array<vec4f, 2>,
+    metallic_roughness_uv: array<vec4f, 2>,
+    normal_uv: array<vec4f, 2>,
+    emissive_uv: array<vec4f, 2>,
 }
 
 fn view_ndc(frame: FrameUniforms, pixel: vec2f) -> vec2f {

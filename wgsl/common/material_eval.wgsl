@@ -21,6 +21,12 @@ struct SurfaceMaterial {
     ns: vec3f,
 }
 
+// A texture reference's coordinates under its KHR_texture_transform rows (see MaterialRaw).
+fn transformed_uv(rows: array<vec4f, 2>, uv: vec2f) -> vec2f {
+    let h = vec3f(uv, 1.0);
+    return vec2f(dot(rows[0].xyz, h), dot(rows[1].xyz, h));
+}
+
 // `ns`: the interpolated unit shading normal; `tangent`: the interpolated tangent and
 // `handedness` the sign of the first vertex's tangent.w; `uv` and `lod` (mip level) address
 // the textures, and are not read by the untextured variant.
@@ -28,15 +34,15 @@ fn evaluate_material(material: MaterialRaw, uv: vec2f, lod: f32, ns: vec3f, tang
     var out = SurfaceMaterial(material.base_color.rgb, material.metallic, material.roughness, ns);
     if (HAS_TEXTURES) {
         if (material.base_color_layer >= 0) {
-            out.base *= textureSampleLevel(color_textures, texture_sampler, uv, material.base_color_layer, lod).rgb;
+            out.base *= textureSampleLevel(color_textures, texture_sampler, transformed_uv(material.base_color_uv, uv), material.base_color_layer, lod + material.base_color_uv[0].w).rgb;
         }
         if (material.metallic_roughness_layer >= 0) {
-            let mr = textureSampleLevel(data_textures, texture_sampler, uv, material.metallic_roughness_layer, lod);
+            let mr = textureSampleLevel(data_textures, texture_sampler, transformed_uv(material.metallic_roughness_uv, uv), material.metallic_roughness_layer, lod + material.metallic_roughness_uv[0].w);
             out.roughness *= mr.g;
             out.metallic *= mr.b;
         }
         if (HAS_NORMAL_MAPS && material.normal_layer >= 0) {
-            let tn = textureSampleLevel(data_textures, texture_sampler, uv, material.normal_layer, lod).xyz * 2.0 - 1.0;
+            let tn = textureSampleLevel(data_textures, texture_sampler, transformed_uv(material.normal_uv, uv), material.normal_layer, lod + material.normal_uv[0].w).xyz * 2.0 - 1.0;
             // Gram-Schmidt: the tangent made orthogonal to the interpolated normal.
             let t_orth = tangent - ns * dot(ns, tangent);
             let t_len = length(t_orth);
@@ -65,7 +71,7 @@ fn evaluate_material(material: MaterialRaw, uv: vec2f, lod: f32, ns: vec3f, tang
 fn material_emission(material: MaterialRaw, uv: vec2f, lod: f32) -> vec3f {
     var emitted = material.emissive;
     if (HAS_TEXTURES && material.emissive_layer >= 0) {
-        emitted *= textureSampleLevel(color_textures, texture_sampler, uv, material.emissive_layer, lod).rgb;
+        emitted *= textureSampleLevel(color_textures, texture_sampler, transformed_uv(material.emissive_uv, uv), material.emissive_layer, lod + material.emissive_uv[0].w).rgb;
     }
     return max(emitted, vec3f(0.0));
 }

@@ -221,7 +221,9 @@ impl PyScene {
     }
     /// The materials as dicts: name, base_color (RGBA, linear), metallic, roughness, specular
     /// (the KHR_materials_specular factor), emissive (the emitted radiance L_e, linear RGB; 0 for
-    /// a material that does not emit) and which textures it has.
+    /// a material that does not emit), which textures it has and, as uv_transforms, the
+    /// KHR_texture_transform of each texture reference that has one (slot -> the two rows of
+    /// the 2×3 matrix M, uv' = M·(u, v, 1)).
     #[getter]
     fn materials<'py>(&self, py: Python<'py>) -> PyResult<Vec<Bound<'py, PyDict>>> {
         self.inner.materials.iter().map(|m| {
@@ -239,6 +241,20 @@ impl PyScene {
                 ("emissive", m.emissive_texture),
             ].into_iter().filter(|(_, t)| t.is_some()).map(|(n, _)| n).collect();
             d.set_item("textures", textures)?;
+            // KHR_texture_transform per texture reference, as the two rows of uv' = M·(u, v, 1);
+            // only the references that have one.
+            let uv = PyDict::new(py);
+            for (slot, t) in [
+                ("base_color", &m.base_color_uv),
+                ("metallic_roughness", &m.metallic_roughness_uv),
+                ("normal", &m.normal_uv),
+                ("emissive", &m.emissive_uv),
+            ] {
+                if *t != vsgl_core::scene::UvTransform::IDENTITY {
+                    uv.set_item(slot, t.rows.iter().map(|r| r.to_vec()).collect::<Vec<_>>())?;
+                }
+            }
+            d.set_item("uv_transforms", uv)?;
             Ok(d)
         }).collect()
     }

@@ -58,6 +58,43 @@ pub struct Texture {
     pub usage: TextureUsage,
 }
 
+/// The texture-coordinate transform of one texture reference (`KHR_texture_transform`):
+/// uv' = M·(u, v, 1) with M = T·R·S, the extension's translation, rotation and scale matrices
+/// (offset o, rotation θ counter-clockwise in UV space, scale s):
+/// M = [[s_u cos θ, s_v sin θ, o_u], [−s_u sin θ, s_v cos θ, o_v]].
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct UvTransform {
+    /// The two rows of M.
+    pub rows: [[f32; 3]; 2],
+}
+
+impl Default for UvTransform {
+    fn default() -> Self {
+        Self::IDENTITY
+    }
+}
+
+impl UvTransform {
+    pub const IDENTITY: Self = Self { rows: [[1.0, 0.0, 0.0], [0.0, 1.0, 0.0]] };
+
+    /// M = T·R·S of `KHR_texture_transform` (composed in f64, stored in f32).
+    pub fn from_offset_rotation_scale(offset: [f64; 2], rotation: f64, scale: [f64; 2]) -> Self {
+        let (sin, cos) = rotation.sin_cos();
+        Self {
+            rows: [
+                [(scale[0] * cos) as f32, (scale[1] * sin) as f32, offset[0] as f32],
+                [(-scale[0] * sin) as f32, (scale[1] * cos) as f32, offset[1] as f32],
+            ],
+        }
+    }
+
+    /// The transformed coordinates of `uv`.
+    pub fn apply(&self, uv: [f32; 2]) -> [f32; 2] {
+        let [a, b] = self.rows;
+        [a[0] * uv[0] + a[1] * uv[1] + a[2], b[0] * uv[0] + b[1] * uv[1] + b[2]]
+    }
+}
+
 /// glTF metallic-roughness material (DESIGN.md "Conventions").
 #[derive(Clone, Debug)]
 pub struct Material {
@@ -82,6 +119,11 @@ pub struct Material {
     pub emissive: [f32; 3],
     /// sRGB colour texture that multiplies `emissive` (index into [`Scene::textures`]).
     pub emissive_texture: Option<usize>,
+    /// `KHR_texture_transform` of each texture reference (identity without one).
+    pub base_color_uv: UvTransform,
+    pub metallic_roughness_uv: UvTransform,
+    pub normal_uv: UvTransform,
+    pub emissive_uv: UvTransform,
 }
 
 impl Default for Material {
@@ -99,6 +141,10 @@ impl Default for Material {
             specular_factor: 1.0,
             emissive: [0.0; 3],
             emissive_texture: None,
+            base_color_uv: UvTransform::IDENTITY,
+            metallic_roughness_uv: UvTransform::IDENTITY,
+            normal_uv: UvTransform::IDENTITY,
+            emissive_uv: UvTransform::IDENTITY,
         }
     }
 }

@@ -58,8 +58,23 @@ pub struct MaterialRaw {
     /// Emitted radiance L_e (linear RGB); the vec3 is paired with a scalar (WGSL alignment).
     pub emissive: [f32; 3],
     pub _pad1: f32,
+    /// `KHR_texture_transform` of the base colour, metallic-roughness, normal and emissive
+    /// references, two rows each: uv' = (row_u.xyz · (u, v, 1), row_v.xyz · (u, v, 1)); row_u.w
+    /// is the mip-level shift ½·log2|det M| (the footprint's growth under M), row_v.w unused.
+    pub base_color_uv: [[f32; 4]; 2],
+    pub metallic_roughness_uv: [[f32; 4]; 2],
+    pub normal_uv: [[f32; 4]; 2],
+    pub emissive_uv: [[f32; 4]; 2],
 }
-const _: () = assert!(std::mem::size_of::<MaterialRaw>() == 64);
+const _: () = assert!(std::mem::size_of::<MaterialRaw>() == 192);
+
+/// The GPU rows of a texture-coordinate transform (see [`MaterialRaw::base_color_uv`]).
+fn uv_rows(t: &crate::scene::UvTransform) -> [[f32; 4]; 2] {
+    let [u, v] = t.rows;
+    let det = (f64::from(u[0]) * f64::from(v[1]) - f64::from(u[1]) * f64::from(v[0])).abs();
+    let lod_shift = 0.5 * det.max(1e-30).log2();
+    [[u[0], u[1], u[2], lod_shift as f32], [v[0], v[1], v[2], 0.0]]
+}
 
 /// Largest texture layer side. Textures are resampled into one array per colour space so the
 /// material pass needs no bindless feature; 1024² keeps FlightHelmet/BoomBox detail at the
@@ -274,6 +289,10 @@ impl GpuScene {
                 emissive_layer: layer(m.emissive_texture, TextureUsage::Color),
                 emissive: m.emissive,
                 _pad1: 0.0,
+                base_color_uv: uv_rows(&m.base_color_uv),
+                metallic_roughness_uv: uv_rows(&m.metallic_roughness_uv),
+                normal_uv: uv_rows(&m.normal_uv),
+                emissive_uv: uv_rows(&m.emissive_uv),
             });
         }
         let max_side = color_layers

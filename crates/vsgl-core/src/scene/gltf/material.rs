@@ -7,9 +7,30 @@ use gltf::json;
 use json::validation::Checked;
 
 use super::image::texture_index;
+use super::raw::RawTextureTransform;
 use super::{finite_all, Builder, Ctx};
 use crate::error::Result;
-use crate::scene::{limits, Material, TextureUsage};
+use crate::scene::{limits, Material, TextureUsage, UvTransform};
+
+/// The `KHR_texture_transform` of the texture reference `el` (identity without one) and the
+/// texture coordinate set it reads: the extension's `texCoord` overrides the reference's.
+fn uv_transform(ctx: &Ctx, transform: Option<&RawTextureTransform>, tex_coord: u32, el: &str) -> Result<(UvTransform, u32)> {
+    let Some(t) = transform else { return Ok((UvTransform::IDENTITY, tex_coord)) };
+    let tel = format!("{el}.extensions.KHR_texture_transform");
+    let offset = t.offset.unwrap_or([0.0, 0.0]);
+    let rotation = t.rotation.unwrap_or(0.0);
+    let scale = t.scale.unwrap_or([1.0, 1.0]);
+    for (name, values) in [("offset", &offset[..]), ("rotation", &[rotation][..]), ("scale", &scale[..])] {
+        if !values.iter().all(|v| v.is_finite() && v.abs() <= f64::from(f32::MAX)) {
+            return Err(ctx.err(format!("{tel}.{name}"), format!("must be finite (f32 range), got {values:?}")));
+        }
+    }
+    let m = UvTransform::from_offset_rotation_scale(offset, rotation, scale);
+    if !m.rows.iter().flatten().all(|v| v.is_finite()) {
+        return Err(ctx.err(tel, "the transform overflows f32"));
+    }
+    Ok((m, t.tex_coord.unwrap_or(tex_coord)))
+}
 
 fn unit_factor(ctx: &Ctx, v: f32, element: String) -> Result<f32> {
     if !v.is_finite() {
@@ -79,29 +100,29 @@ pub(super) fn material_index(
                 pbr.roughness_factor.0,
                 format!("{el}.pbrMetallicRoughness.roughnessFactor"),
             )?;
+            let raw = ctx.raw.materials.get(g);
+            let bel = format!("{el}.pbrMetallicRoughness.baseColorTexture");
+            let (base_color_uv, base_color_set) =
+                uv_transform(ctx, raw.and_then(|r| r.base_color_transform()), pbr.base_color_texture.as_ref().map_or(0, |i| i.tex_coord), &bel)?;
             let base_color_texture = match &pbr.base_color_texture {
-                Some(info) => texture_index(
-                    ctx,
-                    b,
-                    info.index.value(),
-                    info.tex_coord,
-                    TextureUsage::Color,
-                    format!("{el}.pbrMetallicRoughness.baseColorTexture"),
-                )?,
+                Some(info) => texture_index(ctx, b, info.index.value(), base_color_set, TextureUsage::Color, bel)?,
                 None => None,
             };
+            let mel = format!("{el}.pbrMetallicRoughness.metallicRoughnessTexture");
+            let (metallic_roughness_uv, metallic_roughness_set) = uv_transform(
+                ctx,
+                raw.and_then(|r| r.metallic_roughness_transform()),
+                pbr.metallic_roughness_texture.as_ref().map_or(0, |i| i.tex_coord),
+                &mel,
+            )?;
             let metallic_roughness_texture = match &pbr.metallic_roughness_texture {
-                Some(info) => texture_index(
-                    ctx,
-                    b,
-                    info.index.value(),
-                    info.tex_coord,
-                    TextureUsage::Data,
-                    format!("{el}.pbrMetallicRoughness.metallicRoughnessTexture"),
-                )?,
+                Some(info) => texture_index(ctx, b, info.index.value(), metallic_roughness_set, TextureUsage::Data, mel)?,
                 None => None,
             };
             let mut normal_scale = 1.0;
+            let nel = format!("{el}.normalTexture");
+            let (normal_uv, normal_set) =
+                uv_transform(ctx, raw.and_then(|r| r.normal_transform()), m.normal_texture.as_ref().map_or(0, |n| n.tex_coord), &nel)?;
             let normal_texture = match (&m.normal_texture, keep_normal_map) {
                 (Some(nt), true) => {
                     if !nt.scale.is_finite() {
@@ -110,19 +131,11 @@ pub(super) fn material_index(
                         );
                     }
                     normal_scale = nt.scale;
-                    texture_index(
-                        ctx,
-                        b,
-                        nt.index.value(),
-                        nt.tex_coord,
-                        TextureUsage::Data,
-                        format!("{el}.normalTexture"),
-                    )?
+                    texture_index(ctx, b, nt.index.value(), normal_set, TextureUsage::Data, nel)?
                 }
-                (Some(nt), false) if nt.tex_coord != 0 => {
+                (Some(_), false) if normal_set != 0 => {
                     b.warn(format!(
-                        "{el}.normalTexture: texCoord {} is not supported (TEXCOORD_0 only); texture ignored",
-                        nt.tex_coord
+                        "{nel}: texCoord {normal_set} is not supported (TEXCOORD_0 only); texture ignored"
                     ));
                     None
                 }
@@ -143,15 +156,13 @@ pub(super) fn material_index(
             }
             let emissive = emitted_radiance(ctx, m, &el)?;
             // A texture cannot make a zero factor emit: decode it only when it can show.
+            let eel = format!("{el}.emissiveTexture");
+            let (emissive_uv, emissive_set) =
+                uv_transform(ctx, raw.and_then(|r| r.emissive_transform()), m.emissive_texture.as_ref().map_or(0, |i| i.tex_coord), &eel)?;
             let emissive_texture = match &m.emissive_texture {
-                Some(info) if emissive.iter().any(|&e| e > 0.0) => texture_index(
-                    ctx,
-                    b,
-                    info.index.value(),
-                    info.tex_coord,
-                    TextureUsage::Color,
-                    format!("{el}.emissiveTexture"),
-                )?,
+                Some(info) if emissive.iter().any(|&e| e > 0.0) => {
+                    texture_index(ctx, b, info.index.value(), emissive_set, TextureUsage::Color, eel)?
+                }
                 _ => None,
             };
             if !matches!(
@@ -174,6 +185,10 @@ pub(super) fn material_index(
                 specular_factor,
                 emissive,
                 emissive_texture,
+                base_color_uv,
+                metallic_roughness_uv,
+                normal_uv,
+                emissive_uv,
             }
         }
     };

@@ -16,7 +16,8 @@
 //! `container` (GLB chunks), `uri` (data: URIs and files inside the scene folder), `buffer`
 //! (buffers and bufferViews), `accessor`, `image` (images and textures), `mesh` (primitives,
 //! generated normals and tangents), `material`, `nodes` (hierarchy, transforms, cameras),
-//! `lights` (KHR_lights_punctual) and `animation` (node animations).
+//! `lights` (KHR_lights_punctual), `animation` (node animations) and `raw` (f64 node
+//! transforms and KHR_texture_transform, which the crate's model rounds or lacks).
 
 mod accessor;
 mod animation;
@@ -27,6 +28,7 @@ mod lights;
 mod material;
 mod mesh;
 mod nodes;
+mod raw;
 mod uri;
 
 use std::borrow::Cow;
@@ -75,6 +77,7 @@ const SUPPORTED_REQUIRED_EXTENSIONS: &[&str] = &[
     "KHR_materials_emissive_strength",
     "KHR_materials_specular",
     "KHR_mesh_quantization",
+    "KHR_texture_transform",
 ];
 
 /// Limits of one load that a caller may change (the others are constants of this module).
@@ -144,6 +147,8 @@ pub fn load_with(path: &Path, options: &LoadOptions) -> Result<Scene> {
         .unwrap_or(json_bytes);
     let root: json::Root = json::deserialize::from_slice(json_bytes)
         .map_err(|e| Error::scene(path, "JSON", format!("invalid glTF JSON: {e}")))?;
+    let raw = raw::parse(json_bytes)
+        .map_err(|e| Error::scene(path, "JSON", format!("invalid glTF JSON (node transforms or texture transforms): {e}")))?;
 
     let folder = match path.parent() {
         Some(p) if !p.as_os_str().is_empty() => p.to_path_buf(),
@@ -161,6 +166,7 @@ pub fn load_with(path: &Path, options: &LoadOptions) -> Result<Scene> {
         file: path,
         base,
         root,
+        raw,
         buffers: Vec::new(),
         views: Vec::new(),
         geometry_bytes: Cell::new(0),
@@ -193,6 +199,8 @@ struct Ctx<'a> {
     /// Canonical folder of the scene file; every referenced file must lie under it.
     base: PathBuf,
     root: json::Root,
+    /// What `root` reads too coarsely or not at all: f64 node transforms, texture transforms.
+    raw: raw::RawRoot,
     buffers: Vec<Cow<'a, [u8]>>,
     views: Vec<ViewInfo>,
     geometry_bytes: Cell<u64>,

@@ -9,32 +9,31 @@ use json::validation::Checked;
 use super::animation::load_animations;
 use super::lights::add_light;
 use super::mesh::load_mesh;
-use super::{finite_all, Builder, Ctx};
+use super::raw::RawNode;
+use super::{Builder, Ctx};
 use crate::error::Result;
 use crate::scene::{Camera, Node};
 
-fn node_local(ctx: &Ctx, i: usize, node: &json::Node) -> Result<DMat4> {
+/// A node's local transform from its f64 values in the file (`raw`: the gltf crate keeps f32,
+/// which would move a node 1e5 m from the origin by millimetres).
+fn node_local(ctx: &Ctx, i: usize, node: &RawNode) -> Result<DMat4> {
+    let finite = |v: &[f64]| v.iter().all(|x| x.is_finite());
     if let Some(m) = node.matrix {
-        if !finite_all(&m) {
+        if !finite(&m) {
             return Err(ctx.err(format!("nodes[{i}].matrix"), "non-finite matrix element"));
         }
-        return Ok(DMat4::from_cols_array(&m.map(f64::from)));
+        return Ok(DMat4::from_cols_array(&m));
     }
     let t = node.translation.unwrap_or([0.0; 3]);
     let s = node.scale.unwrap_or([1.0; 3]);
-    let r = node.rotation.map_or([0.0, 0.0, 0.0, 1.0], |q| q.0);
-    if !finite_all(&t) {
+    let r = node.rotation.unwrap_or([0.0, 0.0, 0.0, 1.0]);
+    if !finite(&t) {
         return Err(ctx.err(format!("nodes[{i}].translation"), "non-finite translation"));
     }
-    if !finite_all(&s) {
+    if !finite(&s) {
         return Err(ctx.err(format!("nodes[{i}].scale"), "non-finite scale"));
     }
-    let q = DQuat::from_xyzw(
-        f64::from(r[0]),
-        f64::from(r[1]),
-        f64::from(r[2]),
-        f64::from(r[3]),
-    );
+    let q = DQuat::from_xyzw(r[0], r[1], r[2], r[3]);
     let len = q.length();
     if !(len.is_finite() && len > 1e-12) {
         return Err(ctx.err(
@@ -43,11 +42,7 @@ fn node_local(ctx: &Ctx, i: usize, node: &json::Node) -> Result<DMat4> {
         ));
     }
     let q = q / len;
-    Ok(DMat4::from_scale_rotation_translation(
-        DVec3::new(f64::from(s[0]), f64::from(s[1]), f64::from(s[2])),
-        q,
-        DVec3::new(f64::from(t[0]), f64::from(t[1]), f64::from(t[2])),
-    ))
+    Ok(DMat4::from_scale_rotation_translation(DVec3::from(s), q, DVec3::from(t)))
 }
 
 pub(super) fn build_scene(ctx: &Ctx, b: &mut Builder) -> Result<()> {
@@ -183,7 +178,8 @@ pub(super) fn build_scene(ctx: &Ctx, b: &mut Builder) -> Result<()> {
 
     // Nodes (all of them, so indices match the file); meshes only on reachable ones.
     for (i, node) in nodes.iter().enumerate() {
-        let local = node_local(ctx, i, node)?;
+        let raw = ctx.raw.nodes.get(i).ok_or_else(|| ctx.err(format!("nodes[{i}]"), "node not found in the JSON's second reading"))?;
+        let local = node_local(ctx, i, raw)?;
         let is_reachable = reachable.get(i).copied().unwrap_or(false);
         let mesh = match (node.mesh, is_reachable) {
             (Some(m), true) => Some(load_mesh(ctx, b, m.value(), i)?),
