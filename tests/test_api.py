@@ -104,7 +104,9 @@ def test_frame_aovs_and_metadata(renderer):
 @pytest.mark.parametrize("method", ["direct", "vsgl", "vsgl2", "pathtrace"])
 def test_aovs_reads_back_only_what_is_asked_and_the_same_values(renderer, method):
     scene = vsgl.scenes.cornell_box()
-    small = dict(num_lights=16, rsm_size=32, spp=2)
+    # Camera paths for pathtrace: they are bit-deterministic, while the default bidirectional
+    # strategy adds its light splats with float atomics in a varying order (docs/rendering.md).
+    small = dict(num_lights=16, rsm_size=32, spp=2, strategy="camera")
     kw = dict(method=method, **{k: v for k, v in small.items() if k in vsgl.method_options(method)})
     full = renderer.render(scene, **kw)
     for asked in (["image"], ["indirect_specular", "depth"], ["albedo", "image", "normal"], []):
@@ -313,3 +315,36 @@ def test_cli_option_flag_reaches_every_method_option(tmp_path):
     assert bad.returncode == 2 and "lambert_lobe" in bad.stderr and "Traceback" not in bad.stderr, bad.stderr
     malformed = subprocess.run(base + ["-O", "lambert_lobe", "-o", str(tmp_path / "d.npy")], capture_output=True, text=True, timeout=300)
     assert malformed.returncode == 2 and "NAME=VALUE" in malformed.stderr, malformed.stderr
+
+
+def test_scene_triangles_are_the_world_space_geometry():
+    """`Scene.triangles()` gives every triangle in world space (what another renderer needs to
+    render the same scene): the counts of `stats`, the corners of `bounds`, node transforms
+    applied to positions and (inverse transpose) normals, materials indexed as `materials`."""
+    scene = vsgl.scenes.cornell_box()
+    t = scene.triangles()
+    n = scene.stats["triangles"]
+    assert t["positions"].shape == (n, 3, 3) and t["normals"].shape == (n, 3, 3) and t["uvs"].shape == (n, 3, 2)
+    assert t["material"].shape == (n,) and 0 <= t["material"].min() and t["material"].max() < len(scene.materials)
+    lo, hi = scene.bounds
+    np.testing.assert_allclose(t["positions"].reshape(-1, 3).min(axis=0), lo, atol=1e-6)
+    np.testing.assert_allclose(t["positions"].reshape(-1, 3).max(axis=0), hi, atol=1e-6)
+    np.testing.assert_allclose(np.linalg.norm(t["normals"], axis=-1), 1.0, atol=1e-5)
+    # A node scaled 2× along x and moved: its positions move alike, its normals by the inverse
+    # transpose (a normal with x and y parts turns towards y).
+    node = scene.node_names[0]
+    m = np.diag([2.0, 1.0, 1.0, 1.0])
+    m[:3, 3] = (1e5, 0.0, 0.0)
+    before = t
+    scene.set_transform(node, (m @ np.array(scene.transform(node))).tolist())
+    after = scene.triangles()
+    moved = np.zeros(n, bool)
+    moved[: len(after["material"])] = np.any(np.abs(after["positions"] - before["positions"]) > 0, axis=(1, 2))
+    assert moved.any()
+    p0, p1 = before["positions"][moved], after["positions"][moved]
+    np.testing.assert_allclose(p1[..., 0], 2.0 * p0[..., 0] + 1e5, rtol=1e-12)
+    np.testing.assert_array_equal(p1[..., 1:], p0[..., 1:])
+    n0 = before["normals"][moved].astype(np.float64)
+    want = n0 * np.array([0.5, 1.0, 1.0])
+    want /= np.linalg.norm(want, axis=-1, keepdims=True)
+    np.testing.assert_allclose(after["normals"][moved], want, atol=1e-6)

@@ -125,9 +125,10 @@ def _erode(m: np.ndarray, r: int) -> np.ndarray:
 
 
 def test_stderr_falls_as_one_over_sqrt_spp_and_is_deterministic(renderer):
+    """Camera paths (strategy="camera") are bit-deterministic for a seed."""
     scene = vsgl.scenes.cornell_box()
-    f16 = renderer.render(scene, method="pathtrace", spp=16, seed=3)
-    f64 = renderer.render(scene, method="pathtrace", spp=64, seed=3)
+    f16 = renderer.render(scene, method="pathtrace", strategy="camera", spp=16, seed=3)
+    f64 = renderer.render(scene, method="pathtrace", strategy="camera", spp=64, seed=3)
     e16, e64 = f16.aov("stderr"), f64.aov("stderr")
     for e in (e16, e64):
         assert e.shape == (renderer.height, renderer.width, 3)
@@ -142,10 +143,10 @@ def test_stderr_falls_as_one_over_sqrt_spp_and_is_deterministic(renderer):
     assert ratio == pytest.approx(2.0, rel=0.15)
     # The mean of σ̂² is unbiased, so its ratio is 4 up to the spread of heavy tails.
     assert (e16[both].astype(np.float64) ** 2).mean() / (e64[both].astype(np.float64) ** 2).mean() == pytest.approx(4.0, rel=0.3)
-    again = renderer.render(scene, method="pathtrace", spp=16, seed=3)
+    again = renderer.render(scene, method="pathtrace", strategy="camera", spp=16, seed=3)
     for name in ["image", "indirect", "indirect_diffuse", "indirect_specular", "stderr", "direct"]:
         np.testing.assert_array_equal(again.aov(name), f16.aov(name), err_msg=name)
-    other = renderer.render(scene, method="pathtrace", spp=16, seed=4)
+    other = renderer.render(scene, method="pathtrace", strategy="camera", spp=16, seed=4)
     assert not np.array_equal(other.aov("indirect"), f16.aov("indirect"))
     np.testing.assert_array_equal(other.aov("direct"), f16.aov("direct"))
     assert f16.settings["spp"] == "16" and f16.settings["seed"] == "3"
@@ -170,14 +171,30 @@ def test_bad_spp_raises_value_error_naming_it(renderer, spp):
         renderer.render(vsgl.scenes.cornell_box(), method="pathtrace", spp=spp)
 
 
+def test_the_default_strategy_is_bidirectional_and_repeats_within_float_rounding(renderer):
+    """The default converges on caustics (bidirectional); its light splats are float atomics
+    added in a varying order, so a seed repeats within a few f32 roundings of the sum, not bit
+    for bit, while another seed is a different estimate."""
+    scene = vsgl.scenes.mirror_panel()
+    a = renderer.render(scene, method="pathtrace", spp=16, seed=3, aovs=["indirect"])
+    assert a.settings["strategy"] == "bidirectional"
+    b = renderer.render(scene, method="pathtrace", spp=16, seed=3, aovs=["indirect"])
+    c = renderer.render(scene, method="pathtrace", spp=16, seed=4, aovs=["indirect"])
+    ia, ib, ic = (f.aov("indirect").astype(np.float64) for f in (a, b, c))
+    scale = float(ia.max())
+    assert scale > 0.0
+    assert np.abs(ia - ib).max() <= 1e-5 * scale
+    assert np.abs(ia - ic).max() > 1e-2 * scale
+
+
 def test_pathtrace_frame_reports_what_ran(renderer):
-    f = renderer.render(vsgl.scenes.cornell_box(), method="pathtrace", spp=2)
+    f = renderer.render(vsgl.scenes.cornell_box(), method="pathtrace", strategy="camera", spp=2)
     assert "stderr" in f.aovs
     assert "pathtrace_direct" in f.passes and "bvh_build" in f.passes
     assert "shadow_map" in f.skipped and "direct" not in f.passes
     assert np.isfinite(f.aov("image")).all()
     # Leaving out the texture fetches (no textured material) changes nothing.
-    full = renderer.render(vsgl.scenes.cornell_box(), method="pathtrace", spp=2, plan="full")
+    full = renderer.render(vsgl.scenes.cornell_box(), method="pathtrace", strategy="camera", spp=2, plan="full")
     assert "pathtrace" in full.passes and "pathtrace[untextured]" in f.passes
     np.testing.assert_array_equal(full.aov("image"), f.aov("image"))
 

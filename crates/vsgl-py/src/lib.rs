@@ -394,6 +394,39 @@ impl PyScene {
         let b = self.inner.bounds();
         (b.min.into(), b.max.into())
     }
+    /// Every triangle of the scene in world space at its current pose, for other renderers and
+    /// checks: a dict of NumPy arrays, ``positions`` (T, 3, 3) float64, ``normals`` (T, 3, 3)
+    /// float32 (the vertices' shading normals, by the inverse transpose, unit length),
+    /// ``uvs`` (T, 3, 2) float32 (zeros where a primitive has none) and ``material`` (T,) int64,
+    /// the index into ``materials``. Node order, then primitive, then index order.
+    fn triangles<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyDict>> {
+        let scene = &*self.inner;
+        let (mut pos, mut nrm, mut uvs, mut mat) = (Vec::<f64>::new(), Vec::<f32>::new(), Vec::<f32>::new(), Vec::<i64>::new());
+        for (i, node) in scene.nodes.iter().enumerate() {
+            let Some(mesh) = node.mesh.and_then(|m| scene.meshes.get(m)) else { continue };
+            let world = scene.world_transform(i);
+            let normal_matrix = glam::DMat3::from_mat4(world).inverse().transpose();
+            for prim in &mesh.primitives {
+                for &k in &prim.indices {
+                    let k = k as usize;
+                    let p = prim.positions.get(k).copied().unwrap_or_default();
+                    pos.extend(world.transform_point3(glam::DVec3::new(p[0] as f64, p[1] as f64, p[2] as f64)).to_array());
+                    let n = prim.normals.get(k).copied().unwrap_or_default();
+                    let n = (normal_matrix * glam::DVec3::new(n[0] as f64, n[1] as f64, n[2] as f64)).normalize_or_zero();
+                    nrm.extend(n.as_vec3().to_array());
+                    uvs.extend(prim.uvs.get(k).copied().unwrap_or_default());
+                }
+                mat.extend(std::iter::repeat_n(prim.material as i64, prim.indices.len() / 3));
+            }
+        }
+        let t = mat.len();
+        let d = PyDict::new(py);
+        d.set_item("positions", PyArray1::from_vec(py, pos).reshape([t, 3, 3])?)?;
+        d.set_item("normals", PyArray1::from_vec(py, nrm).reshape([t, 3, 3])?)?;
+        d.set_item("uvs", PyArray1::from_vec(py, uvs).reshape([t, 3, 2])?)?;
+        d.set_item("material", PyArray1::from_vec(py, mat))?;
+        Ok(d)
+    }
     fn __repr__(&self) -> String {
         let s = self.inner.stats();
         format!("Scene({:?}, triangles={}, materials={}, lights={})", self.inner.source, s.triangles, s.materials, s.lights)
@@ -916,8 +949,9 @@ impl PyRenderer {
     ///   ism_pcf, capture_rsm.
     /// - "pathtrace": path-traced one-bounce ground truth with a stderr AOV. spp, seed,
     ///   time_budget_s (stop sampling after this many seconds; Ctrl-C stops any long render),
-    ///   strategy ("camera": pixel centres | "bidirectional": light tracing + camera paths by
-    ///   MIS over pixel areas, for caustics | "light": light tracing alone).
+    ///   strategy ("bidirectional", the default: light tracing + camera paths by MIS over pixel
+    ///   areas, which converges on caustics, repeatable within float rounding | "camera": pixel
+    ///   centres, bit-deterministic | "light": light tracing alone).
     ///
     /// `capture_rsm=True` keeps the first light's RSM for `Frame.rsm(name)`.
     ///

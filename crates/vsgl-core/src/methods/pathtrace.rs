@@ -16,9 +16,9 @@ pub const INFO: MethodInfo = MethodInfo {
     extra_aovs: &["stderr"],
     configure: |o| {
         let strategy = match o.str("strategy")? {
-            "bidirectional" => Strategy::Bidirectional,
+            "camera" => Strategy::Camera,
             "light" => Strategy::Light,
-            _ => Strategy::Camera,
+            _ => Strategy::Bidirectional,
         };
         Ok(Box::new(PathTrace { options: o.clone(), spp: o.u32("spp")?, seed: o.u32("seed")?, time_budget_s: o.f32("time_budget_s")? as f64, strategy }))
     },
@@ -43,8 +43,10 @@ const OPTIONS: &[OptionSpec] = &[
     OptionSpec {
         name: "strategy",
         kind: OptionKind::Choice(&["camera", "bidirectional", "light"]),
-        default: OptionValue::Str(std::borrow::Cow::Borrowed("camera")),
-        help: "\"camera\": BRDF-sampled bounces from each pixel centre; \"bidirectional\": also light tracing (photons reflected once and splatted), combined by MIS over each pixel's area, for caustics; \"light\": light tracing alone (a check on the others)",
+        // Bidirectional by default: camera paths alone do not converge on caustics (a polished
+        // panel's beam on a wall), so the default is the strategy that converges everywhere.
+        default: OptionValue::Str(std::borrow::Cow::Borrowed("bidirectional")),
+        help: "\"bidirectional\" (the default): BRDF-sampled bounces from each pixel and light tracing (photons reflected once and splatted), combined by MIS over each pixel's area, so caustics converge; \"camera\": the camera paths alone (faster, but caustics off a near-mirror converge slowly or not at all); \"light\": light tracing alone (a check on the others)",
         note: "",
     },
 ];
