@@ -22,7 +22,7 @@ def test_public_names_exist():
     assert issubclass(vsgl.SceneError, vsgl.VsglError)
     assert issubclass(vsgl.NoAdapterError, vsgl.VsglError)
     assert vsgl.scenes.names() == ["cornell_box", "glossy_cornell", "caustics_ring", "cave_flashlight", "diffuse_cornell",
-                                   "mirror_panel", "helmet_shell"]
+                                   "mirror_panel", "helmet_shell", "furnished_room", "atrium"]
 
 
 def test_unknown_method_lists_valid_ones(renderer):

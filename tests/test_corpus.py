@@ -131,9 +131,24 @@ def test_vpls_are_near_the_reference_on_the_measured_scenes(name, make_renderer)
     assert abs(d - 1) < 0.15 and abs(s - 1) < 0.15, (d, s)
 
 
-@pytest.mark.xfail(strict=True, reason="open: default vsgl against the same-RSM reference (docs/rendering.md, 'The real-scene corpus'): BoomBox 1.42/9.34 (the reference is the one that is off: 0.074x the path tracer's specular), FlightHelmet 0.47/0.52 (near-field light)")
-@pytest.mark.parametrize("name", ["boom_box", "flight_helmet"])
-def test_default_vsgl_within_10_percent_on_the_measured_scenes(name, make_renderer):
+# The acceptance bound, per corpus scene: default vsgl at N = 1024 within ±10% of the same-RSM
+# reference in diffuse and in specular. Where it does not hold yet the test is a strict xfail
+# naming what was measured (docs/rendering.md, "The real-scene corpus"), so a fix shows as an
+# unexpected pass. lights_spot has no indirect light (its own test below).
+_WITHIN_10_OPEN = {
+    "boom_box": "1.42 / 9.34: the reference is the one that is off (0.074x the path tracer's specular)",
+    "flight_helmet": "0.47 / 0.52: near-field light a texel-sized patch does not deliver, creases",
+    "helmet_shell": "0.99 / 0.78 (specular low; not yet split by cause)",
+    "furnished_room": "0.93 / 0.87 (specular low; not yet split by cause)",
+    "atrium": "0.86 / 0.92 (diffuse low; not yet split by cause)",
+}
+
+
+@pytest.mark.parametrize("name", [
+    pytest.param(n, marks=pytest.mark.xfail(strict=True, reason=f"open: {_WITHIN_10_OPEN[n]}")) if n in _WITHIN_10_OPEN else n
+    for n in vsgl.scenes.corpus_names() if n != "lights_spot"
+])
+def test_default_vsgl_within_10_percent_on_the_corpus(name, make_renderer):
     _needs_files(name)
     d, s = _ratios(make_renderer(128, 128), vsgl.scenes.corpus_scene(name).scene, "vsgl", interleave=1, denoise=False)
     assert abs(d - 1) <= 0.10 and abs(s - 1) <= 0.10, (d, s)

@@ -1,6 +1,6 @@
 """The scene-level stability suite (`python -m vsgl stability --scenes`; issue 20, item 9):
-every method on three built-ins, the generated corpus scene helmet_shell and a room read from a
-glTF file (also written with a 1e5 m offset in its nodes) moved 1e5 m, scaled 1e-3, 0.37 and 1e3 (intensities × scale²), with
+every method on three built-ins, the generated corpus scenes (helmet_shell, furnished_room, atrium)
+and a room read from a glTF file (also written with a 1e5 m offset in its nodes) moved 1e5 m, scaled 1e-3, 0.37 and 1e3 (intensities × scale²), with
 intensities × 1e-8 and at 1e30 cd, a light grazing a wall, every material at roughness 1e-4 and
 the camera inside geometry renders no NaN/Inf, and is invariant within 1e-3 (relative RMSE)
 where the scene is representable."""
@@ -16,13 +16,13 @@ from vsgl import stability
 def test_every_method_on_every_case_passes():
     rows = stability.scene_suite()
     print("\n" + stability.format_scene_table(rows))
-    # Five scenes (the generated corpus scene helmet_shell and the file scene among them) × 6
-    # methods × 10 cases, and the file scene's own case: the offset written into the file.
-    assert len(rows) == 5 * 6 * 10 + 6
-    assert {r["scene"] for r in rows} == {"cornell_box", "glossy_cornell", "caustics_ring", "helmet_shell", stability.FILE_SCENE}
+    # Seven scenes (the generated corpus scenes and the file scene among them) × 6 methods × 10
+    # cases, and the file scene's own case: the offset written into the file.
+    assert len(rows) == 7 * 6 * 10 + 6
+    assert {r["scene"] for r in rows} == {"cornell_box", "glossy_cornell", "caustics_ring", *vsgl.scenes.GENERATED_CORPUS, stability.FILE_SCENE}
     # Every method met the near-mirror materials.
     stiff = [r for r in rows if r["case"] == "roughness 1e-4"]
-    assert len(stiff) == 5 * len(vsgl.METHODS) and {r["method"] for r in stiff} == set(vsgl.METHODS)
+    assert len(stiff) == 7 * len(vsgl.METHODS) and {r["method"] for r in stiff} == set(vsgl.METHODS)
     assert not [r for r in rows if r["nonfinite"]], "frames with NaN/Inf"
     failed = [r for r in rows if not r["passed"]]
     assert not failed, failed

@@ -9,6 +9,12 @@
 - ``helmet_shell``: a helmet-like object at FlightHelmet's size (a 5 mm leather cap over a head,
   a metal visor band under its rim, a neck, a pedestal), lit like the FlightHelmet corpus scene:
   a curved thin shell and close-range creases, which the boxes lack.
+- ``furnished_room``: a furnished room (4 × 3 m): a textured parquet floor, a normal-mapped
+  plaster wall, a table, chairs, a sofa with sunk cushions, a shelf of books pressed together, a
+  brushed-metal vase (roughness from a texture), toy blocks in a heap, a thin floor lamp; many
+  small objects touching and interpenetrating, as real interiors have.
+- ``atrium``: a courtyard at the papers' scale (about 300k triangles): fluted columns, arches,
+  folded curtains (thin sheets), 1,600 floor tiles and 1,200 leaves, under a high sun-like spot.
 - ``mirror_panel``: a polished metal panel (roughness 0.02) tilted 45° under a narrow spot, which
   throws the beam onto the wall behind it as a sharp bright patch (a planar caustic).
 
@@ -71,6 +77,14 @@ def helmet_shell() -> Scene:
     return builtin_scene("helmet_shell")
 
 
+def furnished_room() -> Scene:
+    return builtin_scene("furnished_room")
+
+
+def atrium() -> Scene:
+    return builtin_scene("atrium")
+
+
 # --- The real-scene corpus ------------------------------------------------------------------
 #
 # Defaults, bounds and claims are chosen on real files, not only on the boxes above
@@ -87,7 +101,7 @@ SHARED_SCENES_ENV = "VSGL_SCENES"
 
 _CORPUS_SPECS = pathlib.Path(__file__).resolve().parent / "corpus"
 #: Built-in scenes that belong to the corpus (generated in Rust like the others).
-GENERATED_CORPUS = ("helmet_shell",)
+GENERATED_CORPUS = ("helmet_shell", "furnished_room", "atrium")
 
 
 def shared_scenes_dir() -> pathlib.Path:

@@ -336,7 +336,8 @@ def widen(mask, k: int):
     return out
 
 
-def scene_suite(scenes: Sequence[str] = ("cornell_box", "glossy_cornell", "caustics_ring", "helmet_shell", FILE_SCENE), methods: Sequence[str] | None = None,
+def scene_suite(scenes: Sequence[str] = ("cornell_box", "glossy_cornell", "caustics_ring", "helmet_shell", "furnished_room", "atrium", FILE_SCENE),
+                methods: Sequence[str] | None = None,
                 size: tuple[int, int] = (32, 24), adapter: str | None = None) -> list[dict[str, Any]]:
     """Renders every method on `scenes` under each case of `_scene_cases` and returns one row per
     (scene, method, case): ``rel_rmse`` against the base image (invariance cases, else None),

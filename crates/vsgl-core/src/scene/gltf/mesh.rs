@@ -298,8 +298,9 @@ fn orthogonal(n: DVec3) -> DVec3 {
 }
 
 /// Per-vertex tangents from per-triangle UV gradients, accumulated, then Gram–Schmidt
-/// orthogonalised against the normal; w is the bitangent sign.
-fn generate_tangents(
+/// orthogonalised against the normal; w is the bitangent sign. (The built-in scenes' normal
+/// maps use it too.)
+pub(crate) fn generate_tangents(
     positions: &[[f32; 3]],
     normals: &[[f32; 3]],
     uvs: &[[f32; 2]],

@@ -42,6 +42,7 @@ use crate::error::{Error, Result};
 use crate::scene::Scene;
 
 use buffer::ViewInfo;
+pub(crate) use mesh::generate_tangents;
 use container::parse_glb;
 use nodes::build_scene;
 
