@@ -25,9 +25,9 @@ from vsgl.metrics import block_rmse
 DEFAULT_VARIANTS = [
     "vpl=method=vpl",
     "vsgl",
-    "before=lighting=asg,coherence=0",
-    "blend_only=coherence=0",
-    "asg_coherent=lighting=asg",
+    "before=lighting=asg,coherence=0,lambert_lobe=hemisphere",
+    "blend_only=coherence=0,lambert_lobe=hemisphere",
+    "asg_coherent=lighting=asg,lambert_lobe=hemisphere",
     "papers=lighting=asg,coherence=0,plane_fade=false,lambert_lobe=papers",
     "node=kernel=node",
     "vsgl2=method=vsgl2",

@@ -130,10 +130,10 @@ fn lambert_patch_irradiance(mean: vec3f, axis: vec3f, variance: f32, p: vec3f, n
 // differs from max(cos, 0)/π by ε = LAMBERT_LOBE_SG_SHAPE_ERROR (relative RMS over the
 // hemisphere) however small the cluster, while treating the cluster as one patch at μ errs by
 // about σ²/d²: equal where σ²/d² = ε, so w = ε·d²/(ε·d² + σ²) trusts the exact form where the
-// cluster is compact as seen from p and the SG where it is extended. An option, not the
-// default: the error of a point emitter grows faster than σ²/d² where a floor cluster lights a
-// wall at grazing angles (1/d² is convex, so spreading the cluster adds light), and there it
-// loses to the SG (docs/rendering.md, "Lambert lobes").
+// cluster is compact as seen from p and the SG where it is extended. The default since
+// 2026-12-01 (closer to the reference on every corpus scene and built-in); it loses to the SG
+// alone where a floor cluster lights a wall at grazing angles (docs/rendering.md, "Lambert
+// lobes").
 fn lambert_exact_weight(mean: vec3f, variance: f32, p: vec3f) -> f32 {
     let to_light = mean - p;
     let scaled = LAMBERT_LOBE_SG_SHAPE_ERROR * dot(to_light, to_light);
@@ -318,7 +318,9 @@ fn shade_pair(px: ptr<function, BlockPixel>, light: TileLight) {
             // A point emitter (σ² = 0): the weight leaves the near field to the SG,
             // and d² + 2σ² would bias it low off its axis (measured: cornell_box
             // 0.061 → 0.050 at N = 4096, lit_floor_corner 0.211 → 0.186).
-            let exact = lambert_patch_irradiance(position.mean, lobe_d4.xyz, 0.0, p, n) * INV_PI;
+            // Faded like the SG: on or below the cluster's tangent plane the point's own
+            // cosine is rounding noise (a lone plane lit its back by 1e-8 without it).
+            let exact = fade * lambert_patch_irradiance(position.mean, lobe_d4.xyz, 0.0, p, n) * INV_PI;
             from_diffuse_lobe = mix(from_diffuse_lobe, exact, w);
         }
         (*px).diffuse += diffuse_power * from_diffuse_lobe;

@@ -933,9 +933,10 @@ impl PyRenderer {
     ///   the papers' SG–ASG specular and diffuse= | "accurate": GGX with its NDF widened by the
     ///   light's spread, after Tokuyoshi et al. 2024, and the clamped-cosine diffuse;
     ///   docs/rendering.md "SG lighting" and "The real-scene corpus"),
-    ///   lambert_lobe ("hemisphere": each texel's Lambert SG normalized over its hemisphere |
-    ///   "exact_compact": that SG blended with an exact Lambertian point emitter where a
-    ///   cluster is compact as seen from the receiver | "papers": over the sphere, 9.2% of the
+    ///   lambert_lobe ("exact_compact", the default: the hemisphere-normalized Lambert SG
+    ///   blended with an exact Lambertian point emitter where a cluster is compact as seen
+    ///   from the receiver | "hemisphere": each texel's Lambert SG normalized over its
+    ///   hemisphere, the default until 2026-12-01 | "papers": over the sphere, 9.2% of the
     ///   diffuse power lost), plane_fade (with lighting="asg" and diffuse="papers", True fades
     ///   each VSGL's light below its cluster's mean tangent plane, as the other forms always
     ///   do; False: the papers' formula, which lights the back of a lit surface), visibility, ism_size, ism_points, ism_points_per_map, ism_bias, ism_pcf, importance,

@@ -356,11 +356,12 @@ pub mod common {
         &["papers", "accurate", "sg_product"],
         "diffuse SG shading: the papers' clamped form, the unclamped SG-cosine product, or an SG product",
     );
-    /// Normalization of the Lambert lobe's SG (docs/rendering.md, "VSGLs": the hemisphere gain).
+    /// Normalization and shape of the Lambert lobe's SG (docs/rendering.md, "VSGLs": the
+    /// hemisphere gain, and "The real-scene corpus" for the default).
     pub const LAMBERT_LOBE: OptionSpec = choice(
         "lambert_lobe",
-        &["hemisphere", "exact_compact", "papers"],
-        "each cluster's Lambert lobe: \"hemisphere\" (the SG normalized over each texel's hemisphere, so all its diffuse power reaches where a Lambertian texel can light), \"exact_compact\" (that SG blended with an exact Lambertian point emitter where the cluster is compact as seen from the receiver: better on the closed diffuse box, worse at grazing floor-to-wall transfer) or \"papers\" (normalized over the sphere: 9.2% of it lies below the texel and is lost)",
+        &["exact_compact", "hemisphere", "papers"],
+        "each cluster's Lambert lobe: \"exact_compact\" (the default: the hemisphere-normalized SG blended with an exact Lambertian point emitter where the cluster is compact as seen from the receiver; closer to the reference on every corpus scene and built-in, worse where a wide lit floor lights a wall at grazing angles), \"hemisphere\" (the SG normalized over each texel's hemisphere, so all its diffuse power reaches where a Lambertian texel can light; the default until 2026-12-01) or \"papers\" (normalized over the sphere: 9.2% of it lies below the texel and is lost)",
     );
     /// The cluster's tangent-plane fade for the papers' diffuse form too (docs/rendering.md,
     /// "The cluster's tangent plane"); the other diffuse forms always fade. The default differs
