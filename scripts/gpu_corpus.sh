@@ -10,10 +10,10 @@
 #
 # Steps (why):
 #   1 the equal-time table at 960x540 on the three shared scenes (vsgl with its defaults of
-#     2026-12-01 and as it was before, vpl) against the bidirectional path tracer: the real-scene
-#     issue's figure owed to a GPU;
-#   2 the cost of the new defaults (lighting="blend", coherence=0.9) against the old frame, warm,
-#     at 512² and 1024².
+#     2026-12-01 and as it was before: lighting, coherence and lambert_lobe swept; vpl) against
+#     the bidirectional path tracer: the real-scene issue's figure owed to a GPU;
+#   2 the cost of today's defaults (lighting="blend", coherence=0.9, lambert_lobe="exact_compact")
+#     against the frame before them, warm, at 512² and 1024².
 set -uo pipefail
 source "$(dirname "$0")/gpu_common.sh"  # $FINAL_OUT, $RES, pack, step, require_gpu; cd to the repository root
 BUDGET=${BUDGET:-480}
@@ -29,10 +29,11 @@ fi
 require_gpu
 
 TAIL=60 step bench_corpus 300 python3 -m vsgl bench --scene flight_helmet,cornell_box_original,boom_box --methods vsgl,vpl \
-  --lighting blend,asg -O coherence=0.9,0 --lights "$LIGHTS" --size "$MID" --rsm-sizes 256 --seeds 2 --frames 4 \
+  --lighting blend,asg -O coherence=0.9,0 -O lambert_lobe=exact_compact,hemisphere --lights "$LIGHTS" --size "$MID" --rsm-sizes 256 --seeds 2 --frames 4 \
   --reference pathtrace --reference-strategy bidirectional --reference-spp "$SPP" --no-progress --out "$RES/bench_corpus"
 pack
-TAIL=20 step cost_defaults 120 python3 scripts/lighting_default_cost.py --sizes "$SIZES" --repeats "$REPEATS"
+TAIL=20 step cost_defaults 120 python3 scripts/lighting_default_cost.py --sizes "$SIZES" --repeats "$REPEATS" \
+  --variant before=lighting=asg,coherence=0,lambert_lobe=hemisphere --variant today=
 pack
 echo "== done in $((SECONDS - T0)) s"
 } 2>&1 | tee "$FINAL_OUT/log.txt"
