@@ -671,9 +671,8 @@ def compare_scene(mi, dr, name, scene, args, renderer) -> tuple[dict, dict]:
                         aovs=["image", "indirect", "direct", "stderr", "depth"])
     t_vsgl = time.perf_counter() - t0
     v = {k: np.asarray(f.aov(k), np.float64) for k in ("image", "indirect", "direct", "stderr")}
-    # Pixels whose centre sees no surface (depth 0): vsgl's pathtrace leaves them at 0 in both
-    # strategies (wgsl/passes/pathtrace.wgsl, `indirect` and `light_paths`), also where the
-    # pixel's area partly covers a surface.
+    # Pixels whose centre sees no surface (depth 0): vsgl's camera strategy leaves them at 0; its
+    # bidirectional default (since this comparison found the gap) takes their area's light.
     background = np.asarray(f.aov("depth"), np.float64).reshape(size, size) == 0.0
     v_area_direct = vsgl_area_direct(scene, cam, size, args.supersample)
 
@@ -832,8 +831,8 @@ def format_report(command, args, rows, notes, mi, wall) -> str:
                  f"{_f(r['img_ratio'])}{_f(r['img_blk'])} |{_f(r['imgc_ratio'])}{_f(r['imgc_blk'])}")
     L.append("")
     L.append("## Where the indirect gap sits (cross-checks)")
-    L.append("bg: share of Mitsuba's indirect in pixels whose centre sees no surface; vsgl leaves those pixels at 0 in both its strategies "
-             "(wgsl/passes/pathtrace.wgsl), though their area partly covers a surface. excl bg: vsgl vs Mitsuba with those pixels zeroed in "
+    L.append("bg: share of Mitsuba's indirect in pixels whose centre sees no surface; vsgl's strategy=\"camera\" leaves those pixels at 0, "
+             "its bidirectional default takes the part of their area that covers a surface. excl bg: vsgl vs Mitsuba with those pixels zeroed in "
              "Mitsuba too. M cam/M: Mitsuba's camera paths for every path (area averages) vs the light-tracer-based result above (noise: the "
              "camera paths' own block error). v cam/M cam: vsgl strategy=\"camera\" vs Mitsuba's camera paths, both at pixel centres "
              "(noise: both block errors combined). excl bg (M cam): vsgl vs Mitsuba's camera paths with the background-centre pixels zeroed. "
