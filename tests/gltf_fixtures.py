@@ -87,21 +87,23 @@ def _write_json(path: pathlib.Path, root: dict) -> pathlib.Path:
     return path
 
 
+def _png_chunk(kind: bytes, payload: bytes) -> bytes:
+    """One PNG chunk: length, type, payload, CRC."""
+    body = kind + payload
+    return struct.pack(">I", len(payload)) + body + struct.pack(">I", zlib.crc32(body) & 0xFFFFFFFF)
+
+
 def _png(width: int, height: int, rgba: tuple[int, int, int, int], with_pixels: bool = True) -> bytes:
     """An 8-bit RGBA PNG of one colour. Without pixels: the header plus a 16-byte IDAT, so
     only a loader that decodes before checking the size would notice the missing pixels."""
 
-    def chunk(kind: bytes, payload: bytes) -> bytes:
-        body = kind + payload
-        return struct.pack(">I", len(payload)) + body + struct.pack(">I", zlib.crc32(body) & 0xFFFFFFFF)
-
-    out = b"\x89PNG\r\n\x1a\n" + chunk(b"IHDR", struct.pack(">IIBBBBB", width, height, 8, 6, 0, 0, 0))
+    out = b"\x89PNG\r\n\x1a\n" + _png_chunk(b"IHDR", struct.pack(">IIBBBBB", width, height, 8, 6, 0, 0, 0))
     if with_pixels:
         row = b"\x00" + bytes(rgba) * width
-        out += chunk(b"IDAT", zlib.compress(row * height))
+        out += _png_chunk(b"IDAT", zlib.compress(row * height))
     else:
-        out += chunk(b"IDAT", zlib.compress(b"\x00" * 16))  # far too short for the header's size
-    return out + chunk(b"IEND", b"")
+        out += _png_chunk(b"IDAT", zlib.compress(b"\x00" * 16))  # far too short for the header's size
+    return out + _png_chunk(b"IEND", b"")
 
 
 def _glb(root: dict, binary: bytes) -> bytes:
@@ -234,13 +236,9 @@ def _textured(dirpath, *, with_uvs=True, missing_image=False, huge_image=False, 
 def _png_pixels(width: int, height: int, pixel) -> bytes:
     """An 8-bit RGBA PNG whose texel (x, y) is ``pixel(x, y)`` (an RGBA tuple)."""
 
-    def chunk(kind: bytes, payload: bytes) -> bytes:
-        body = kind + payload
-        return struct.pack(">I", len(payload)) + body + struct.pack(">I", zlib.crc32(body) & 0xFFFFFFFF)
-
     rows = b"".join(b"\x00" + b"".join(bytes(pixel(x, y)) for x in range(width)) for y in range(height))
-    return (b"\x89PNG\r\n\x1a\n" + chunk(b"IHDR", struct.pack(">IIBBBBB", width, height, 8, 6, 0, 0, 0))
-            + chunk(b"IDAT", zlib.compress(rows)) + chunk(b"IEND", b""))
+    return (b"\x89PNG\r\n\x1a\n" + _png_chunk(b"IHDR", struct.pack(">IIBBBBB", width, height, 8, 6, 0, 0, 0))
+            + _png_chunk(b"IDAT", zlib.compress(rows)) + _png_chunk(b"IEND", b""))
 
 
 # The texture transform of ``write_texture_transform``: KHR_texture_transform's offset,
@@ -444,10 +442,6 @@ def write_png_of_zeros(path, side: int, channels: int = 1) -> pathlib.Path:
     zlib one block at a time, so writing it never holds the raw image in memory."""
     colour_type = {1: 0, 3: 2, 4: 6}[channels]
 
-    def chunk(kind: bytes, payload: bytes) -> bytes:
-        body = kind + payload
-        return struct.pack(">I", len(payload)) + body + struct.pack(">I", zlib.crc32(body) & 0xFFFFFFFF)
-
     z = zlib.compressobj(1)
     rows_per_block = 64
     block = bytes((1 + side * channels) * rows_per_block)  # filter byte 0 + pixels, per row
@@ -459,9 +453,9 @@ def write_png_of_zeros(path, side: int, channels: int = 1) -> pathlib.Path:
     path = pathlib.Path(path)
     path.write_bytes(
         b"\x89PNG\r\n\x1a\n"
-        + chunk(b"IHDR", struct.pack(">IIBBBBB", side, side, 8, colour_type, 0, 0, 0))
-        + chunk(b"IDAT", b"".join(idat))
-        + chunk(b"IEND", b"")
+        + _png_chunk(b"IHDR", struct.pack(">IIBBBBB", side, side, 8, colour_type, 0, 0, 0))
+        + _png_chunk(b"IDAT", b"".join(idat))
+        + _png_chunk(b"IEND", b"")
     )
     return path
 

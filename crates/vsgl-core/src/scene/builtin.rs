@@ -275,20 +275,19 @@ impl MeshBuilder {
 }
 
 fn add(scene: &mut Scene, name: &str, material: Material, build: impl FnOnce(&mut MeshBuilder)) {
-    scene.materials.push(material);
-    let mut b = MeshBuilder::default();
-    build(&mut b);
-    let mesh = b.finish(name, scene.materials.len() - 1);
-    scene.add_mesh_node(name, mesh, DMat4::IDENTITY);
+    add_mesh(scene, name, material, false, build);
 }
 
-/// Like [`add`], with tangents generated from the texture coordinates (for a normal map).
-fn add_with_tangents(scene: &mut Scene, name: &str, material: Material, build: impl FnOnce(&mut MeshBuilder)) {
+/// Adds a mesh of `material` built by `build` on a node of its own; `tangents`: generated from the
+/// texture coordinates (what a normal map needs).
+fn add_mesh(scene: &mut Scene, name: &str, material: Material, tangents: bool, build: impl FnOnce(&mut MeshBuilder)) {
     scene.materials.push(material);
     let mut b = MeshBuilder::default();
     build(&mut b);
-    let p = &mut b.prim;
-    p.tangents = super::gltf::generate_tangents(&p.positions, &p.normals, &p.uvs, &p.indices);
+    if tangents {
+        let p = &mut b.prim;
+        p.tangents = super::gltf::generate_tangents(&p.positions, &p.normals, &p.uvs, &p.indices);
+    }
     let mesh = b.finish(name, scene.materials.len() - 1);
     scene.add_mesh_node(name, mesh, DMat4::IDENTITY);
 }
@@ -569,7 +568,7 @@ pub fn furnished_room() -> Scene {
     });
     let mut wall = Material::dielectric("plaster", [0.75, 0.72, 0.66], 0.8);
     wall.normal_texture = Some(plaster);
-    add_with_tangents(&mut s, "walls", wall, |b| {
+    add_mesh(&mut s, "walls", wall, true, |b| {
         b.quad_tiled(DVec3::new(-hx, 0.0, -hz), DVec3::new(2.0 * hx, 0.0, 0.0), DVec3::new(0.0, h, 0.0), [4.0, 2.6]); // back
         b.quad_tiled(DVec3::new(hx, 0.0, hz), DVec3::new(-2.0 * hx, 0.0, 0.0), DVec3::new(0.0, h, 0.0), [4.0, 2.6]); // front
         b.quad_tiled(DVec3::new(-hx, 0.0, hz), DVec3::new(0.0, 0.0, -2.0 * hz), DVec3::new(0.0, h, 0.0), [3.0, 2.6]); // left
