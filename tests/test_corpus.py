@@ -126,8 +126,11 @@ def test_vpls_are_near_the_reference_on_the_measured_scenes(name, make_renderer)
     # The corpus and its reference are consistent: VPLs, which estimate the reference without
     # bias, land near it (measured 0.90-1.00 diffuse, 0.98-1.03 specular; the 15% is the Monte
     # Carlo noise of 1024 VPLs on BoomBox, whose few lit concave texels carry its indirect light).
+    # Four seeds: since the spot RSMs are fitted to the scene, BoomBox's 1024 VPLs sample six
+    # times more texels and one seed's specular alone lands at 1.18.
     _needs_files(name)
-    d, s = _ratios(make_renderer(128, 128), vsgl.scenes.corpus_scene(name).scene, "vpl")
+    r, scene = make_renderer(128, 128), vsgl.scenes.corpus_scene(name).scene
+    d, s = np.mean([_ratios(r, scene, "vpl", seed=seed) for seed in range(4)], axis=0)
     assert abs(d - 1) < 0.15 and abs(s - 1) < 0.15, (d, s)
 
 
@@ -136,9 +139,9 @@ def test_vpls_are_near_the_reference_on_the_measured_scenes(name, make_renderer)
 # naming what was measured (docs/rendering.md, "The real-scene corpus"), so a fix shows as an
 # unexpected pass. lights_spot has no indirect light (its own test below).
 _WITHIN_10_OPEN = {
-    "boom_box": "1.41 / 9.34: the reference is the one that is off (0.074x the path tracer's specular)",
-    "flight_helmet": "0.46 / 0.52: near-field light a texel-sized patch does not deliver, creases",
-    "helmet_shell": "0.98 / 0.78 (specular low; not yet split by cause)",
+    "boom_box": "1.16 / 1.91 (1.41 / 9.34 before the RSM was fitted to the scene: the reference had 0.07x the path tracer's specular)",
+    "flight_helmet": "0.65 / 0.79: near-field light a texel-sized patch does not deliver, creases",
+    "helmet_shell": "0.96 / 1.43 (0.98 / 0.78 with the cone's RSM; specular not yet split by cause)",
     "furnished_room": "0.96 / 0.87 (specular low; not yet split by cause)",
 }
 

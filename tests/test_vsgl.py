@@ -201,7 +201,7 @@ def test_gpu_vsgls_equal_a_float64_generation_from_the_same_rsm(renderer):
     mean_s = _toksvig_mean(refl.reshape(-1, 3), lam_s.reshape(-1)).reshape(n.shape)
     zero = np.where(lit[..., None], 1.0, 0.0)
     # Each texel's own positional variance (issue 18, item 2).
-    footprint = spot_texel_footprint_variance(y, n, light, y.shape[0])
+    footprint = spot_texel_footprint_variance(y, n, f, y.shape[0])
     chains = [
         np.concatenate([fd, w[..., None]], -1) * zero,
         np.concatenate([fs, wd[..., None]], -1) * zero,

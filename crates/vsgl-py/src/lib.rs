@@ -922,7 +922,9 @@ impl PyRenderer {
     ///   visibility="ism"), importance ("rsm" | "brsm": bidirectional RSM importance from
     ///   importance_lights VSGLs of the camera's view; combines with every sampling),
     ///   importance_lights, importance_interleave (1..16: with "brsm", RSM texel (x, y)
-    ///   evaluates only the view VSGLs of its interleave class, k² times cheaper), capture_rsm.
+    ///   evaluates only the view VSGLs of its interleave class, k² times cheaper), rsm_fit
+    ///   ("scene", the default: a spot light's RSM covers only the part of its cone the
+    ///   scene's bounds can fill | "cone": the whole cone, before 2026-12-02), capture_rsm.
     /// - "vsgl": num_lights VSGLs (in all) by filtered importance sampling. shadow_size,
     ///   num_lights, rsm_size, sampling, seed, kernel ("integral" | "density" | "node"), K,
     ///   coherence (0..1, default 0.9: each kernel shrinks until its texels' mean normal is at
@@ -940,14 +942,15 @@ impl PyRenderer {
     ///   diffuse power lost), plane_fade (with lighting="asg" and diffuse="papers", True fades
     ///   each VSGL's light below its cluster's mean tangent plane, as the other forms always
     ///   do; False: the papers' formula, which lights the back of a lit surface), visibility, ism_size, ism_points, ism_points_per_map, ism_bias, ism_pcf, importance,
-    ///   importance_lights, importance_interleave, capture_rsm.
+    ///   importance_lights, importance_interleave, rsm_fit, capture_rsm.
     /// - "vsgl2": two VSGLs per light by a parallel sum. shadow_size, rsm_size (any side
     ///   32..4096), diffuse, lighting, lambert_lobe, plane_fade (default False: one plane
     ///   spans the whole RSM), vsgl2_reduction ("auto" | "subgroup" | "shared_memory"),
-    ///   visibility, ism_size, ism_points, ism_points_per_map, ism_bias, ism_pcf, capture_rsm.
+    ///   visibility, ism_size, ism_points, ism_points_per_map, ism_bias, ism_pcf, rsm_fit,
+    ///   capture_rsm.
     /// - "reference": every texel of an rsm_size² RSM (default 1024²) as a VPL. shadow_size,
     ///   rsm_size, vpl_clamp, visibility, ism_size, ism_points, ism_points_per_map, ism_bias,
-    ///   ism_pcf, capture_rsm.
+    ///   ism_pcf, rsm_fit, capture_rsm.
     /// - "pathtrace": path-traced one-bounce ground truth with a stderr AOV. spp, seed,
     ///   time_budget_s (stop sampling after this many seconds; Ctrl-C stops any long render),
     ///   strategy ("bidirectional", the default: light tracing + camera paths by MIS over pixel

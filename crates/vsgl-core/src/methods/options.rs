@@ -330,6 +330,13 @@ pub mod common {
     /// the docs).
     pub const IMPORTANCE_INTERLEAVE: OptionSpec = int("importance_interleave", 1, 16, 4, "with importance=\"brsm\", the interleave tile side k of the importance map: RSM texel (x, y) evaluates only the view VSGLs j ≡ (y mod k)·k + (x mod k) (mod k²), scaled by k², the classes then recombined by a k×k box filter (k² times cheaper; 1: every view VSGL at every texel; default 4, docs/rendering.md)");
     pub const IMPORTANCE_LIGHTS: OptionSpec = int("importance_lights", 1, 65536, 2048, "VSGLs of the camera's view that estimate each RSM texel's importance with importance=\"brsm\" (the 2016 paper: 2048, the 2015 paper: 4096)");
+    /// How a spot light's RSM frames the scene (docs/rendering.md, "Fitting a spot light's RSM
+    /// to the scene"): "scene" since 2026-12-02, "cone" the frame before it, bit for bit.
+    pub const RSM_FIT: OptionSpec = choice(
+        "rsm_fit",
+        &["scene", "cone"],
+        "what a spot light's reflective shadow map covers: \"scene\" (the narrowest square frustum that holds the scene's bounds and no more than the cone, so its texels land on geometry) or \"cone\" (the whole outer cone, as the papers do; point and directional lights are not fitted)",
+    );
     pub const CAPTURE_RSM: OptionSpec = OptionSpec {
         name: "capture_rsm",
         kind: OptionKind::Bool,

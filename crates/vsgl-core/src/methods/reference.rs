@@ -1,7 +1,8 @@
 //! `method="reference"`: every texel of a high-resolution RSM as a VPL, no visibility (the
 //! papers' own reference), in batches so no submission runs long enough to trip a watchdog.
 
-use super::rsm_lights::{check_rsm_size, for_each_light, RsmSettings};
+use super::rsm_lights::{check_rsm_size, for_each_light, rsm_fit, RsmSettings};
+use crate::frame::uniforms::RsmFit;
 use super::{options::common, DirectLight, FrameContext, Method, MethodInfo, OptionSpec, OptionValue, Options};
 use super::visibility::{VirtualLightVisibility, VisibilityMode, VPL_RECORD_WORDS};
 use crate::error::Result;
@@ -30,6 +31,7 @@ const OPTIONS: &[OptionSpec] = &[
     common::ISM_POINTS_PER_MAP,
     common::ISM_BIAS,
     common::ISM_PCF,
+    common::RSM_FIT,
     common::CAPTURE_RSM,
 ];
 
@@ -51,11 +53,12 @@ struct Reference {
     rsm_size: u32,
     vpl_clamp: f32,
     capture_rsm: bool,
+    rsm_fit: RsmFit,
 }
 
 impl Reference {
     fn new(o: &Options) -> Result<Self> {
-        Ok(Self { options: o.clone(), visibility: VisibilityMode::from_options(o)?, rsm_size: o.u32("rsm_size")?, vpl_clamp: o.f32("vpl_clamp")?, capture_rsm: o.bool("capture_rsm")? })
+        Ok(Self { options: o.clone(), visibility: VisibilityMode::from_options(o)?, rsm_size: o.u32("rsm_size")?, vpl_clamp: o.f32("vpl_clamp")?, capture_rsm: o.bool("capture_rsm")?, rsm_fit: rsm_fit(o)? })
     }
 }
 
@@ -71,7 +74,7 @@ impl Method for Reference {
         let capacity = texels.min(1 << 20);
         let vpls = ctx.rec.storage("vpl_buffer", capacity * VPL_BYTES);
         let min_distance2 = (self.vpl_clamp as f64 * ctx.extent).powi(2) as f32;
-        let rsm = RsmSettings { size: n, sampling: false, capture: self.capture_rsm, budget: 0 };
+        let rsm = RsmSettings { size: n, sampling: false, capture: self.capture_rsm, budget: 0, fit: self.rsm_fit };
         // With imperfect shadow maps a batch's maps are held at once: batches of at most
         // REFERENCE_ISM_BYTES of maps.
         let max_batch = self.visibility.lights_within(REFERENCE_ISM_BYTES).map_or(capacity, |n| (n as u64).clamp(64, capacity));

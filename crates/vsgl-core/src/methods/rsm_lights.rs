@@ -6,7 +6,7 @@
 
 use super::{CapturedRsm, FrameContext};
 use crate::error::Result;
-use crate::frame::uniforms::{directional_rsm_origin, rsm_views, views_seeing_scene, LightRaw};
+use crate::frame::uniforms::{directional_rsm_origin, rsm_views, views_seeing_scene, LightRaw, RsmFit};
 use crate::scene::Light;
 use crate::frame::{Rsm, VisibilityTargets};
 use crate::gpu::{kept_staging_buffer, read_staging};
@@ -23,6 +23,8 @@ pub struct RsmSettings {
     pub capture: bool,
     /// Virtual lights per light source (`num_lights`; 0 for methods without a budget).
     pub budget: u32,
+    /// How a spot light's RSM frames the scene (`rsm_fit`).
+    pub fit: RsmFit,
 }
 
 /// Splits the virtual-light budget `n` over a frame's RSMs (every light's views: one for a
@@ -66,6 +68,11 @@ pub fn power_budgets(n: u32, powers: &[f64]) -> Vec<u32> {
         }
     }
     shares
+}
+
+/// `rsm_fit=` of the methods that render RSMs.
+pub fn rsm_fit(o: &super::Options) -> Result<RsmFit> {
+    Ok(if o.str("rsm_fit")? == "cone" { RsmFit::Cone } else { RsmFit::Scene })
 }
 
 /// One light's RSM as a method sees it.
@@ -184,8 +191,20 @@ pub fn for_each_light(ctx: &mut FrameContext<'_>, s: &RsmSettings, mut per_light
         ctx.skip("indirect", "the scene has no light");
         return Ok(false);
     }
-    let (anchor, extent, layer_size) = (ctx.gpu_scene.anchor, ctx.extent, ctx.gpu_scene.texture_layer_size);
-    let views: Vec<_> = ctx.scene.lights.iter().map(|l| rsm_views(l, anchor, extent, s.size, layer_size)).collect();
+    let (anchor, half_size, extent, layer_size) = (ctx.gpu_scene.anchor, ctx.gpu_scene.half_size, ctx.extent, ctx.gpu_scene.texture_layer_size);
+    let views: Vec<_> = ctx.scene.lights.iter().map(|l| rsm_views(l, anchor, half_size, extent, s.size, layer_size, s.fit)).collect();
+    if ctx.scene.lights.iter().any(|l| matches!(l, Light::Spot(_))) {
+        // Each spot light's RSM frame (`rsm_fit`), for a model of its texels' footprints:
+        // "forward=x,y,z tan=t" (t = tan of the half field of view), "-" for other lights.
+        let rows: Vec<String> = views.iter().zip(&ctx.scene.lights).map(|(v, l)| match l {
+            Light::Spot(_) => {
+                let (f, u) = (v[0].cam_forward, v[0].cam_up);
+                format!("forward={:e},{:e},{:e} tan={:e}", f[0], f[1], f[2], (u[0] * u[0] + u[1] * u[1] + u[2] * u[2]).sqrt())
+            }
+            _ => "-".into(),
+        }).collect();
+        ctx.settings.push(("rsm_view".into(), rows.join(";")));
+    }
     let n = s.size;
     let passes = RsmPasses {
         rsm: Rsm::new(&mut ctx.rec, n, ctx.features.specular, s.sampling),

@@ -5,7 +5,8 @@
 use super::brsm::{Importance, ViewImportance};
 use super::interleaved::InterleavedShading;
 use super::metropolis::{ChainSpace, MetropolisSampling};
-use super::rsm_lights::{check_rsm_size, for_each_light, RsmSettings};
+use super::rsm_lights::{check_rsm_size, for_each_light, rsm_fit, RsmSettings};
+use crate::frame::uniforms::RsmFit;
 use super::{options::common, DirectLight, FrameContext, Method, MethodInfo, OptionSpec, Options};
 use super::visibility::{VirtualLightVisibility, VisibilityMode, VPL_RECORD_WORDS};
 use crate::error::Result;
@@ -43,6 +44,7 @@ const OPTIONS: &[OptionSpec] = &[
     common::IMPORTANCE,
     common::IMPORTANCE_LIGHTS,
     common::IMPORTANCE_INTERLEAVE,
+    common::RSM_FIT,
     common::CAPTURE_RSM,
 ];
 
@@ -59,6 +61,7 @@ struct Vpl {
     denoise: bool,
     importance: Importance,
     capture_rsm: bool,
+    rsm_fit: RsmFit,
 }
 
 /// `sampling=` as the sampling pass takes it.
@@ -85,7 +88,7 @@ impl Vpl {
             interleave: o.u32("interleave")?,
             denoise: o.bool("denoise")?,
             importance: Importance::from_options(o)?,
-            capture_rsm: o.bool("capture_rsm")?,
+            capture_rsm: o.bool("capture_rsm")?, rsm_fit: rsm_fit(o)?,
         })
     }
 }
@@ -101,7 +104,7 @@ impl Method for Vpl {
         // Distances below the clamp count as the clamp (0: unbiased).
         let min_distance2 = (self.vpl_clamp as f64 * ctx.extent).powi(2) as f32;
         let shading_out = InterleavedShading::new(ctx, self.interleave, self.denoise);
-        let rsm = RsmSettings { size: self.rsm_size, sampling: true, capture: self.capture_rsm, budget: self.num_lights };
+        let rsm = RsmSettings { size: self.rsm_size, sampling: true, capture: self.capture_rsm, budget: self.num_lights, fit: self.rsm_fit };
         let vis = VirtualLightVisibility::new(ctx, self.visibility, self.num_lights)?;
         let metropolis = MetropolisSampling { method: INFO.name, num_lights: self.num_lights, rsm_size: self.rsm_size, seed: self.seed, space: self.chain_space, importance: self.importance };
         // Metropolis chains keep one view seed while they live (`target_seed` says why).

@@ -5,7 +5,8 @@
 use super::brsm::{Importance, ViewImportance};
 use super::interleaved::InterleavedShading;
 use super::metropolis::{ChainSpace, MetropolisSampling};
-use super::rsm_lights::{check_rsm_size, for_each_light, RsmSettings};
+use super::rsm_lights::{check_rsm_size, for_each_light, rsm_fit, RsmSettings};
+use crate::frame::uniforms::RsmFit;
 use super::visibility::{VirtualLightVisibility, VisibilityMode, VSGL_RECORD_WORDS};
 use super::{options::common, DirectLight, FrameContext, Method, MethodInfo, OptionKind, OptionSpec, OptionValue, Options};
 use crate::error::{Error, Result};
@@ -86,6 +87,7 @@ const OPTIONS: &[OptionSpec] = &[
     common::IMPORTANCE,
     common::IMPORTANCE_LIGHTS,
     common::IMPORTANCE_INTERLEAVE,
+    common::RSM_FIT,
     common::CAPTURE_RSM,
 ];
 
@@ -112,6 +114,7 @@ struct Vsgl {
     plane_fade: bool,
     importance: Importance,
     capture_rsm: bool,
+    rsm_fit: RsmFit,
 }
 
 /// `diffuse=` as the shading pass takes it. `lighting="accurate"` brings its own diffuse form
@@ -225,7 +228,7 @@ impl Vsgl {
             lambert_lobe: LambertLobe::from_name(o.str("lambert_lobe")?),
             plane_fade: plane_fade(o)?,
             importance: Importance::from_options(o)?,
-            capture_rsm: o.bool("capture_rsm")?,
+            capture_rsm: o.bool("capture_rsm")?, rsm_fit: rsm_fit(o)?,
         })
     }
 
@@ -261,7 +264,7 @@ impl Method for Vsgl {
         let (gen, shading) = (passes.get::<VsglGenPass>()?, passes.get::<VsglShadingPass>()?);
         let shading_out = InterleavedShading::new(ctx, self.interleave, self.denoise);
         let mut chains: Option<MomentChains> = None;
-        let rsm = RsmSettings { size: self.rsm_size, sampling: true, capture: self.capture_rsm, budget: self.num_lights };
+        let rsm = RsmSettings { size: self.rsm_size, sampling: true, capture: self.capture_rsm, budget: self.num_lights, fit: self.rsm_fit };
         let vis = VirtualLightVisibility::new(ctx, self.visibility, self.num_lights)?;
         // Metropolis chains keep one view seed while they live (`target_seed` says why).
         let view_seed = if self.sampling == Sampling::Metropolis { self.metropolis().target_seed(ctx) } else { self.seed };

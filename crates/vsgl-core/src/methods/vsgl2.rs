@@ -1,7 +1,8 @@
 //! `method="vsgl2"`: two VSGLs per light (one diffuse, one specular) from a parallel sum over
 //! the whole RSM (Tokuyoshi 2015 poster): no pyramid, no sampling, no interleaving.
 
-use super::rsm_lights::{check_rsm_size, for_each_light, RsmSettings};
+use super::rsm_lights::{check_rsm_size, for_each_light, rsm_fit, RsmSettings};
+use crate::frame::uniforms::RsmFit;
 use super::{options::common, DirectLight, FrameContext, Method, MethodInfo, OptionKind, OptionSpec, OptionValue, Options};
 use super::visibility::{VirtualLightVisibility, VisibilityMode, VSGL_RECORD_WORDS};
 use crate::error::Result;
@@ -44,6 +45,7 @@ const OPTIONS: &[OptionSpec] = &[
     common::ISM_POINTS_PER_MAP,
     common::ISM_BIAS,
     common::ISM_PCF,
+    common::RSM_FIT,
     common::CAPTURE_RSM,
 ];
 
@@ -57,6 +59,7 @@ struct Vsgl2 {
     plane_fade: bool,
     reduction: Vsgl2Reduction,
     capture_rsm: bool,
+    rsm_fit: RsmFit,
 }
 
 impl Vsgl2 {
@@ -67,7 +70,7 @@ impl Vsgl2 {
             "shared_memory" => Vsgl2Reduction::SharedMemory,
             _ => Vsgl2Reduction::Auto,
         };
-        Ok(Self { options: o.clone(), visibility: VisibilityMode::from_options(o)?, rsm_size: o.u32("rsm_size")?, diffuse: super::vsgl::diffuse_mode(o)?, lighting: super::vsgl::lighting_mode(o)?, lambert_lobe: LambertLobe::from_name(o.str("lambert_lobe")?), plane_fade: super::vsgl::plane_fade(o)?, reduction, capture_rsm: o.bool("capture_rsm")? })
+        Ok(Self { options: o.clone(), visibility: VisibilityMode::from_options(o)?, rsm_size: o.u32("rsm_size")?, diffuse: super::vsgl::diffuse_mode(o)?, lighting: super::vsgl::lighting_mode(o)?, lambert_lobe: LambertLobe::from_name(o.str("lambert_lobe")?), plane_fade: super::vsgl::plane_fade(o)?, reduction, capture_rsm: o.bool("capture_rsm")?, rsm_fit: rsm_fit(o)? })
     }
 }
 
@@ -80,7 +83,7 @@ impl Method for Vsgl2 {
     fn record(&self, ctx: &mut FrameContext<'_>) -> Result<()> {
         let (reduce, shading) = (ctx.passes.get::<Vsgl2Reduce>()?, ctx.passes.get::<VsglShadingPass>()?);
         let reduction = Vsgl2Reduce::resolve(ctx.gpu, self.reduction)?;
-        let rsm = RsmSettings { size: self.rsm_size, sampling: false, capture: self.capture_rsm, budget: 0 };
+        let rsm = RsmSettings { size: self.rsm_size, sampling: false, capture: self.capture_rsm, budget: 0, fit: self.rsm_fit };
         let vis = VirtualLightVisibility::new(ctx, self.visibility, VSGL2_COUNT)?;
         let lit = for_each_light(ctx, &rsm, |ctx, light| {
             let feat = ctx.features;

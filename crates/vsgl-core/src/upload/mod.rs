@@ -99,6 +99,9 @@ pub struct GpuScene {
     /// (the world origin for a scene without geometry). Uploaded coordinates are thus at most
     /// half the scene's diagonal, and f32 keeps them to ~3e-8 of its size wherever the scene is.
     pub anchor: DVec3,
+    /// Half the sides of the scene bounds around [`Self::anchor`] (NaN without geometry): what a
+    /// spot light's RSM is fitted to (`frame::uniforms::fitted_spot_view`).
+    pub half_size: DVec3,
     /// The ray tracers' BVH over these very triangles, built on first use and kept with the
     /// upload (a changed geometry re-uploads, and so rebuilds it).
     bvh: std::sync::Mutex<Option<std::sync::Arc<GpuBvh>>>,
@@ -316,6 +319,7 @@ impl GpuScene {
         let extent = bounds.diagonal();
         Ok(Self {
             anchor,
+            half_size: if bounds.is_empty() { DVec3::NAN } else { 0.5 * (bounds.max - bounds.min) },
             raster_vertex_count: raster.len() as u32,
             raster_vertices: gpu.device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
                 label: Some("scene_raster_vertex_buffer"),
