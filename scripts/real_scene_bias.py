@@ -45,14 +45,15 @@ def parse_variant(text: str) -> tuple[str, dict]:
     return label, opts
 
 
-def measure(r: vsgl.Renderer, scene: vsgl.Scene, rsm: int, n: int, variants, out_of_the_box: bool = False) -> dict:
+def measure(r: vsgl.Renderer, scene: vsgl.Scene, rsm: int, n: int, variants, out_of_the_box: bool = False, rsm_fit: str | None = None) -> dict:
     aovs = ["indirect_diffuse", "indirect_specular", "indirect"]
-    ref = r.render(scene, method="reference", rsm_size=rsm, aovs=aovs)
+    fit = {} if rsm_fit is None else {"rsm_fit": rsm_fit}
+    ref = r.render(scene, method="reference", rsm_size=rsm, aovs=aovs, **fit)
     truth = {a: ref.aov(a).astype(np.float64) for a in aovs}
     total = truth["indirect"].mean()
     out = {"reference": {a: float(truth[a].mean()) for a in aovs}, "rows": {}}
     for label, opts in variants:
-        opts = dict(opts)
+        opts = {**fit, **opts}
         method = opts.pop("method", "vsgl")
         settings = dict(opts) if out_of_the_box else dict(rsm_size=rsm, num_lights=n, **opts)
         if method == "vsgl" and not out_of_the_box:
@@ -82,6 +83,8 @@ def main() -> int:
     p.add_argument("--json", help="also write the numbers here")
     p.add_argument("--out-of-the-box", action="store_true",
                    help="each method with its own defaults (N, RSM, interleave, denoiser) against the reference of an RSM of --rsm")
+    p.add_argument("--rsm-fit", choices=["scene", "cone"],
+                   help="rsm_fit of the reference and of every variant that does not set it (default: each method's default)")
     a = p.parse_args()
     variants = [parse_variant(v) for v in (a.variant or DEFAULT_VARIANTS)]
     names = a.scene or [n for n in vsgl.scenes.corpus_names() if vsgl.scenes.corpus_available(n)]
@@ -91,10 +94,11 @@ def main() -> int:
     r = vsgl.Renderer(a.size, a.size)
     results = {}
     setting = "each method's own defaults" if a.out_of_the_box else f"RSM {a.rsm}^2, N = {a.n}, interleave 1, no denoiser"
+    setting += f", rsm_fit={a.rsm_fit}" if a.rsm_fit else ""
     print(f"{a.size}x{a.size}, {setting}, unshadowed; mean diffuse / specular over the every-texel reference's (RSM {a.rsm}^2), 4x4 block error")
     for name in names:
         scene = vsgl.scenes.load(name) if name in vsgl.scenes.names() else vsgl.scenes.corpus_scene(name).scene
-        res = measure(r, scene, a.rsm, a.n, variants, a.out_of_the_box)
+        res = measure(r, scene, a.rsm, a.n, variants, a.out_of_the_box, a.rsm_fit)
         results[name] = res
         first = next(iter(res["rows"].values()))
         print(f"\n{name}: reference indirect mean {res['reference']['indirect']:.4g} (diffuse {first['diffuse_share']:.2f}, specular {first['specular_share']:.2f} of it)")

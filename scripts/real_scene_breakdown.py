@@ -21,10 +21,15 @@ from __future__ import annotations
 
 import argparse
 import math
+import os
+import sys
 
 import numpy as np
 
 import vsgl
+
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "tests"))
+from rsm_model import spot_rsm_view  # noqa: E402
 
 LAMBERT_SHARPNESS = 2.2925  # LAMBERT_LOBE_SG_SHARPNESS (wgsl/common/sg.wgsl)
 HEMISPHERE_GAIN = 1.1010136  # LAMBERT_LOBE_HEMISPHERE_GAIN
@@ -80,8 +85,7 @@ def main() -> int:
     lp = np.array(light.position, float)
     # Each texel's footprint variance, as vsgl_moments.wgsl adds it (rsm_texel_footprint_variance):
     # a spot light's RSM spans tan(outer cone) on each side of its axis.
-    t_rsm = math.tan(math.radians(light.outer_cone_deg))
-    axis = np.array(light.direction, float) / np.linalg.norm(light.direction)
+    axis, t_rsm = spot_rsm_view(f)  # the RSM frame (rsm_fit may have narrowed the cone)
     d2y = np.maximum((y**2).sum(-1), 1e-30)
     cos_axis = np.abs(y @ axis) / np.sqrt(d2y)
     cross = t_rsm**2 * (2 / a.rsm) ** 2 * cos_axis**3 * d2y
