@@ -147,6 +147,20 @@ def two_rooms(directory: pathlib.Path):
     return scene, vsgl.Camera.look_at(eye=(1.3, 1.2, 0.0), target=(0.7, 0.0, 0.55), fov_y_deg=30)
 
 
+def half_hidden_floor(directory: pathlib.Path):
+    """A lit floor (2 × 2 m) and a wall along its x = −1 edge facing it, with a black panel 25 cm
+    high standing on the floor at x = −0.4: the wall's lower part sees the floor's near strip and
+    not the rest, so a large cluster of floor texels is partly visible from there, the near, more
+    visible part bringing most of its light. The camera looks at the wall's lower part from
+    between it and the panel. Returns (scene, camera)."""
+    floor = dict(corners=[(-1, 0, -1), (-1, 0, 1), (1, 0, 1), (1, 0, -1)], base_color=(0.8, 0.8, 0.8), specular=0.0, name="floor")
+    wall = dict(corners=[(-1, 0, 1), (-1, 0, -1), (-1, 1, -1), (-1, 1, 1)], base_color=(0.8, 0.8, 0.8), specular=0.0, name="wall")
+    panel = dict(corners=[(-0.4, 0, 1), (-0.4, 0, -1), (-0.4, 0.25, -1), (-0.4, 0.25, 1)], base_color=(0.0, 0.0, 0.0), specular=0.0, name="panel")
+    scene = vsgl.Scene.load(write_quads(directory, [floor, wall, panel], name="half_hidden_floor.gltf"))
+    scene.lights = [vsgl.SpotLight(position=(0.3, 3.0, 0.0), direction=(0.0, -1.0, 0.0), intensity=10.0, inner_cone_deg=40, outer_cone_deg=50)]
+    return scene, vsgl.Camera.look_at(eye=(-0.6, 0.12, 0.0), target=(-1.0, 0.12, 0.0), fov_y_deg=50)
+
+
 def lit_floor_corner(directory: pathlib.Path, *, wall_roughness: float = 0.35):
     """A large floor (8 × 8) lit all over by a wide spot light, and a wall along its back edge
     (z = −4, facing +z, glossy with ``wall_roughness``); the camera looks at a small patch of the

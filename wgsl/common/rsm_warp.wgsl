@@ -66,10 +66,16 @@ struct WarpResult {
 
 // Descends from the 1×1 top (level `levels` − 1) to level 0.
 fn warp_descend(u_in: vec2f, size: u32, levels: u32) -> WarpResult {
+    return warp_descend_from(u_in, size, levels - 1u, vec2u(0u, 0u));
+}
+
+// Descends from node `start` of level `start_level` to level 0: a texel of that node drawn ∝
+// the weights.
+fn warp_descend_from(u_in: vec2f, size: u32, start_level: u32, start: vec2u) -> WarpResult {
     var ux = u_in.x;
     var uy = u_in.y;
-    var xy = vec2u(0u, 0u);
-    for (var level = i32(levels) - 2; level >= 0; level--) {
+    var xy = start;
+    for (var level = i32(start_level) - 1; level >= 0; level--) {
         let l = u32(level);
         let c = 2u * xy;
         let w00 = warp_weight(l, size, c);

@@ -59,7 +59,8 @@ struct GenParams {
     // Smallest mean-normal length |Σw n|/Σw a kernel may have (0: the papers' kernels); needs
     // chain F (planes = 1).
     coherence: f32,
-    _pad2: u32,
+    // Candidate shadow targets per VSGL written to `shadow_candidates` (0: none).
+    shadow_candidates: u32,
 }
 
 const WORKGROUP: u32 = 64u;
@@ -71,6 +72,10 @@ const WORKGROUP: u32 = 64u;
 @group(0) @binding(4) var<storage, read_write> vsgls: array<VsglRaw>;
 // sampling 2: per VSGL (continuous RSM position in texels, p); otherwise any buffer, unread.
 @group(0) @binding(5) var<storage, read> samples: array<vec4f>;
+// With shadow_candidates = C > 0 (visibility="raytrace", shadow_target="resampled"): C texels
+// of VSGL i's cluster at rows 2(i·C + j), 2(i·C + j) + 1: its surface point relative to the
+// frame origin, and its unit normal (0 where unknown). A placeholder otherwise.
+@group(0) @binding(6) var<storage, read_write> shadow_candidates: array<vec4f>;
 
 fn moment_texel(chain: u32, level: u32, xy: vec2i) -> vec4f {
     let side = i32(params.rsm_size >> level);
@@ -181,6 +186,36 @@ fn cluster_moment(chain: u32, level: f32, node: vec2u, s: vec2f) -> vec4f {
         return moment_texel(chain, u32(level), vec2i(node));
     }
     return moment_trilinear(chain, s, level);
+}
+
+// Candidate shadow targets of VSGL i (docs/rendering.md, "Which texel the shadow ray aims
+// at"): C texels of its cluster's node drawn ∝ the sampling density by warping from the node
+// down (stratified over the candidates), each its surface point y = (w·y)/w and its normal
+// (chain F's w·n where the chains have it, else the diffuse lobe's direction, chain C).
+// The shading pass keeps one per receiver by its geometric term, so the shadow ray goes where
+// the cluster's light at that receiver comes from. `fallback`: the centre's target, for
+// a texel the moments do not weigh.
+fn write_shadow_candidates(i: u32, start_level: u32, start: vec2u, fallback: vec3f) {
+    let c = params.shadow_candidates;
+    let h = pcg_hash(i ^ pcg_hash(params.seed + 0x85ebca6bu));
+    let shift = unit_float(h);
+    for (var j = 0u; j < c; j++) {
+        let u = vec2f((f32(j) + shift) / f32(c), unit_float(pcg_hash(h + j + 1u)));
+        let texel = vec2i(warp_descend_from(min(u, vec2f(ONE_MINUS_ULP)), params.rsm_size, start_level, start).texel);
+        let w = moment_texel(0u, 0u, texel).w;
+        var y = fallback;
+        var normal = vec3f(0.0);
+        if (w > 0.0) {
+            y = moment_texel(4u, 0u, texel).xyz / w + params.light_offset;
+            var direction = moment_texel(2u, 0u, texel).xyz;
+            if (params.planes == 1u) {
+                direction = moment_texel(5u, 0u, texel).xyz;
+            }
+            normal = safe_normalize(direction, vec3f(0.0));
+        }
+        shadow_candidates[2u * (i * c + j)] = vec4f(y, 0.0);
+        shadow_candidates[2u * (i * c + j) + 1u] = vec4f(normal, 0.0);
+    }
 }
 
 @compute @workgroup_size(WORKGROUP, 1, 1)
@@ -301,6 +336,18 @@ fn main(@builtin(global_invocation_id) gid: vec3u) {
     let centre_weight = moment_texel(0u, 0u, vec2i(warped.texel)).w;
     let centre_position = moment_texel(4u, 0u, vec2i(warped.texel)).xyz / max(centre_weight, FLT_MIN);
     out.shadow_target = select(position.mean, centre_position, centre_weight > 0.0) + params.light_offset;
+    if (params.shadow_candidates > 0u) {
+        // The cluster's node: the kernel's own for "node", else the node of the kernel's level
+        // rounded up around the centre texel (a trilinear read at level 0.3 already mixes in
+        // level 1's 2×2 node).
+        var start_level = u32(clamp(ceil(level), 0.0, top));
+        var start = warped.texel >> vec2u(start_level);
+        if (params.kernel == 2u) {
+            start_level = u32(level);
+            start = node;
+        }
+        write_shadow_candidates(i, start_level, start, out.shadow_target);
+    }
     if (params.kernel == 2u) {
         out.mass = warp_weight(u32(level), params.rsm_size, node) / total;
     } else {

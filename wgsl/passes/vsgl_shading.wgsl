@@ -24,6 +24,7 @@
 #include "common/interleave.wgsl"
 #include "common/receiver.wgsl"
 #include "common/light_visibility.wgsl"
+#include "common/sampling.wgsl"
 
 struct ShadeParams {
     // This dispatch shades VSGLs first … first + count − 1 (first is a multiple of k²).
@@ -50,6 +51,11 @@ struct ShadeParams {
     // 2 = "exact_compact": that, blended with the exact Lambert emission (lambert_exact_weight);
     // 0 = "papers": the sphere-normalized lobe of [Tok16s Eq. 1].
     lambert_lobe: u32,
+    // With VISIBILITY_TRACED: candidate shadow targets per VSGL in `shadow_candidates`
+    // (shadow_target="resampled"; vsgl_gen.wgsl writes them), 0 = aim at the record's target.
+    shadow_candidates: u32,
+    // Seed of the per-(pixel, VSGL) pick among the candidates.
+    seed: u32,
 }
 
 const WORKGROUP: u32 = 8u;
@@ -69,6 +75,9 @@ override PIXELS_PER_THREAD: u32;
 @group(1) @binding(5) var<storage, read> gbuf_base_color: array<vec4f>;
 @group(1) @binding(6) var<storage, read_write> indirect_diffuse: array<vec4f>;
 @group(1) @binding(7) var<storage, read_write> indirect_specular: array<vec4f>;
+// Rows 2(v·C + j) and 2(v·C + j) + 1: candidate j's point and unit normal (0: unknown) for VSGL
+// v (vsgl_gen.wgsl); read only with VISIBILITY_TRACED and shadow_candidates = C > 0.
+@group(1) @binding(8) var<storage, read> shadow_candidates: array<vec4f>;
 
 // The tile keeps, per VSGL, only what the shading loop reads, in arrays of 16 bytes grouped by
 // the branch that reads them, so the default diffuse path reads 48 of the record's 128 bytes:
@@ -251,6 +260,49 @@ fn tile_light(t: u32, index: u32) -> TileLight {
     return light;
 }
 
+// shadow_target="resampled" (docs/rendering.md, "Which texel the shadow ray aims at"): one of
+// VSGL v's candidate texels (drawn ∝ the sampling density, vsgl_gen.wgsl) kept with
+// probability ∝ its geometric term at the receiver, max(−ω·n_y, 0)·max(ω·n, 0)/d² (resampled
+// importance sampling [Talbot et al. 2005]): as the candidates grow the pick follows each
+// texel's share of the cluster's light at p, so one ray's expected visibility tends to the
+// cluster's light-weighted visibility there. A power-drawn target misses that the near, facing
+// texels that light p are the ones p sees. `fallback` where no candidate faces p.
+fn resampled_shadow_target(v: u32, pixel: u32, p: vec3f, n: vec3f, fallback: vec3f) -> vec3f {
+    let c = params.shadow_candidates;
+    var total = 0.0;
+    var chosen = fallback;
+    // One uniform number per (pixel, VSGL), consumed by reservoir sampling of the candidates.
+    var state = rng_init(pixel, v, params.seed ^ 0x27d4eb2fu);
+    var u = rng_uniform(&state);
+    for (var j = 0u; j < c; j++) {
+        let y = shadow_candidates[2u * (v * c + j)].xyz;
+        let normal = shadow_candidates[2u * (v * c + j) + 1u].xyz;
+        let to = y - p;
+        let d2 = dot(to, to);
+        let inv_d = inverseSqrt(max(d2, FLT_MIN));
+        var emitter = 1.0;
+        if (any(normal != vec3f(0.0))) {
+            emitter = max(-dot(to, normal) * inv_d, 0.0);
+        }
+        let g = emitter * max(dot(to, n) * inv_d, 0.0) / max(d2, FLT_MIN);
+        if (!(g > 0.0)) {
+            continue;
+        }
+        total += g;
+        // Keep candidate j with probability g/total; u is rescaled within the branch taken so
+        // that one number serves every step.
+        let keep = g / total;
+        if (u < keep) {
+            chosen = y;
+            u = u / keep;
+        } else {
+            u = (u - keep) / (1.0 - keep);
+        }
+        u = min(u, 0.99999994);
+    }
+    return chosen;
+}
+
 // Adds one VSGL's light to one pixel's sums: the pair (pixel, VSGL) of the inner loop.
 fn shade_pair(px: ptr<function, BlockPixel>, light: TileLight) {
     if (!(*px).has_surface) {
@@ -269,6 +321,9 @@ fn shade_pair(px: ptr<function, BlockPixel>, light: TileLight) {
         var shadow_target = position.mean;
         if (VISIBILITY_TRACED) {
             shadow_target = light.target_level.xyz;
+            if (params.shadow_candidates > 0u) {
+                shadow_target = resampled_shadow_target(light.index, (*px).index, p, n, shadow_target);
+            }
         }
         lit = light_visibility(p, n, (*px).shadowing, light.index, shadow_target);
         if (lit <= 0.0) {

@@ -941,7 +941,10 @@ impl PyRenderer {
     ///   hemisphere, the default until 2026-12-01 | "papers": over the sphere, 9.2% of the
     ///   diffuse power lost), plane_fade (with lighting="asg" and diffuse="papers", True fades
     ///   each VSGL's light below its cluster's mean tangent plane, as the other forms always
-    ///   do; False: the papers' formula, which lights the back of a lit surface), visibility, ism_size, ism_points, ism_points_per_map, ism_bias, ism_pcf, importance,
+    ///   do; False: the papers' formula, which lights the back of a lit surface), visibility,
+    ///   shadow_target (with visibility="raytrace": "resampled", the default: each VSGL's ray
+    ///   aims at one of 8 texels of its cluster kept per receiver by its geometric term |
+    ///   "centre": at the sampled centre texel), ism_size, ism_points, ism_points_per_map, ism_bias, ism_pcf, importance,
     ///   importance_lights, importance_interleave, rsm_fit, capture_rsm.
     /// - "vsgl2": two VSGLs per light by a parallel sum. shadow_size, rsm_size (any side
     ///   32..4096), diffuse, lighting, lambert_lobe, plane_fade (default False: one plane

@@ -90,7 +90,7 @@ impl Method for Vsgl2 {
             let buf = ctx.rec.storage("vsgl2_buffer", VSGL2_COUNT as u64 * VSGL_BYTES);
             reduce.record(&mut ctx.rec, light.rsm, light.raw.position, light.raw.rsm_light_dir(), light.texel_footprint(), &buf, feat, reduction)?;
             vis.build_maps(ctx, &buf, VSGL2_COUNT, VSGL_RECORD_WORDS)?;
-            shading.record(&mut ctx.rec, ctx.frame_uniforms, &buf, VSGL2_COUNT, 1, self.diffuse, self.lighting, self.lambert_lobe, false, self.plane_fade, ctx.gbuffer, ctx.indirect, feat, ctx.size, &vis);
+            shading.record(&mut ctx.rec, ctx.frame_uniforms, &buf, VSGL2_COUNT, 1, self.diffuse, self.lighting, self.lambert_lobe, false, self.plane_fade, ctx.gbuffer, ctx.indirect, feat, ctx.size, &vis, None);
             if ctx.vsgls.is_none() {
                 ctx.vsgls = Some(buf);
             }

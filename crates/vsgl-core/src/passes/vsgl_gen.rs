@@ -70,7 +70,7 @@ struct GenParamsRaw {
     planes: u32,
     importance: u32,
     coherence: f32,
-    _pad: u32,
+    shadow_candidates: u32,
 }
 
 /// What one generation dispatch needs besides the RSM.
@@ -91,7 +91,18 @@ pub struct GenSettings<'a> {
     /// Smallest mean-normal length a kernel may have (`coherence=`; 0: the papers' kernels).
     /// Needs chains with planes ([`MomentChains::has_planes`]); ignored without.
     pub coherence: f32,
+    /// Where to write [`SHADOW_CANDIDATES`] candidate shadow targets per VSGL
+    /// (`shadow_target="resampled"` with `visibility="raytrace"`; rows of
+    /// [`SHADOW_CANDIDATE_BYTES`]), or none.
+    pub shadow_candidates: Option<&'a wgpu::Buffer>,
 }
+
+/// Candidate shadow targets per VSGL (`shadow_target="resampled"`): in the float64 model of
+/// docs/rendering.md ("Which texel the shadow ray aims at") 4 keep 0.92 and 8 keep 0.97 of the
+/// every-texel reference's shadowed light from FlightHelmet's 4-texel clusters.
+pub const SHADOW_CANDIDATES: u32 = 8;
+/// Bytes of one VSGL's candidates: per candidate its point and its normal, two vec4f rows.
+pub const SHADOW_CANDIDATE_BYTES: u64 = SHADOW_CANDIDATES as u64 * 32;
 
 pub struct VsglGenPass {
     pipeline: wgpu::ComputePipeline,
@@ -126,7 +137,17 @@ impl VsglGenPass {
             planes: u32::from(chains.has_planes()),
             importance: s.importance as u32,
             coherence: s.coherence,
-            _pad: 0,
+            shadow_candidates: if s.shadow_candidates.is_some() { SHADOW_CANDIDATES } else { 0 },
+        };
+        // Unwritten without candidates: a small placeholder of its own (never one of the other
+        // bindings, which would alias a writable binding).
+        let placeholder;
+        let candidates = match s.shadow_candidates {
+            Some(b) => b,
+            None => {
+                placeholder = rec.storage("vsgl_shadow_candidates_placeholder_buffer", 32);
+                &placeholder
+            }
         };
         let uniform = rec.uniform("vsgl_gen_params_uniform_buffer", &params);
         rec.compute(
@@ -140,6 +161,7 @@ impl VsglGenPass {
                 out.as_entire_binding(),
                 // Unread unless sampling 2: the RSM positions stand in (read-only vec4f).
                 s.samples.unwrap_or(&rsm.gbuffer.position).as_entire_binding(),
+                candidates.as_entire_binding(),
             ]],
             (groups(s.count, WORKGROUP), 1, 1),
         );

@@ -4,6 +4,7 @@ use crate::error::Result;
 use crate::frame::{GBuffer, IndirectTargets};
 use crate::gpu::{for_each_chunk, interleaved_block_groups, traced_lights_per_dispatch, Gpu, PipelineVariants, Recorder};
 use crate::methods::visibility::VirtualLightVisibility;
+use crate::passes::vsgl_gen::SHADOW_CANDIDATES;
 use crate::plan::ShaderFeatures;
 
 const WORKGROUP: u32 = 8;
@@ -32,6 +33,9 @@ struct ShadeParamsRaw {
     plane_fade: u32,
     lighting_mode: u32,
     lambert_lobe: u32,
+    shadow_candidates: u32,
+    seed: u32,
+    _pad: [u32; 2],
 }
 
 /// Most loop iterations (VSGLs per pixel) one dispatch runs: lavapipe (Mesa 22.3) silently
@@ -192,6 +196,7 @@ impl VsglShadingPass {
         features: ShaderFeatures,
         size: (u32, u32),
         visibility: &VirtualLightVisibility,
+        shadow_candidates: Option<(&wgpu::Buffer, u32)>,
     ) {
         let gpu = rec.gpu;
         let [specular] = features.specular_flags();
@@ -203,13 +208,17 @@ impl VsglShadingPass {
         // Chunks are multiples of k² so the interleaved subsets stay j ≡ t (mod k²).
         let per_dispatch = if visibility.traced { traced_lights_per_dispatch(gpu) } else { VSGLS_PER_PIXEL_PER_DISPATCH };
         let chunk = per_dispatch * interleave * interleave;
+        // Read only with candidates (`visibility.traced`); a placeholder of its own otherwise.
+        let candidates = shadow_candidates.filter(|_| visibility.traced).map(|(b, _)| b);
+        let placeholder = if candidates.is_none() { Some(rec.storage("vsgl_shading_shadow_candidates_placeholder_buffer", 32)) } else { None };
+        let candidate_buffer = candidates.or(placeholder.as_ref()).expect("a candidates buffer or its placeholder");
         for_each_chunk(count, chunk, |first, n| {
-            let params = ShadeParamsRaw { count: n, interleave, diffuse_mode: diffuse.shader_code(), first, exact_texels: u32::from(exact_texels), plane_fade: u32::from(plane_fade), lighting_mode: lighting.shader_code(), lambert_lobe: lambert_lobe.shader_code() };
+            let params = ShadeParamsRaw { count: n, interleave, diffuse_mode: diffuse.shader_code(), first, exact_texels: u32::from(exact_texels), plane_fade: u32::from(plane_fade), lighting_mode: lighting.shader_code(), lambert_lobe: lambert_lobe.shader_code(), shadow_candidates: u32::from(candidates.is_some()) * SHADOW_CANDIDATES, seed: shadow_candidates.map_or(0, |(_, seed)| seed), _pad: [0; 2] };
             let uniform = rec.uniform("vsgl_shading_params_uniform_buffer", &params);
             rec.compute(
                 &label,
                 &pipeline,
-                &[&[frame.as_entire_binding()], &out.shading_bindings(&uniform, vsgls, gbuffer), &visibility.bindings()],
+                &[&[frame.as_entire_binding()], &[out.shading_bindings(&uniform, vsgls, gbuffer), vec![candidate_buffer.as_entire_binding()]].concat(), &visibility.bindings()],
                 interleaved_block_groups(size, interleave, (WORKGROUP * pixels_per_thread, WORKGROUP)),
             );
         });
