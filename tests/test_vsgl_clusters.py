@@ -68,7 +68,7 @@ def test_the_back_of_a_lit_plane_gets_no_indirect_light(tmp_path, make_renderer,
     extra = dict(num_lights=1024, interleave=1, denoise=False) if method == "vsgl" else {}
     reference = r.render(scene, camera=back, method="reference", rsm_size=64, aovs=["indirect"]).aov("indirect")
     assert reference.max() == 0.0
-    papers = dict(lighting="asg") if method == "vsgl" else {}
+    papers = dict(lighting="asg", near_field="sg") if method == "vsgl" else {}
     unfaded = r.render(scene, camera=back, method=method, rsm_size=64, aovs=["indirect"], **extra, **{**kw, **papers, "plane_fade": False})
     leak = unfaded.aov("indirect").astype(np.float64).sum() / direct
     print(f"{method} {kw}: the back's indirect light over the front's direct, without the fade {leak:.3f}")

@@ -72,9 +72,12 @@ const WORKGROUP: u32 = 64u;
 @group(0) @binding(4) var<storage, read_write> vsgls: array<VsglRaw>;
 // sampling 2: per VSGL (continuous RSM position in texels, p); otherwise any buffer, unread.
 @group(0) @binding(5) var<storage, read> samples: array<vec4f>;
-// With shadow_candidates = C > 0 (visibility="raytrace", shadow_target="resampled"): C texels
-// of VSGL i's cluster at rows 2(i·C + j), 2(i·C + j) + 1: its surface point relative to the
-// frame origin, and its unit normal (0 where unknown). A placeholder otherwise.
+// With shadow_candidates = C > 0 (visibility="raytrace" with shadow_target="resampled", or
+// near_field="texels"): C texels
+// of VSGL i's cluster at rows 2(i·C + j), 2(i·C + j) + 1: (its surface point relative to the
+// frame origin, its footprint variance σ_t²) and (its unit normal, 0 where unknown; its diffuse
+// power over the density it was drawn by). Written also for near_field="texels". A
+// placeholder otherwise.
 @group(0) @binding(6) var<storage, read_write> shadow_candidates: array<vec4f>;
 
 fn moment_texel(chain: u32, level: u32, xy: vec2i) -> vec4f {
@@ -202,19 +205,28 @@ fn write_shadow_candidates(i: u32, start_level: u32, start: vec2u, fallback: vec
     for (var j = 0u; j < c; j++) {
         let u = vec2f((f32(j) + shift) / f32(c), unit_float(pcg_hash(h + j + 1u)));
         let texel = vec2i(warp_descend_from(min(u, vec2f(ONE_MINUS_ULP)), params.rsm_size, start_level, start).texel);
-        let w = moment_texel(0u, 0u, texel).w;
+        let a = moment_texel(0u, 0u, texel);
+        let w = a.w;
         var y = fallback;
         var normal = vec3f(0.0);
+        var footprint = 0.0;
+        var diffuse_share = 0.0;
         if (w > 0.0) {
-            y = moment_texel(4u, 0u, texel).xyz / w + params.light_offset;
+            let y_light = moment_texel(4u, 0u, texel).xyz / w;
+            y = y_light + params.light_offset;
             var direction = moment_texel(2u, 0u, texel).xyz;
             if (params.planes == 1u) {
                 direction = moment_texel(5u, 0u, texel).xyz;
             }
             normal = safe_normalize(direction, vec3f(0.0));
+            // Chain D's w·(y·y + σ_t²) less y·y: the texel's own footprint variance.
+            footprint = max(moment_texel(3u, 0u, texel).w / w - dot(y_light, y_light), 0.0);
+            // Its diffuse power over the density it was drawn by (self-normalised in shading).
+            let q = pyramid[u32(texel.y) * params.rsm_size + u32(texel.x)];
+            diffuse_share = select(0.0, (a.r + a.g + a.b) / q, q > 0.0);
         }
-        shadow_candidates[2u * (i * c + j)] = vec4f(y, 0.0);
-        shadow_candidates[2u * (i * c + j) + 1u] = vec4f(normal, 0.0);
+        shadow_candidates[2u * (i * c + j)] = vec4f(y, footprint);
+        shadow_candidates[2u * (i * c + j) + 1u] = vec4f(normal, diffuse_share);
     }
 }
 

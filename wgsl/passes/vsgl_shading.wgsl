@@ -51,14 +51,24 @@ struct ShadeParams {
     // 2 = "exact_compact": that, blended with the exact Lambert emission (lambert_exact_weight);
     // 0 = "papers": the sphere-normalized lobe of [Tok16s Eq. 1].
     lambert_lobe: u32,
-    // With VISIBILITY_TRACED: candidate shadow targets per VSGL in `shadow_candidates`
-    // (shadow_target="resampled"; vsgl_gen.wgsl writes them), 0 = aim at the record's target.
+    // Candidate texels per VSGL in `shadow_candidates` (vsgl_gen.wgsl writes them for
+    // shadow_target="resampled" with ray tracing and for near_field="texels"), 0 = none.
     shadow_candidates: u32,
     // Seed of the per-(pixel, VSGL) pick among the candidates.
     seed: u32,
+    // 1 (shadow_target="resampled", with VISIBILITY_TRACED and candidates): aim each shadow
+    // ray at a candidate (resampled_shadow_target).
+    resample_target: u32,
+    // 1 (near_field="texels"): where the receiver is inside a VSGL's positional Gaussian or
+    // behind its tangent plane, its diffuse light is also estimated from the candidate texels
+    // one by one (near_field_texel_irradiance).
+    near_field_texels: u32,
 }
 
 const WORKGROUP: u32 = 8u;
+// Below this weight the near-field texel estimate is not formed (it would change the pair's
+// light by less than 0.1%).
+const NEAR_FIELD_WEIGHT_MIN: f32 = 1.0e-3;
 const TILE: u32 = 64u; // = WORKGROUP², one VSGL loaded per thread
 // Pixels each thread shades, 1 … 4 (register blocking): each VSGL the loop reads from the tile
 // serves this many (pixel, VSGL) pairs, whose receivers stay in registers. Set by the host
@@ -76,7 +86,7 @@ override PIXELS_PER_THREAD: u32;
 @group(1) @binding(6) var<storage, read_write> indirect_diffuse: array<vec4f>;
 @group(1) @binding(7) var<storage, read_write> indirect_specular: array<vec4f>;
 // Rows 2(v·C + j) and 2(v·C + j) + 1: candidate j's point and unit normal (0: unknown) for VSGL
-// v (vsgl_gen.wgsl); read only with VISIBILITY_TRACED and shadow_candidates = C > 0.
+// v (vsgl_gen.wgsl); read only with shadow_candidates = C > 0.
 @group(1) @binding(8) var<storage, read> shadow_candidates: array<vec4f>;
 
 // The tile keeps, per VSGL, only what the shading loop reads, in arrays of 16 bytes grouped by
@@ -303,6 +313,33 @@ fn resampled_shadow_target(v: u32, pixel: u32, p: vec3f, n: vec3f, fallback: vec
     return chosen;
 }
 
+// near_field="texels": the irradiance over power at p (normal n) from VSGL v's candidate texels
+// as patches of their footprints (lambert_patch_irradiance, each with its own normal), their
+// mean weighted by each one's diffuse power over the density it was drawn by: a C-sample
+// estimate of the cluster's texels shaded one by one, which is what the Gaussian of [Tok15
+// Eq. 5] stands for only when p is far from it and in front of it. `axis`: the normal of a
+// candidate whose normal is unknown.
+fn near_field_texel_irradiance(v: u32, p: vec3f, n: vec3f, axis: vec3f) -> f32 {
+    let c = params.shadow_candidates;
+    var sum = 0.0;
+    var weight = 0.0;
+    for (var j = 0u; j < c; j++) {
+        let point = shadow_candidates[2u * (v * c + j)];
+        let normal_share = shadow_candidates[2u * (v * c + j) + 1u];
+        var normal = normal_share.xyz;
+        if (all(normal == vec3f(0.0))) {
+            normal = axis;
+        }
+        // Faded below the texel's own tangent plane as a cluster's light is below its mean
+        // one (vsgl_tangent_plane_fade): a receiver on the plane of a lone lit quad otherwise
+        // got 4e-8 of a pixel from rounding in the emitter's cosine.
+        let fade = vsgl_tangent_plane_fade(VsglTangentPlane(normal, 0.0), VsglPosition(point.xyz, point.w), p);
+        sum += normal_share.w * fade * lambert_patch_irradiance(point.xyz, normal, point.w, p, n);
+        weight += normal_share.w;
+    }
+    return select(0.0, sum / weight, weight > 0.0);
+}
+
 // Adds one VSGL's light to one pixel's sums: the pair (pixel, VSGL) of the inner loop.
 fn shade_pair(px: ptr<function, BlockPixel>, light: TileLight) {
     if (!(*px).has_surface) {
@@ -321,7 +358,7 @@ fn shade_pair(px: ptr<function, BlockPixel>, light: TileLight) {
         var shadow_target = position.mean;
         if (VISIBILITY_TRACED) {
             shadow_target = light.target_level.xyz;
-            if (params.shadow_candidates > 0u) {
+            if (params.resample_target == 1u && params.shadow_candidates > 0u) {
                 shadow_target = resampled_shadow_target(light.index, (*px).index, p, n, shadow_target);
             }
         }
@@ -377,6 +414,19 @@ fn shade_pair(px: ptr<function, BlockPixel>, light: TileLight) {
             // cosine is rounding noise (a lone plane lit its back by 1e-8 without it).
             let exact = fade * lambert_patch_irradiance(position.mean, lobe_d4.xyz, 0.0, p, n) * INV_PI;
             from_diffuse_lobe = mix(from_diffuse_lobe, exact, w);
+        }
+        if (params.near_field_texels == 1u) {
+            // Inside the Gaussian (d² ≲ σ²) the SG of Eq. 5 no longer describes where the
+            // light comes from, and behind the mean tangent plane the fade removes the light
+            // of the cluster's texels that do face p: there its texels are taken one by one.
+            let to_mean = position.mean - p;
+            let d2 = dot(to_mean, to_mean);
+            let near = position.variance / max(position.variance + d2, FLT_MIN);
+            let w_texels = max(near, 1.0 - fade);
+            if (w_texels > NEAR_FIELD_WEIGHT_MIN && params.shadow_candidates > 0u) {
+                let texels = near_field_texel_irradiance(light.index, p, n, lobe_d4.xyz) * INV_PI;
+                from_diffuse_lobe = mix(from_diffuse_lobe, texels, w_texels);
+            }
         }
         (*px).diffuse += diffuse_power * from_diffuse_lobe;
         if (HAS_SPECULAR) {

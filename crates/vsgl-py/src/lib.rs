@@ -944,7 +944,9 @@ impl PyRenderer {
     ///   do; False: the papers' formula, which lights the back of a lit surface), visibility,
     ///   shadow_target (with visibility="raytrace": "resampled", the default: each VSGL's ray
     ///   aims at one of 8 texels of its cluster kept per receiver by its geometric term |
-    ///   "centre": at the sampled centre texel), ism_size, ism_points, ism_points_per_map, ism_bias, ism_pcf, importance,
+    ///   "centre": at the sampled centre texel), near_field ("texels", the default: inside a
+    ///   VSGL's Gaussian or behind its tangent plane the diffuse light is also taken from 8 of
+    ///   its texels one by one | "sg": the Gaussian's SG alone), ism_size, ism_points, ism_points_per_map, ism_bias, ism_pcf, importance,
     ///   importance_lights, importance_interleave, rsm_fit, capture_rsm.
     /// - "vsgl2": two VSGLs per light by a parallel sum. shadow_size, rsm_size (any side
     ///   32..4096), diffuse, lighting, lambert_lobe, plane_fade (default False: one plane

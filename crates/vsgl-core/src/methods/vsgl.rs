@@ -17,7 +17,7 @@ use crate::passes::pdf_mips::PdfMipsPass;
 use crate::passes::vpl_sample::Sampling;
 use crate::passes::vsgl_gen::{GenSettings, Kernel, VsglGenPass, SHADOW_CANDIDATE_BYTES, VSGL_BYTES};
 use crate::passes::vsgl_moments::VsglMomentsPass;
-use crate::passes::vsgl_shading::{DiffuseMode, LambertLobe, LightingMode, VsglShadingPass};
+use crate::passes::vsgl_shading::{DiffuseMode, LambertLobe, LightingMode, ShadingCandidates, VsglShadingPass};
 use std::borrow::Cow;
 
 pub const INFO: MethodInfo = MethodInfo {
@@ -89,6 +89,13 @@ const OPTIONS: &[OptionSpec] = &[
         help: "with visibility=\"raytrace\", where each VSGL's shadow ray aims: \"resampled\" (at one of 8 texels of its cluster, drawn by power and kept per receiver by its geometric term there, so the ray goes where the cluster's light at that receiver comes from) or \"centre\" (at the cluster's sampled centre texel, the same for every receiver; before 2026-12-02)",
         note: "",
     },
+    OptionSpec {
+        name: "near_field",
+        kind: OptionKind::Choice(&["texels", "sg"]),
+        default: OptionValue::Str(Cow::Borrowed("texels")),
+        help: "diffuse light at receivers inside a VSGL's positional Gaussian or behind its mean tangent plane: \"texels\" (also from 8 of its texels shaded one by one as patches, weighted in where the Gaussian's form does not hold) or \"sg\" (the Gaussian's SG alone, before 2026-12-02)",
+        note: "",
+    },
     common::ISM_SIZE,
     common::ISM_POINTS,
     common::ISM_POINTS_PER_MAP,
@@ -127,6 +134,8 @@ struct Vsgl {
     rsm_fit: RsmFit,
     /// `shadow_target="resampled"`: candidate shadow targets with `visibility="raytrace"`.
     resampled_shadow_target: bool,
+    /// `near_field="texels"`.
+    near_field_texels: bool,
 }
 
 /// `diffuse=` as the shading pass takes it. `lighting="accurate"` brings its own diffuse form
@@ -242,6 +251,7 @@ impl Vsgl {
             importance: Importance::from_options(o)?,
             capture_rsm: o.bool("capture_rsm")?, rsm_fit: rsm_fit(o)?,
             resampled_shadow_target: o.str("shadow_target")? == "resampled",
+            near_field_texels: o.str("near_field")? == "texels",
         })
     }
 
@@ -305,7 +315,8 @@ impl Method for Vsgl {
                 _ => None,
             };
             let buf = ctx.rec.storage("vsgl_buffer", light.budget as u64 * VSGL_BYTES);
-            let candidates = (self.resampled_shadow_target && self.visibility == VisibilityMode::RayTraced)
+            let resample_target = self.resampled_shadow_target && self.visibility == VisibilityMode::RayTraced;
+            let candidates = (resample_target || self.near_field_texels)
                 .then(|| ctx.rec.storage("vsgl_shadow_candidate_buffer", light.budget as u64 * SHADOW_CANDIDATE_BYTES));
             let settings = GenSettings {
                 count: light.budget,
@@ -323,7 +334,7 @@ impl Method for Vsgl {
             gen.record_with_pdf(&mut ctx.rec, "vsgl_gen", light.rsm, pdf, chains, &settings, &buf);
             vis.build_maps(ctx, &buf, light.budget, VSGL_RECORD_WORDS)?;
             let target = shading_out.target(ctx.indirect);
-            shading.record(&mut ctx.rec, ctx.frame_uniforms, &buf, light.budget, self.interleave, self.diffuse, self.lighting, self.lambert_lobe, self.kernel == Kernel::Node, self.plane_fade, ctx.gbuffer, target, feat, ctx.size, &vis, candidates.as_ref().map(|b| (b, self.seed)));
+            shading.record(&mut ctx.rec, ctx.frame_uniforms, &buf, light.budget, self.interleave, self.diffuse, self.lighting, self.lambert_lobe, self.kernel == Kernel::Node, self.plane_fade, ctx.gbuffer, target, feat, ctx.size, &vis, candidates.as_ref().map(|buffer| ShadingCandidates { buffer, seed: self.seed, resample_target, near_field: self.near_field_texels }).as_ref());
             if ctx.vsgls.is_none() {
                 ctx.vsgls = Some(buf);
             }

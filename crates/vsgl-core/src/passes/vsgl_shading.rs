@@ -35,7 +35,21 @@ struct ShadeParamsRaw {
     lambert_lobe: u32,
     shadow_candidates: u32,
     seed: u32,
-    _pad: [u32; 2],
+    resample_target: u32,
+    near_field_texels: u32,
+}
+
+/// Candidate texels per VSGL written by `vsgl_gen` ([`crate::passes::vsgl_gen::SHADOW_CANDIDATES`]
+/// each) and what the shading pass does with them.
+pub struct ShadingCandidates<'a> {
+    pub buffer: &'a wgpu::Buffer,
+    /// Seed of the per-(pixel, VSGL) pick of a shadow target.
+    pub seed: u32,
+    /// `shadow_target="resampled"`: aim each shadow ray at one of them (with ray tracing).
+    pub resample_target: bool,
+    /// `near_field="texels"`: shade them one by one where the receiver is inside a VSGL's
+    /// Gaussian or behind its tangent plane.
+    pub near_field: bool,
 }
 
 /// Most loop iterations (VSGLs per pixel) one dispatch runs: lavapipe (Mesa 22.3) silently
@@ -43,6 +57,12 @@ struct ShadeParamsRaw {
 /// 65536), so long lists are split over dispatches that add into the same targets.
 /// With `visibility="raytrace"` (each VSGL also loops over BVH nodes): `traced_lights_per_dispatch`.
 const VSGLS_PER_PIXEL_PER_DISPATCH: u32 = 16384;
+/// The same with `near_field="texels"` on an adapter that caps an invocation's loop iterations
+/// (lavapipe, `Gpu::caps_loop_iterations`): a pair near its VSGL also loops over its
+/// SHADOW_CANDIDATES texels, so an invocation of 2 pixels may take 2·9 iterations per VSGL.
+/// Measured on diffuse_cornell at 32² before this bound: mean indirect 0.535 of the reference at
+/// N = 4096 and 0.063 at 8192 (whole invocations past the cap lost), 1.001 at 2048.
+const CPU_NEAR_FIELD_VSGLS_PER_PIXEL_PER_DISPATCH: u32 = 2048;
 
 /// Diffuse shading form.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -196,7 +216,7 @@ impl VsglShadingPass {
         features: ShaderFeatures,
         size: (u32, u32),
         visibility: &VirtualLightVisibility,
-        shadow_candidates: Option<(&wgpu::Buffer, u32)>,
+        candidates: Option<&ShadingCandidates<'_>>,
     ) {
         let gpu = rec.gpu;
         let [specular] = features.specular_flags();
@@ -206,14 +226,20 @@ impl VsglShadingPass {
         // `frame.passes` names the visibility variant.
         let label = format!("vsgl_shading{}", visibility.label_suffix());
         // Chunks are multiples of k² so the interleaved subsets stay j ≡ t (mod k²).
-        let per_dispatch = if visibility.traced { traced_lights_per_dispatch(gpu) } else { VSGLS_PER_PIXEL_PER_DISPATCH };
+        let near_field = candidates.is_some_and(|c| c.near_field);
+        let per_dispatch = if visibility.traced {
+            traced_lights_per_dispatch(gpu)
+        } else if near_field && gpu.caps_loop_iterations() {
+            CPU_NEAR_FIELD_VSGLS_PER_PIXEL_PER_DISPATCH
+        } else {
+            VSGLS_PER_PIXEL_PER_DISPATCH
+        };
         let chunk = per_dispatch * interleave * interleave;
-        // Read only with candidates (`visibility.traced`); a placeholder of its own otherwise.
-        let candidates = shadow_candidates.filter(|_| visibility.traced).map(|(b, _)| b);
+        // Read only with candidates; a placeholder of its own otherwise.
         let placeholder = if candidates.is_none() { Some(rec.storage("vsgl_shading_shadow_candidates_placeholder_buffer", 32)) } else { None };
-        let candidate_buffer = candidates.or(placeholder.as_ref()).expect("a candidates buffer or its placeholder");
+        let candidate_buffer = candidates.map(|c| c.buffer).or(placeholder.as_ref()).expect("a candidates buffer or its placeholder");
         for_each_chunk(count, chunk, |first, n| {
-            let params = ShadeParamsRaw { count: n, interleave, diffuse_mode: diffuse.shader_code(), first, exact_texels: u32::from(exact_texels), plane_fade: u32::from(plane_fade), lighting_mode: lighting.shader_code(), lambert_lobe: lambert_lobe.shader_code(), shadow_candidates: u32::from(candidates.is_some()) * SHADOW_CANDIDATES, seed: shadow_candidates.map_or(0, |(_, seed)| seed), _pad: [0; 2] };
+            let params = ShadeParamsRaw { count: n, interleave, diffuse_mode: diffuse.shader_code(), first, exact_texels: u32::from(exact_texels), plane_fade: u32::from(plane_fade), lighting_mode: lighting.shader_code(), lambert_lobe: lambert_lobe.shader_code(), shadow_candidates: u32::from(candidates.is_some()) * SHADOW_CANDIDATES, seed: candidates.map_or(0, |c| c.seed), resample_target: u32::from(candidates.is_some_and(|c| c.resample_target && visibility.traced)), near_field_texels: u32::from(candidates.is_some_and(|c| c.near_field)) };
             let uniform = rec.uniform("vsgl_shading_params_uniform_buffer", &params);
             rec.compute(
                 &label,
