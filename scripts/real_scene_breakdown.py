@@ -29,7 +29,7 @@ import numpy as np
 import vsgl
 
 sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "tests"))
-from rsm_model import spot_rsm_view  # noqa: E402
+from rsm_model import spot_texel_footprint_variance  # noqa: E402
 
 LAMBERT_SHARPNESS = 2.2925  # LAMBERT_LOBE_SG_SHARPNESS (wgsl/common/sg.wgsl)
 HEMISPHERE_GAIN = 1.1010136  # LAMBERT_LOBE_HEMISPHERE_GAIN
@@ -59,13 +59,38 @@ def default_camera(scene: vsgl.Scene) -> tuple[vsgl.Camera, np.ndarray, np.ndarr
     return vsgl.Camera.look_at(eye=tuple(eye), target=tuple(c), fov_y_deg=45), eye, fwd, right, up
 
 
-def main() -> int:
-    ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
+def receivers_from_reference(ref: vsgl.Frame, count: int, basis, light_position: np.ndarray, seed: int = 0) -> tuple[np.ndarray, np.ndarray]:
+    """``count`` receivers drawn without replacement by the reference frame's indirect diffuse
+    light: their positions relative to the light (unprojected from the frame's depth with the
+    default camera's ``basis`` (eye, forward, right, up), 45° field of view) and their normals."""
+    eye, fwd, right, up = basis
+    size = ref.width
+    truth = ref.aov("indirect_diffuse").sum(-1)
+    rng = np.random.default_rng(seed)
+    lit = np.flatnonzero(truth.ravel() > 0)
+    pick = rng.choice(lit, size=min(count, lit.size), replace=False, p=truth.ravel()[lit] / truth.ravel()[lit].sum())
+    yy, xx = np.divmod(pick, size)
+    t = math.tan(math.radians(22.5))
+    depth = ref.aov("depth")[yy, xx, 0].astype(float)
+    ndc_x = 2 * (xx + 0.5) / size - 1
+    ndc_y = 1 - 2 * (yy + 0.5) / size
+    p = eye + depth[:, None] * (fwd + ndc_x[:, None] * t * right + ndc_y[:, None] * t * up) - light_position
+    return p, ref.aov("normal")[yy, xx].astype(float)
+
+
+def add_model_arguments(ap: argparse.ArgumentParser, receivers: int) -> None:
+    """The options the float64 RSM models share: scene, image and RSM sides, cluster levels,
+    receiver count."""
     ap.add_argument("--scene", default="flight_helmet")
     ap.add_argument("--size", type=int, default=128)
     ap.add_argument("--rsm", type=int, default=128)
     ap.add_argument("--level", type=int, action="append", help="cluster level(s): nodes of 4^level texels")
-    ap.add_argument("--receivers", type=int, default=400)
+    ap.add_argument("--receivers", type=int, default=receivers)
+
+
+def main() -> int:
+    ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
+    add_model_arguments(ap, receivers=400)
     ap.add_argument("--coherent", type=float, action="append", default=[],
                     help="also split each node while its positional variance exceeds KAPPA x 4^level x its texels' mean footprint variance (repeatable)")
     ap.add_argument("--min-normal-coherence", type=float, default=0.0,
@@ -85,24 +110,8 @@ def main() -> int:
     lp = np.array(light.position, float)
     # Each texel's footprint variance, as vsgl_moments.wgsl adds it (rsm_texel_footprint_variance):
     # a spot light's RSM spans tan(outer cone) on each side of its axis.
-    axis, t_rsm = spot_rsm_view(f)  # the RSM frame (rsm_fit may have narrowed the cone)
-    d2y = np.maximum((y**2).sum(-1), 1e-30)
-    cos_axis = np.abs(y @ axis) / np.sqrt(d2y)
-    cross = t_rsm**2 * (2 / a.rsm) ** 2 * cos_axis**3 * d2y
-    cos_surface = np.maximum(np.abs((nt * -y).sum(-1)) / np.sqrt(d2y), 0.1)
-    footprint = cross * (1 + 1 / cos_surface**2) / 12
-
-    truth = ref.aov("indirect_diffuse").sum(-1)
-    rng = np.random.default_rng(0)
-    lit = np.flatnonzero(truth.ravel() > 0)
-    pick = rng.choice(lit, size=min(a.receivers, lit.size), replace=False, p=truth.ravel()[lit] / truth.ravel()[lit].sum())
-    yy, xx = np.divmod(pick, a.size)
-    t = math.tan(math.radians(22.5))
-    depth = ref.aov("depth")[yy, xx, 0].astype(float)
-    ndc_x = 2 * (xx + 0.5) / a.size - 1
-    ndc_y = 1 - 2 * (yy + 0.5) / a.size
-    p = eye + depth[:, None] * (fwd + ndc_x[:, None] * t * right + ndc_y[:, None] * t * up) - lp  # relative to the light
-    n = ref.aov("normal")[yy, xx].astype(float)
+    footprint = spot_texel_footprint_variance(y, nt, f, a.rsm)
+    p, n = receivers_from_reference(ref, a.receivers, (eye, fwd, right, up), lp)
 
     # How near the reference's light comes from: shares of the every-texel sum by texel distance
     # (as a fraction of the scene's bounds diagonal), for the near-field question.
@@ -214,7 +223,7 @@ def main() -> int:
             by_coherence[int(coherent)] += [e_ref.sum(), (e_sg * fade).sum(), (e_sg * front).sum()]
         whole = sum(v[0] for v in totals.values())
         how = f": {len(ids)} clusters" if kappa is None else f", split while sigma^2 > {kappa:g} x 4^l x footprint or |N| < {a.min_normal_coherence:g}: {len(ids)} clusters"
-        print(f"{a.scene}, RSM {a.rsm}^2, clusters of {4**level} texels (level {level}{how}), {len(pick)} receivers drawn from the reference's indirect diffuse:")
+        print(f"{a.scene}, RSM {a.rsm}^2, clusters of {4**level} texels (level {level}{how}), {len(p)} receivers drawn from the reference's indirect diffuse:")
         all_ = sum(totals.values())
         print(f"  all: VSGL/reference {all_[1] / whole:.3f} with the fade, {all_[2] / whole:.3f} without, {all_[3] / whole:.3f} times the exact front fraction, {all_[4] / whole:.3f} times its normal model")
         for key, (ref_sum, sg_fade, sg_plain, sg_front, sg_soft) in totals.items():

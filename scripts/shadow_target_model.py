@@ -35,16 +35,12 @@ import real_scene_breakdown as breakdown  # noqa: E402  (its default camera)
 import vsgl  # noqa: E402
 
 sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "tests"))
-from rsm_model import spot_rsm_view  # noqa: E402
+from rsm_model import spot_texel_footprint_variance  # noqa: E402
 
 
 def main() -> int:
     ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
-    ap.add_argument("--scene", default="flight_helmet")
-    ap.add_argument("--size", type=int, default=128)
-    ap.add_argument("--rsm", type=int, default=128)
-    ap.add_argument("--level", type=int, action="append", help="cluster level(s): nodes of 4^level texels")
-    ap.add_argument("--receivers", type=int, default=200)
+    breakdown.add_model_arguments(ap, receivers=200)
     ap.add_argument("--candidates", type=int, nargs="+", default=[1, 2, 4, 8])
     ap.add_argument("--repeats", type=int, default=8, help="draws per estimate (the resampled pick is random)")
     ap.add_argument("--variant", default="llvm_ad_rgb")
@@ -63,23 +59,9 @@ def main() -> int:
     nt = f.rsm("normal").reshape(-1, 3).astype(float)
     fd = f.rsm("flux_diffuse").reshape(-1, 3).sum(-1).astype(float)
     w = f.rsm("weight").reshape(-1).astype(float)
-    axis, t_rsm = spot_rsm_view(f)  # the RSM frame (rsm_fit may have narrowed the cone)
-    d2y = np.maximum((y**2).sum(-1), 1e-30)
-    cos_axis = np.abs(y @ axis) / np.sqrt(d2y)
-    cos_surface = np.maximum(np.abs((nt * -y).sum(-1)) / np.sqrt(d2y), 0.1)
-    footprint = t_rsm**2 * (2 / a.rsm) ** 2 * cos_axis**3 * d2y * (1 + 1 / cos_surface**2) / 12
-
-    truth = ref.aov("indirect_diffuse").sum(-1)
-    rng = np.random.default_rng(0)
-    lit = np.flatnonzero(truth.ravel() > 0)
-    pick = rng.choice(lit, size=min(a.receivers, lit.size), replace=False, p=truth.ravel()[lit] / truth.ravel()[lit].sum())
-    yy, xx = np.divmod(pick, a.size)
-    t = math.tan(math.radians(22.5))
-    depth = ref.aov("depth")[yy, xx, 0].astype(float)
-    ndc_x = 2 * (xx + 0.5) / a.size - 1
-    ndc_y = 1 - 2 * (yy + 0.5) / a.size
-    p = eye + depth[:, None] * (fwd + ndc_x[:, None] * t * right + ndc_y[:, None] * t * up) - lp
-    n = ref.aov("normal")[yy, xx].astype(float)
+    footprint = spot_texel_footprint_variance(y, nt, f, a.rsm)
+    p, n = breakdown.receivers_from_reference(ref, a.receivers, (eye, fwd, right, up), lp)
+    rng = np.random.default_rng(1)  # the resampled picks
     n /= np.maximum(np.linalg.norm(n, axis=-1, keepdims=True), 1e-30)
     lo, hi = (np.array(v, float) for v in scene.bounds)
     diag = float(np.linalg.norm(hi - lo))

@@ -84,7 +84,7 @@ const OPTIONS: &[OptionSpec] = &[
         kind: OptionKind::Choice(&["resampled", "centre"]),
         // "resampled" (docs/rendering.md, "Which texel the shadow ray aims at"): in a float64
         // model on FlightHelmet the centre texel kept 0.69 of the every-texel reference's
-        // shadowed light from 4-texel clusters, 8 resampled candidates 0.97.
+        // shadowed light from 4-texel clusters, 8 resampled candidates 0.95-0.97.
         default: OptionValue::Str(Cow::Borrowed("resampled")),
         help: "with visibility=\"raytrace\", where each VSGL's shadow ray aims: \"resampled\" (at one of 8 texels of its cluster, drawn by power and kept per receiver by its geometric term there, so the ray goes where the cluster's light at that receiver comes from) or \"centre\" (at the cluster's sampled centre texel, the same for every receiver; before 2026-12-02)",
         note: "",

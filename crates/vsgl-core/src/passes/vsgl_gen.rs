@@ -98,7 +98,7 @@ pub struct GenSettings<'a> {
 }
 
 /// Candidate shadow targets per VSGL (`shadow_target="resampled"`): in the float64 model of
-/// docs/rendering.md ("Which texel the shadow ray aims at") 4 keep 0.92 and 8 keep 0.97 of the
+/// docs/rendering.md ("Which texel the shadow ray aims at") 4 keep 0.92 and 8 keep 0.95-0.97 of the
 /// every-texel reference's shadowed light from FlightHelmet's 4-texel clusters.
 pub const SHADOW_CANDIDATES: u32 = 8;
 /// Bytes of one VSGL's candidates: per candidate its point and its normal, two vec4f rows.
