@@ -247,7 +247,8 @@ pub mod common {
     const fn int(name: &'static str, min: i64, max: i64, default: i64, help: &'static str) -> OptionSpec {
         OptionSpec { name, kind: OptionKind::Int { min, max, power_of_two: false }, default: OptionValue::Int(default), help, note: "" }
     }
-    const fn choice(name: &'static str, choices: &'static [&'static str], help: &'static str) -> OptionSpec {
+    /// A choice option whose default is its first choice.
+    pub const fn choice(name: &'static str, choices: &'static [&'static str], help: &'static str) -> OptionSpec {
         OptionSpec { name, kind: OptionKind::Choice(choices), default: OptionValue::Str(Cow::Borrowed(choices[0])), help, note: "" }
     }
 

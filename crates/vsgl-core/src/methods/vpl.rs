@@ -88,7 +88,8 @@ impl Vpl {
             interleave: o.u32("interleave")?,
             denoise: o.bool("denoise")?,
             importance: Importance::from_options(o)?,
-            capture_rsm: o.bool("capture_rsm")?, rsm_fit: rsm_fit(o)?,
+            capture_rsm: o.bool("capture_rsm")?,
+            rsm_fit: rsm_fit(o)?,
         })
     }
 }
