@@ -161,6 +161,20 @@ def half_hidden_floor(directory: pathlib.Path):
     return scene, vsgl.Camera.look_at(eye=(-0.6, 0.12, 0.0), target=(-1.0, 0.12, 0.0), fov_y_deg=50)
 
 
+def step_face(directory: pathlib.Path):
+    """A 0.3 m step: a raised block's top over the half x < 0 of a 2 × 2 m floor, its front face
+    at x = 0 facing +x, lit from above and behind the face (so the face gets no direct light).
+    In the RSM the floor texels at the step's foot sit beside the block's top 0.3 m higher, and
+    those floor texels light the face from a texel or two away. The camera looks at the face.
+    Returns (scene, camera)."""
+    floor = dict(corners=[(-1, 0, -1), (-1, 0, 1), (1, 0, 1), (1, 0, -1)], base_color=(0.8, 0.8, 0.8), specular=0.0, name="floor")
+    top = dict(corners=[(-1, 0.3, -1), (-1, 0.3, 1), (0, 0.3, 1), (0, 0.3, -1)], base_color=(0.8, 0.8, 0.8), specular=0.0, name="top")
+    face = dict(corners=[(0, 0, -1), (0, 0.3, -1), (0, 0.3, 1), (0, 0, 1)], base_color=(0.8, 0.8, 0.8), specular=0.0, name="face")
+    scene = vsgl.Scene.load(write_quads(directory, [floor, top, face], name="step_face.gltf"))
+    scene.lights = [vsgl.SpotLight(position=(-0.3, 3.0, 0.0), direction=(0.0, -1.0, 0.0), intensity=10.0, inner_cone_deg=40, outer_cone_deg=45)]
+    return scene, vsgl.Camera.look_at(eye=(1.2, 0.15, 0.0), target=(0.0, 0.15, 0.0), fov_y_deg=40)
+
+
 def lit_floor_corner(directory: pathlib.Path, *, wall_roughness: float = 0.35):
     """A large floor (8 × 8) lit all over by a wide spot light, and a wall along its back edge
     (z = −4, facing +z, glossy with ``wall_roughness``); the camera looks at a small patch of the

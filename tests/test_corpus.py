@@ -140,10 +140,8 @@ def test_vpls_are_near_the_reference_on_the_measured_scenes(name, make_renderer)
 # naming what was measured (docs/rendering.md, "The real-scene corpus"), so a fix shows as an
 # unexpected pass. lights_spot has no indirect light (its own test below).
 _WITHIN_10_OPEN = {
-    "boom_box": "1.19 / 1.91 (1.41 / 9.34 before the RSM was fitted to the scene: the reference had 0.07x the path tracer's specular)",
-    "flight_helmet": "0.67 / 0.79: near-field light a texel-sized patch does not deliver, creases",
-    "helmet_shell": "1.01 / 1.43 (0.98 / 0.78 with the cone's RSM; specular over a reference that misses glossy-to-glossy light)",
-    "furnished_room": "0.98 / 0.87 (specular low; not yet split by cause)",
+    "boom_box": "1.52 / 1.87 against a reference that has 0.58 / 0.39 of the path tracer's light (vsgl 0.91 / 0.71 of it)",
+    "helmet_shell": "1.04 / 1.59 against a reference that misses glossy-to-glossy light (0.82 / 0.46 of the path tracer's; vsgl 0.86 / 0.51)",
 }
 
 

@@ -13,7 +13,9 @@
 //     |Σw n|/Σw ≥ c: a cluster that straddles a crease or a depth discontinuity of the RSM
 //     (a corner, a helmet's brim over its face) is not one Gaussian emitter, and the light its
 //     parts exchange at close range is lost when it is shaded as one;
-//  3. cluster totals of every moment f from the mips read trilinearly at (x_i, l_i):
+//  3. cluster totals of every moment f from the mips read at (x_i, l_i): trilinearly as the
+//     papers do (kernel_filter="trilinear"), or per level at the node holding x_i ("nodes", the
+//     default; moment_bilinear says why):
 //     "density"  [Tok16 Eq. 4]: ∫f g ≈ f̄(x_i, l_i) / max(N p(x_i), 1),
 //     "integral" [Tok16 Eq. 5]: ∫f g ≈ f̄(x_i, l_i) / (N p̄(x_i, l_i)),
 //     "node": the node's exact totals F_v/(N P_v) (moments read at the node, no filtering);
@@ -61,9 +63,17 @@ struct GenParams {
     coherence: f32,
     // Candidate shadow targets per VSGL written to `shadow_candidates` (0: none).
     shadow_candidates: u32,
+    // How the filtered kernels read a level (moment_bilinear): KERNEL_FILTER_TRILINEAR or
+    // KERNEL_FILTER_NODES.
+    kernel_filter: u32,
+    _pad0: u32,
+    _pad1: u32,
+    _pad2: u32,
 }
 
 const WORKGROUP: u32 = 64u;
+const KERNEL_FILTER_TRILINEAR: u32 = 0u;
+const KERNEL_FILTER_NODES: u32 = 1u;
 
 @group(0) @binding(0) var<uniform> params: GenParams;
 @group(0) @binding(1) var<storage, read> pyramid: array<f32>;
@@ -86,8 +96,21 @@ fn moment_texel(chain: u32, level: u32, xy: vec2i) -> vec4f {
     return moments[chain * params.chain_len + level_offsets[level] + u32(c.y * side + c.x)];
 }
 
-// Bilinear read of level `level` at a continuous level-0 position `s` (texel units).
+// Read of level `level` at a continuous level-0 position `s` (texel units): bilinear, as the
+// papers' trilinear mip read does (kernel_filter="trilinear"), or the level's quadtree node that
+// holds `s` ("nodes"). The bilinear read blends the centre texel with up to three neighbours
+// whatever the kernel's size, so a kernel of one texel is spread over about 2×2 of them, its
+// mean moved by up to half a texel (into the gap, where the RSM jumps in depth): the light it
+// sends to receivers a texel or two away, most of FlightHelmet's, is lost at every N
+// (docs/rendering.md, "The defaults this chose").
+fn level_node(level: u32, s: vec2f) -> vec2i {
+    return vec2i(vec2u(max(s, vec2f(0.0))) >> vec2u(level));
+}
+
 fn moment_bilinear(chain: u32, level: u32, s: vec2f) -> vec4f {
+    if (params.kernel_filter == KERNEL_FILTER_NODES) {
+        return moment_texel(chain, level, level_node(level, s));
+    }
     let coord = s / f32(1u << level) - 0.5;
     let base = floor(coord);
     let f = coord - base;
@@ -97,7 +120,7 @@ fn moment_bilinear(chain: u32, level: u32, s: vec2f) -> vec4f {
     return mix(a, b, f.y);
 }
 
-// Trilinear read at a fractional level in [0, levels − 1].
+// Trilinear read at a fractional level in [0, levels − 1] (each level read by moment_bilinear).
 fn moment_trilinear(chain: u32, s: vec2f, level: f32) -> vec4f {
     let top = params.levels - 1u;
     let l0 = min(u32(floor(level)), top);
@@ -114,7 +137,7 @@ fn pdf_texel_average(level: u32, xy: vec2i) -> f32 {
     return pyramid[level_offsets[level] + u32(c.y * side + c.x)] / f32(1u << (2u * level));
 }
 
-// pdf_texel_average read trilinearly, as moment_trilinear reads the chains.
+// pdf_texel_average read as moment_trilinear reads the chains.
 fn pdf_trilinear(s: vec2f, level: f32) -> f32 {
     let top = params.levels - 1u;
     let l0 = min(u32(floor(level)), top);
@@ -123,6 +146,10 @@ fn pdf_trilinear(s: vec2f, level: f32) -> f32 {
     var v = vec2f(0.0);
     for (var k = 0u; k < 2u; k++) {
         let l = select(l0, l1, k == 1u);
+        if (params.kernel_filter == KERNEL_FILTER_NODES) {
+            v[k] = pdf_texel_average(l, level_node(l, s));
+            continue;
+        }
         let coord = s / f32(1u << l) - 0.5;
         let base = floor(coord);
         let f = coord - base;

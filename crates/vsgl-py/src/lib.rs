@@ -926,7 +926,10 @@ impl PyRenderer {
     ///   ("scene", the default: a spot light's RSM covers only the part of its cone the
     ///   scene's bounds can fill | "cone": the whole cone, before 2026-12-02), capture_rsm.
     /// - "vsgl": num_lights VSGLs (in all) by filtered importance sampling. shadow_size,
-    ///   num_lights, rsm_size, sampling, seed, kernel ("integral" | "density" | "node"), K,
+    ///   num_lights, rsm_size, sampling, seed, kernel ("integral" | "density" | "node"),
+    ///   kernel_filter (how "integral" and "density" read the mips: "nodes", the default: the
+    ///   quadtree node holding the kernel's centre at each level, so a texel-sized kernel is
+    ///   that texel | "trilinear": the papers' read, bilinear within a level), K,
     ///   coherence (0..1, default 0.9: each kernel shrinks until its texels' mean normal is at
     ///   least this long, so clusters do not straddle creases; 0: the papers' kernels),
     ///   bisection_steps, interleave, denoise, diffuse ("papers" | "accurate" | "sg_product",

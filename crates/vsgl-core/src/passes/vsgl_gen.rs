@@ -71,6 +71,29 @@ struct GenParamsRaw {
     importance: u32,
     coherence: f32,
     shadow_candidates: u32,
+    kernel_filter: u32,
+    _pad: [u32; 3],
+}
+
+/// How the filtered kernels ("density", "integral") read the moment mips at their level.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum KernelFilter {
+    /// [Tok16 §4]: the mips read trilinearly at the kernel's centre, bilinear within a level.
+    Trilinear,
+    /// The quadtree nodes that hold the centre at the two levels around the kernel's, blended by
+    /// the level's fraction: a kernel of about a texel is that texel (docs/rendering.md, "The
+    /// defaults this chose").
+    Nodes,
+}
+
+impl KernelFilter {
+    /// `KERNEL_FILTER_*` of `vsgl_gen.wgsl`.
+    fn shader_code(self) -> u32 {
+        match self {
+            KernelFilter::Trilinear => 0,
+            KernelFilter::Nodes => 1,
+        }
+    }
 }
 
 /// What one generation dispatch needs besides the RSM.
@@ -95,6 +118,8 @@ pub struct GenSettings<'a> {
     /// (`shadow_target="resampled"` with `visibility="raytrace"`; rows of
     /// [`SHADOW_CANDIDATE_BYTES`]), or none.
     pub shadow_candidates: Option<&'a wgpu::Buffer>,
+    /// How "density" and "integral" read the mips ("node" reads its node whatever this says).
+    pub filter: KernelFilter,
 }
 
 /// Candidate shadow targets per VSGL (`shadow_target="resampled"`): in the float64 model of
@@ -138,6 +163,8 @@ impl VsglGenPass {
             importance: s.importance as u32,
             coherence: s.coherence,
             shadow_candidates: if s.shadow_candidates.is_some() { SHADOW_CANDIDATES } else { 0 },
+            kernel_filter: s.filter.shader_code(),
+            _pad: [0; 3],
         };
         // Unwritten without candidates: a small placeholder of its own (never one of the other
         // bindings, which would alias a writable binding).
