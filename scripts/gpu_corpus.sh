@@ -13,10 +13,11 @@
 #     2026-12-01 and as it was before: lighting, coherence and lambert_lobe swept; vpl) against
 #     the bidirectional path tracer: the real-scene issue's figure owed to a GPU;
 #   2 the cost of today's defaults (lighting="blend", coherence=0.9, lambert_lobe="exact_compact",
-#     near_field="texels", rsm_fit="scene") against the frame before them, warm, at 512² and
-#     1024²;
+#     near_field="texels", rsm_fit="scene", kernel_filter="nodes") against the frame before them,
+#     warm, at 512² and 1024²;
 #   3 the cost of near_field="texels" alone, and of shadow_target="resampled" with shadow rays,
-#     each against the frame without it.
+#     each against the frame without it;
+#   4 the cost of kernel_filter="nodes" against the papers' trilinear read.
 set -uo pipefail
 source "$(dirname "$0")/gpu_common.sh"  # $FINAL_OUT, $RES, pack, step, require_gpu; cd to the repository root
 BUDGET=${BUDGET:-480}
@@ -36,11 +37,14 @@ TAIL=60 step bench_corpus 300 python3 -m vsgl bench --scene flight_helmet,cornel
   --reference pathtrace --reference-strategy bidirectional --reference-spp "$SPP" --no-progress --out "$RES/bench_corpus"
 pack
 TAIL=20 step cost_defaults 120 python3 scripts/lighting_default_cost.py --sizes "$SIZES" --repeats "$REPEATS" \
-  --variant before=lighting=asg,coherence=0,lambert_lobe=hemisphere,near_field=sg,rsm_fit=cone --variant today=
+  --variant before=lighting=asg,coherence=0,lambert_lobe=hemisphere,near_field=sg,rsm_fit=cone,kernel_filter=trilinear --variant today=
 pack
 TAIL=20 step cost_near_field 90 python3 scripts/lighting_default_cost.py --sizes "$SIZES" --repeats "$REPEATS" \
   --variant sg=near_field=sg --variant texels= \
   --variant centre_traced=visibility=raytrace,shadow_target=centre --variant resampled_traced=visibility=raytrace
+pack
+TAIL=20 step cost_kernel_filter 60 python3 scripts/lighting_default_cost.py --sizes "$SIZES" --repeats "$REPEATS" \
+  --variant trilinear=kernel_filter=trilinear --variant nodes=
 pack
 echo "== done in $((SECONDS - T0)) s"
 } 2>&1 | tee "$FINAL_OUT/log.txt"

@@ -28,7 +28,7 @@ DEFAULT_VARIANTS = [
     "before=lighting=asg,coherence=0,lambert_lobe=hemisphere",
     "blend_only=coherence=0,lambert_lobe=hemisphere",
     "asg_coherent=lighting=asg,lambert_lobe=hemisphere",
-    "papers=lighting=asg,coherence=0,plane_fade=false,lambert_lobe=papers,near_field=sg",
+    "papers=lighting=asg,coherence=0,plane_fade=false,lambert_lobe=papers,near_field=sg,kernel_filter=trilinear",
     "node=kernel=node",
     "vsgl2=method=vsgl2",
 ]

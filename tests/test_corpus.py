@@ -155,6 +155,32 @@ def test_default_vsgl_within_10_percent_on_the_corpus(name, make_renderer):
     assert abs(d - 1) <= 0.10 and abs(s - 1) <= 0.10, (d, s)
 
 
+# The acceptance's second bound: at N = the lit texels of the RSM, where each VSGL can be one
+# texel, default vsgl within ±5% of the same-RSM reference in diffuse and in specular (VPLs are
+# within 2% there). Measured (docs/bench/lavapipe/corpus/kernel_filter_lit_texels.txt):
+# cornell_box_original 0.998 / 1.043, cornell_box_mm 0.997 / 0.960, furnished_room 1.019 / 1.015
+# (1.056 while a kernel read at its nodes still drew its near-field texels from its parent
+# node), atrium 0.983 / 1.010.
+_WITHIN_5_AT_LIT_TEXELS_OPEN = {
+    "flight_helmet": "1.018 / 1.105: specular over a reference of point texels (0.73 of the path tracer's specular at RSM 256²)",
+    "boom_box": "1.58 / 1.92 against a reference that has 0.58 / 0.39 of the path tracer's light",
+    "helmet_shell": "1.10 / 1.79 against a reference that misses glossy-to-glossy light",
+}
+
+
+@pytest.mark.parametrize("name", [
+    pytest.param(n, marks=pytest.mark.xfail(strict=True, reason=f"open: {_WITHIN_5_AT_LIT_TEXELS_OPEN[n]}")) if n in _WITHIN_5_AT_LIT_TEXELS_OPEN else n
+    for n in vsgl.scenes.corpus_names() if n != "lights_spot"
+])
+def test_default_vsgl_within_5_percent_at_one_texel_per_vsgl(name, make_renderer):
+    _needs_files(name)
+    r = make_renderer(128, 128)
+    scene = vsgl.scenes.corpus_scene(name).scene
+    lit = int((r.render(scene, method="reference", rsm_size=128, capture_rsm=True, aovs=[]).rsm("weight")[..., 0] > 0).sum())
+    d, s = _ratios(r, scene, "vsgl", num_lights=lit, interleave=1, denoise=False)
+    assert abs(d - 1) <= 0.05 and abs(s - 1) <= 0.05, (lit, d, s)
+
+
 @pytest.mark.parametrize("form", [{}, dict(lighting="asg"), dict(lighting="asg", plane_fade=False)])
 def test_lone_plane_gets_no_indirect_light(form, make_renderer):
     # LightsSpot is one plane under three spots: every texel is coplanar with every receiver,

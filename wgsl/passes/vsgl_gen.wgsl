@@ -223,15 +223,24 @@ fn cluster_moment(chain: u32, level: f32, node: vec2u, s: vec2f) -> vec4f {
 // down (stratified over the candidates), each its surface point y = (w·y)/w and its normal
 // (chain F's w·n where the chains have it, else the diffuse lobe's direction, chain C).
 // The shading pass keeps one per receiver by its geometric term, so the shadow ray goes where
-// the cluster's light at that receiver comes from. `fallback`: the centre's target, for
-// a texel the moments do not weigh.
-fn write_shadow_candidates(i: u32, start_level: u32, start: vec2u, fallback: vec3f) {
+// the cluster's light at that receiver comes from. `upper_share`: the probability that a
+// candidate is drawn from the node's parent instead (a kernel read at its nodes blends a level's
+// node with its parent's, and its candidates must come from that blend, not from the parent
+// alone, or those of a one-texel kernel would be its neighbours). `fallback`: the centre's
+// target, for a texel the moments do not weigh.
+fn write_shadow_candidates(i: u32, start_level: u32, start: vec2u, upper_share: f32, fallback: vec3f) {
     let c = params.shadow_candidates;
     let h = pcg_hash(i ^ pcg_hash(params.seed + 0x85ebca6bu));
     let shift = unit_float(h);
     for (var j = 0u; j < c; j++) {
         let u = vec2f((f32(j) + shift) / f32(c), unit_float(pcg_hash(h + j + 1u)));
-        let texel = vec2i(warp_descend_from(min(u, vec2f(ONE_MINUS_ULP)), params.rsm_size, start_level, start).texel);
+        var level = start_level;
+        var node = start;
+        if (upper_share > 0.0 && unit_float(pcg_hash(h ^ (0x9e3779b9u * (j + 1u)))) < upper_share) {
+            level += 1u;
+            node = start >> vec2u(1u);
+        }
+        let texel = vec2i(warp_descend_from(min(u, vec2f(ONE_MINUS_ULP)), params.rsm_size, level, node).texel);
         let a = moment_texel(0u, 0u, texel);
         let w = a.w;
         var y = fallback;
@@ -376,16 +385,30 @@ fn main(@builtin(global_invocation_id) gid: vec3u) {
     let centre_position = moment_texel(4u, 0u, vec2i(warped.texel)).xyz / max(centre_weight, FLT_MIN);
     out.shadow_target = select(position.mean, centre_position, centre_weight > 0.0) + params.light_offset;
     if (params.shadow_candidates > 0u) {
-        // The cluster's node: the kernel's own for "node", else the node of the kernel's level
-        // rounded up around the centre texel (a trilinear read at level 0.3 already mixes in
-        // level 1's 2×2 node).
+        // The cluster's node: the kernel's own for "node"; for a trilinear read the node of the
+        // kernel's level rounded up around the centre texel (a trilinear read at level 0.3
+        // already mixes in level 1's 2×2 node, and its bilinear taps its neighbours); for a read
+        // at the nodes the blend itself: the node below the level, or with probability
+        // t·q̄_hi / ((1 − t)·q̄_lo + t·q̄_hi) its parent (the share of the parent in the kernel's
+        // averaged moments, t the level's fraction), so candidates are drawn by the density the
+        // cluster's moments weigh its texels with.
         var start_level = u32(clamp(ceil(level), 0.0, top));
         var start = warped.texel >> vec2u(start_level);
+        var upper_share = 0.0;
         if (params.kernel == 2u) {
             start_level = u32(level);
             start = node;
+        } else if (params.kernel_filter == KERNEL_FILTER_NODES) {
+            start_level = min(u32(floor(level)), params.levels - 1u);
+            start = warped.texel >> vec2u(start_level);
+            let t = clamp(level - f32(start_level), 0.0, 1.0);
+            if (t > 0.0 && start_level + 1u < params.levels) {
+                let lower = (1.0 - t) * pdf_texel_average(start_level, vec2i(start));
+                let upper = t * pdf_texel_average(start_level + 1u, vec2i(start >> vec2u(1u)));
+                upper_share = select(0.0, upper / (lower + upper), lower + upper > 0.0);
+            }
         }
-        write_shadow_candidates(i, start_level, start, out.shadow_target);
+        write_shadow_candidates(i, start_level, start, upper_share, out.shadow_target);
     }
     if (params.kernel == 2u) {
         out.mass = warp_weight(u32(level), params.rsm_size, node) / total;
