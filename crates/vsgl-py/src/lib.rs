@@ -917,7 +917,9 @@ impl PyRenderer {
     ///   rsm_size, sampling ("stratified" | "random" | "metropolis": Markov chains kept across
     ///   frames, one step per frame, see reset_chains), chain_space ("world" | "rsm": where a
     ///   metropolis chain's state lives between frames), seed, vpl_clamp (minimum VPL distance as a fraction of the scene size; 0 = unbiased),
-    ///   interleave (default 1), denoise, visibility ("none" | "ism" | "raytrace"), ism_size,
+    ///   interleave (default 1), denoise, denoise_form ("gather", the default: each pixel the
+    ///   normalised average of its taps | "exchange": pixels trade light, so the image keeps
+    ///   its total light exactly), visibility ("none" | "ism" | "raytrace"), ism_size,
     ///   ism_points, ism_points_per_map, ism_bias, ism_pcf (imperfect shadow maps, with
     ///   visibility="ism"), importance ("rsm" | "brsm": bidirectional RSM importance from
     ///   importance_lights VSGLs of the camera's view; combines with every sampling),
@@ -932,7 +934,7 @@ impl PyRenderer {
     ///   that texel | "trilinear": the papers' read, bilinear within a level), K,
     ///   coherence (0..1, default 0.9: each kernel shrinks until its texels' mean normal is at
     ///   least this long, so clusters do not straddle creases; 0: the papers' kernels),
-    ///   bisection_steps, interleave, denoise, diffuse ("papers" | "accurate" | "sg_product",
+    ///   bisection_steps, interleave, denoise, denoise_form (as for "vpl"), diffuse ("papers" | "accurate" | "sg_product",
     ///   with lighting="asg"), lighting ("blend", the default: the two specular forms weighted
     ///   by the receiver's share of the widened lobe, and the clamped-cosine diffuse | "asg":
     ///   the papers' SG–ASG specular and diffuse= | "accurate": GGX with its NDF widened by the

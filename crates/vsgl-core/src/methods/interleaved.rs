@@ -7,10 +7,17 @@ use crate::error::Result;
 use crate::frame::IndirectTargets;
 use crate::passes::denoise::DenoisePass;
 
+/// `denoise_form=` as the filter takes it: whether it keeps the image's total light.
+pub fn keeps_light(o: &super::Options) -> crate::error::Result<bool> {
+    Ok(o.str("denoise_form")? == "exchange")
+}
+
 /// Where a method's shading writes, and whether the filter runs after it.
 pub struct InterleavedShading {
     pub interleave: u32,
     pub denoise: bool,
+    /// `denoise_form="exchange"`: the filter keeps the image's total light.
+    pub keep_light: bool,
     /// The shading's targets when filtered (else placeholders of 16 bytes, so the bind group
     /// layouts of every variant stay the same).
     noisy: IndirectTargets,
@@ -19,7 +26,7 @@ pub struct InterleavedShading {
 impl InterleavedShading {
     /// Takes the noisy targets the frame needs (placeholders when it shades straight into the
     /// indirect targets).
-    pub fn new(ctx: &mut FrameContext<'_>, interleave: u32, denoise: bool) -> Self {
+    pub fn new(ctx: &mut FrameContext<'_>, interleave: u32, denoise: bool, keep_light: bool) -> Self {
         let filtered = interleave > 1 && denoise;
         let pixel_bytes = ctx.size.0 as u64 * ctx.size.1 as u64 * 16;
         // Without specular materials the specular targets are never written.
@@ -28,7 +35,7 @@ impl InterleavedShading {
             diffuse: ctx.rec.storage("indirect_noisy_diffuse_buffer", if filtered { pixel_bytes } else { 16 }),
             specular: ctx.rec.storage("indirect_noisy_specular_buffer", if filtered { specular_bytes } else { 16 }),
         };
-        Self { interleave, denoise, noisy }
+        Self { interleave, denoise, keep_light, noisy }
     }
 
     /// Interleaved shading goes into a noisy target that the filter resolves.
@@ -45,7 +52,7 @@ impl InterleavedShading {
     pub fn resolve(&self, ctx: &mut FrameContext<'_>) -> Result<()> {
         if self.filtered() {
             let denoise = ctx.passes.get::<DenoisePass>()?;
-            denoise.record(&mut ctx.rec, ctx.frame_uniforms, self.interleave, ctx.gbuffer, &self.noisy, ctx.indirect, ctx.features, ctx.size);
+            denoise.record(&mut ctx.rec, ctx.frame_uniforms, self.interleave, self.keep_light, ctx.gbuffer, &self.noisy, ctx.indirect, ctx.features, ctx.size);
         } else if self.interleave == 1 {
             ctx.skip("denoise", "interleave=1: every pixel evaluates every virtual light");
         } else {

@@ -35,6 +35,7 @@ const OPTIONS: &[OptionSpec] = &[
     common::VPL_CLAMP,
     common::interleave(1),
     common::DENOISE,
+    common::DENOISE_FORM,
     common::VISIBILITY,
     common::ISM_SIZE,
     common::ISM_POINTS,
@@ -59,6 +60,8 @@ struct Vpl {
     vpl_clamp: f32,
     interleave: u32,
     denoise: bool,
+    /// `denoise_form="exchange"`.
+    denoise_keeps_light: bool,
     importance: Importance,
     capture_rsm: bool,
     rsm_fit: RsmFit,
@@ -87,6 +90,7 @@ impl Vpl {
             vpl_clamp: o.f32("vpl_clamp")?,
             interleave: o.u32("interleave")?,
             denoise: o.bool("denoise")?,
+            denoise_keeps_light: super::interleaved::keeps_light(o)?,
             importance: Importance::from_options(o)?,
             capture_rsm: o.bool("capture_rsm")?,
             rsm_fit: rsm_fit(o)?,
@@ -104,7 +108,7 @@ impl Method for Vpl {
         let vpls = ctx.rec.storage("vpl_buffer", self.num_lights as u64 * VPL_BYTES);
         // Distances below the clamp count as the clamp (0: unbiased).
         let min_distance2 = (self.vpl_clamp as f64 * ctx.extent).powi(2) as f32;
-        let shading_out = InterleavedShading::new(ctx, self.interleave, self.denoise);
+        let shading_out = InterleavedShading::new(ctx, self.interleave, self.denoise, self.denoise_keeps_light);
         let rsm = RsmSettings { size: self.rsm_size, sampling: true, capture: self.capture_rsm, budget: self.num_lights, fit: self.rsm_fit };
         let vis = VirtualLightVisibility::new(ctx, self.visibility, self.num_lights)?;
         let metropolis = MetropolisSampling { method: INFO.name, num_lights: self.num_lights, rsm_size: self.rsm_size, seed: self.seed, space: self.chain_space, importance: self.importance };

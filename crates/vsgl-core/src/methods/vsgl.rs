@@ -77,6 +77,7 @@ const OPTIONS: &[OptionSpec] = &[
     },
     common::interleave(8),
     common::DENOISE,
+    common::DENOISE_FORM,
     common::DIFFUSE,
     // "blend" by default (docs/rendering.md, "The real-scene corpus"): against the path tracer it
     // is closer than the papers' form on every corpus scene and built-in measured.
@@ -129,6 +130,8 @@ struct Vsgl {
     bisection_steps: u32,
     interleave: u32,
     denoise: bool,
+    /// `denoise_form="exchange"`.
+    denoise_keeps_light: bool,
     diffuse: DiffuseMode,
     lighting: LightingMode,
     lambert_lobe: LambertLobe,
@@ -264,6 +267,7 @@ impl Vsgl {
             bisection_steps: o.u32("bisection_steps")?,
             interleave: o.u32("interleave")?,
             denoise: o.bool("denoise")?,
+            denoise_keeps_light: super::interleaved::keeps_light(o)?,
             diffuse: diffuse_mode(o)?,
             lighting: lighting_mode(o)?,
             lambert_lobe: LambertLobe::from_name(o.str("lambert_lobe")?),
@@ -306,7 +310,7 @@ impl Method for Vsgl {
         let passes = ctx.passes;
         let (pdf_mips, moments, moment_mips) = (passes.get::<PdfMipsPass>()?, passes.get::<VsglMomentsPass>()?, passes.get::<MomentMipsPass>()?);
         let (gen, shading) = (passes.get::<VsglGenPass>()?, passes.get::<VsglShadingPass>()?);
-        let shading_out = InterleavedShading::new(ctx, self.interleave, self.denoise);
+        let shading_out = InterleavedShading::new(ctx, self.interleave, self.denoise, self.denoise_keeps_light);
         let mut chains: Option<MomentChains> = None;
         let rsm = RsmSettings { size: self.rsm_size, sampling: true, capture: self.capture_rsm, budget: self.num_lights, fit: self.rsm_fit };
         let vis = VirtualLightVisibility::new(ctx, self.visibility, self.num_lights)?;

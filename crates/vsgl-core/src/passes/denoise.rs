@@ -1,5 +1,6 @@
 //! Geometry-aware denoising of interleaved indirect light (compute): two separable
-//! cross-bilateral passes (x, then y) over 2k taps each (see `wgsl/passes/denoise.wgsl`).
+//! cross-bilateral passes (x, then y) over 2k + 1 taps each, each pass exchanging light between
+//! pairs of pixels so that it keeps the image's total (see `wgsl/passes/denoise.wgsl`).
 
 use crate::error::Result;
 use crate::frame::{GBuffer, IndirectTargets};
@@ -18,7 +19,8 @@ const _: () = assert!(MAX_RADIUS as i64 == crate::methods::options::common::INTE
 struct DenoiseParamsRaw {
     radius: i32,
     direction: u32,
-    _pad: [u32; 2],
+    keep_light: u32,
+    _pad: u32,
 }
 
 pub struct DenoisePass {
@@ -30,9 +32,11 @@ impl DenoisePass {
         Ok(Self { pipelines: PipelineVariants::new(gpu, "passes/denoise.wgsl", "main")? })
     }
 
-    /// Filters `noisy` into `out` through an intermediate (demodulated, x-filtered) pair.
+    /// Filters `noisy` into `out` through an intermediate (demodulated, x-filtered) pair;
+    /// `keep_light`: by exchanges that keep the total light (`denoise_form="exchange"`), else as
+    /// a normalised gather.
     #[allow(clippy::too_many_arguments)]
-    pub fn record(&self, rec: &mut Recorder<'_>, frame: &wgpu::Buffer, radius: u32, gbuffer: &GBuffer, noisy: &IndirectTargets, out: &IndirectTargets, features: ShaderFeatures, size: (u32, u32)) {
+    pub fn record(&self, rec: &mut Recorder<'_>, frame: &wgpu::Buffer, radius: u32, keep_light: bool, gbuffer: &GBuffer, noisy: &IndirectTargets, out: &IndirectTargets, features: ShaderFeatures, size: (u32, u32)) {
         debug_assert!(radius <= MAX_RADIUS, "denoise radius {radius} > {MAX_RADIUS}: the interleave option's bound");
         let gpu = rec.gpu;
         let pipeline = self.pipelines.get(gpu, &features.specular_flags());
@@ -43,7 +47,7 @@ impl DenoisePass {
             specular: rec.storage_written("denoise_x_specular_buffer", bytes),
         };
         for (direction, input, output) in [(0u32, noisy, &across), (1u32, &across, out)] {
-            let uniform = rec.uniform("denoise_params_uniform_buffer", &DenoiseParamsRaw { radius: radius as i32, direction, _pad: [0; 2] });
+            let uniform = rec.uniform("denoise_params_uniform_buffer", &DenoiseParamsRaw { radius: radius as i32, direction, keep_light: u32::from(keep_light), _pad: 0 });
             rec.compute(
                 "denoise",
                 &pipeline,
