@@ -17,7 +17,8 @@
 #     warm, at 512² and 1024²;
 #   3 the cost of near_field="texels" alone, and of shadow_target="resampled" with shadow rays,
 #     each against the frame without it;
-#   4 the cost of kernel_filter="nodes" against the papers' trilinear read.
+#   4 the cost of kernel_filter="nodes" against the papers' trilinear read;
+#   5 the cost of denoise_form="exchange" against the default gather.
 set -uo pipefail
 source "$(dirname "$0")/gpu_common.sh"  # $FINAL_OUT, $RES, pack, step, require_gpu; cd to the repository root
 BUDGET=${BUDGET:-480}
@@ -45,6 +46,9 @@ TAIL=20 step cost_near_field 90 python3 scripts/lighting_default_cost.py --sizes
 pack
 TAIL=20 step cost_kernel_filter 60 python3 scripts/lighting_default_cost.py --sizes "$SIZES" --repeats "$REPEATS" \
   --variant trilinear=kernel_filter=trilinear --variant nodes=
+pack
+TAIL=20 step cost_denoise_form 60 python3 scripts/lighting_default_cost.py --sizes "$SIZES" --repeats "$REPEATS" \
+  --variant gather= --variant exchange=denoise_form=exchange
 pack
 echo "== done in $((SECONDS - T0)) s"
 } 2>&1 | tee "$FINAL_OUT/log.txt"
