@@ -131,8 +131,12 @@ fn main(@builtin(workgroup_id) wg: vec3u, @builtin(local_invocation_index) local
         span_position[s] = position;
     }
     workgroupBarrier();
-    // A of the entries r … TILE + 3r − 1 (the pixels the centres' taps reach).
-    for (var s = local + ru; s < TILE + 3u * ru; s += TILE) {
+    // A of the entries r … TILE + 3r − 1 (the pixels the centres' taps reach) for the exchange,
+    // which divides by max(A_p, A_q); the gather needs the centres' own, 2r … TILE + 2r − 1.
+    let exchange = params.keep_light == 1u;
+    let capacity_first = select(2u * ru, ru, exchange);
+    let capacity_end = select(TILE + 2u * ru, TILE + 3u * ru, exchange);
+    for (var s = local + capacity_first; s < capacity_end; s += TILE) {
         var capacity = vec4f(0.0);
         if (span_position[s].w != GBUFFER_BACKGROUND) {
             for (var t = -r; t <= r; t++) {
@@ -174,7 +178,7 @@ fn main(@builtin(workgroup_id) wg: vec3u, @builtin(local_invocation_index) local
         let w = tap_share(t, r) * pair_weight(centre, q);
         // m_q/max(A_p, A_q) per channel; A_q ≥ m_q (its own tap) > 0, so no division by zero.
         // The gather divides by A_p alone (≥ m_p > 0).
-        let n = select(a, max(a, span_capacity[q]), params.keep_light == 1u);
+        let n = select(a, max(a, span_capacity[q]), exchange);
         flow_d += w * span_rd[q] / n.rgb * (span_diffuse[q] - e);
         if (HAS_SPECULAR) {
             flow_s += w / n.w * (span_specular[q] - sp);

@@ -44,8 +44,8 @@ const OPTIONS: &[OptionSpec] = &[
         help: "kernel size rule: \"integral\" (2016, bisection to mass K/N), \"density\" (2015) or \"node\" (quadtree nodes of mass <= K/N read exactly: unbiased cluster totals, VPL-like as N reaches the texel count)",
         note: "",
     },
-    // "nodes" (docs/rendering.md, "Kernels read at their node"): FlightHelmet's indirect diffuse
-    // 0.67 -> 0.99 of the every-texel reference at N = 1024, whatever K.
+    // "nodes" (docs/rendering.md, "The defaults this chose"): FlightHelmet's indirect diffuse
+    // 0.67 -> 0.98 of the every-texel reference at N = 1024, whatever K.
     common::choice(
         "kernel_filter",
         &["nodes", "trilinear"],

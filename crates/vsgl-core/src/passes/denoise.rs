@@ -1,6 +1,7 @@
 //! Geometry-aware denoising of interleaved indirect light (compute): two separable
-//! cross-bilateral passes (x, then y) over 2k + 1 taps each, each pass exchanging light between
-//! pairs of pixels so that it keeps the image's total (see `wgsl/passes/denoise.wgsl`).
+//! cross-bilateral passes (x, then y) over 2k + 1 taps each with weights symmetric in each pixel
+//! pair: a normalised gather, or with `denoise_form="exchange"` an exchange of light between the
+//! pairs that keeps the image's total (see `wgsl/passes/denoise.wgsl`).
 
 use crate::error::Result;
 use crate::frame::{GBuffer, IndirectTargets};
