@@ -32,7 +32,7 @@ pub const INFO: MethodInfo = MethodInfo {
 
 const OPTIONS: &[OptionSpec] = &[
     common::SHADOW_SIZE,
-    common::NUM_LIGHTS,
+    common::num_lights(1024),
     common::RSM_SIZE,
     common::SAMPLING,
     common::CHAIN_SPACE,
