@@ -16,7 +16,10 @@ fi
 PYTHON=${PYTHON:-python3}
 [ -x .venv/bin/python ] || "$PYTHON" -m venv .venv
 .venv/bin/python -m pip install -q --upgrade pip >/dev/null
-.venv/bin/python -m pip install -q "maturin>=1.7,<2" "numpy>=1.21" "pillow>=9" "pytest>=7" "mypy>=1.8" "matplotlib>=3.5" "tqdm>=4.60"
+# The build and test tools, and every extra of pyproject.toml, so that no test skips for a missing
+# package (tests/test_packaging.py checks this list against the extras).
+.venv/bin/python -m pip install -q "maturin>=1.7,<2" "numpy>=1.21" "pytest>=7" "mypy>=1.8" \
+  "pillow>=9" "matplotlib>=3.5" "tqdm>=4.60" "nvidia-ml-py>=12" "imageio>=2.28" "imageio-ffmpeg>=0.4.8" "flip-evaluator>=1.7"
 # `maturin develop` installs the extension into .venv (release: lavapipe runs the shaders, but
 # the CPU side — scene upload, readback, glTF parsing — is Rust and benefits from it).
 VIRTUAL_ENV="$PWD/.venv" PATH="$PWD/.venv/bin:$PATH" maturin develop --release -q

@@ -5,6 +5,7 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
+from optional_packages import optional_import
 from vsgl import metrics
 
 
@@ -126,7 +127,7 @@ def test_bad_inputs_raise_value_error_naming_the_argument(call, name):
 
 
 def test_flip_where_installed():
-    pytest.importorskip("flip_evaluator", reason="flip-evaluator is not installed: metrics.flip returns None")
+    optional_import("flip_evaluator", reason="flip-evaluator is not installed (pip install vsgl[metrics]): metrics.flip returns None")
     rng = np.random.default_rng(12)
     x = 0.1 + 0.5 * _truth(rng) / 1.5
     assert metrics.flip(x, x) == pytest.approx(0.0, abs=1e-6)

@@ -15,7 +15,7 @@ Per image, against a reference ``ref`` of the same shape:
   (``block_means(a, block)``: the block averages themselves).
 - ``ssim(x, ref)``: SSIM of the tone-mapped (clamp + sRGB) luma, Gaussian window.
 - ``flip(x, ref)``: NVIDIA FLIP (LDR, on tone-mapped sRGB) when the ``flip-evaluator`` package is
-  installed, else ``None``.
+  installed (``pip install vsgl[metrics]``), else ``None``.
 
 Over a sequence of frames (temporal coherence, issue 19; docs/rendering.md, "Temporal coherence"):
 

@@ -1,0 +1,33 @@
+"""The package's declared optional dependencies and the set-up that CI runs agree: every
+requirement of every extra in pyproject.toml is installed by scripts/setup.sh, so that under CI
+no test skips for a missing package (tests/optional_packages.py fails there instead)."""
+
+from __future__ import annotations
+
+import pathlib
+import re
+import shlex
+import sys
+
+import pytest
+
+ROOT = pathlib.Path(__file__).resolve().parents[1]
+
+
+def _setup_requirements() -> set[str]:
+    text = (ROOT / "scripts" / "setup.sh").read_text()
+    # The pip install command, with its continuation lines joined.
+    joined = re.sub(r"\\\n\s*", " ", text)
+    (line,) = [ln for ln in joined.splitlines() if "pip install -q" in ln and "maturin" in ln]
+    return {w for w in shlex.split(line) if re.match(r"^[A-Za-z0-9_.-]+[<>=]", w)}
+
+
+@pytest.mark.skipif(sys.version_info < (3, 11), reason="tomllib needs Python 3.11")
+def test_setup_installs_every_extra():
+    import tomllib
+
+    extras = tomllib.loads((ROOT / "pyproject.toml").read_text())["project"]["optional-dependencies"]
+    installed = _setup_requirements()
+    missing = {f"{extra}: {req}" for extra, reqs in extras.items() for req in reqs if req not in installed}
+    assert not missing, f"scripts/setup.sh does not install {sorted(missing)}"
+    assert "metrics" in extras and "flip-evaluator>=1.7" in extras["metrics"]
