@@ -348,3 +348,21 @@ def test_scene_triangles_are_the_world_space_geometry():
     want = n0 * np.array([0.5, 1.0, 1.0])
     want /= np.linalg.norm(want, axis=-1, keepdims=True)
     np.testing.assert_allclose(after["normals"][moved], want, atol=1e-6)
+
+
+def test_submodules_are_reachable_after_import_vsgl_and_load_on_first_use():
+    # A fresh interpreter: this session's tests have imported them already.
+    code = (
+        "import sys, vsgl\n"
+        "assert 'vsgl.bench' not in sys.modules and 'vsgl.metrics' not in sys.modules\n"
+        "assert vsgl.metrics.rmse is sys.modules['vsgl.metrics'].rmse\n"
+        "for name in ('bench', 'lightspec', 'stability', 'video'):\n"
+        "    assert getattr(vsgl, name).__name__ == 'vsgl.' + name and name in dir(vsgl)\n"
+        "try:\n"
+        "    vsgl.no_such_module\n"
+        "except AttributeError as e:\n"
+        "    assert 'no_such_module' in str(e)\n"
+        "else:\n"
+        "    raise SystemExit('no AttributeError')\n"
+    )
+    subprocess.run([sys.executable, "-c", code], check=True)

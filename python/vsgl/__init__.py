@@ -73,3 +73,20 @@ __all__ = [
     "method_options",
     "scenes",
 ]
+
+# The submodules beyond `scenes` load on first use, so `import vsgl` stays light (bench pulls in
+# statistics and plotting helpers) while `vsgl.metrics.rmse(...)` works without an import of
+# its own (PEP 562).
+_LAZY_SUBMODULES = ("bench", "lightspec", "metrics", "stability", "video")
+
+
+def __getattr__(name: str):
+    if name in _LAZY_SUBMODULES:
+        import importlib
+
+        return importlib.import_module(f"vsgl.{name}")
+    raise AttributeError(f"module 'vsgl' has no attribute {name!r}")
+
+
+def __dir__() -> list[str]:
+    return sorted(set(globals()) | set(_LAZY_SUBMODULES))
