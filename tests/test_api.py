@@ -366,3 +366,17 @@ def test_submodules_are_reachable_after_import_vsgl_and_load_on_first_use():
         "    raise SystemExit('no AttributeError')\n"
     )
     subprocess.run([sys.executable, "-c", code], check=True)
+
+
+def test_every_choice_option_refuses_an_unknown_string_naming_it():
+    # A choice option is a string option; an unknown value must be an error that names the
+    # option and lists its values, never a silent default.
+    checked = 0
+    for method in vsgl.METHODS:
+        for option, default in vsgl.method_options(method).items():
+            if not isinstance(default, str):
+                continue
+            with pytest.raises(vsgl.ArgumentError, match=rf'^{option}: must be .*"{default}".*, got "no_such_choice"'):
+                vsgl.check_method_options(method, **{option: "no_such_choice"})
+            checked += 1
+    assert checked >= 25, checked

@@ -14,6 +14,7 @@
 //! `brsm_pdf_mips` (its total), `brsm_mix` (mixed with the RSM's weights), `brsm_pdf_mips`.
 
 use super::options::Options;
+use super::choices::ImportanceChoice;
 use super::rsm_lights::LightRsm;
 use super::FrameContext;
 use crate::error::Result;
@@ -42,9 +43,9 @@ impl Importance {
     pub fn from_options(o: &Options) -> Result<Self> {
         // With sampling="metropolis" the chains target the same re-weighted pyramid the
         // estimators divide by (`MetropolisSampling::step` is given it), so the pair combines.
-        Ok(match o.str("importance")? {
-            "brsm" => Importance::Brsm { view_lights: o.u32("importance_lights")?, interleave: o.u32("importance_interleave")? },
-            _ => Importance::Rsm,
+        Ok(match o.choice("importance")? {
+            ImportanceChoice::Brsm => Importance::Brsm { view_lights: o.u32("importance_lights")?, interleave: o.u32("importance_interleave")? },
+            ImportanceChoice::Rsm => Importance::Rsm,
         })
     }
 }

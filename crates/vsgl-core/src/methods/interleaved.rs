@@ -9,7 +9,7 @@ use crate::passes::denoise::DenoisePass;
 
 /// `denoise_form=` as the filter takes it: whether it keeps the image's total light.
 pub fn keeps_light(o: &super::Options) -> crate::error::Result<bool> {
-    Ok(o.str("denoise_form")? == "exchange")
+    Ok(o.choice::<super::choices::DenoiseForm>("denoise_form")? == super::choices::DenoiseForm::Exchange)
 }
 
 /// Where a method's shading writes, and whether the filter runs after it.

@@ -32,7 +32,7 @@ pub enum ChainSpace {
 
 impl ChainSpace {
     pub fn from_options(o: &super::Options) -> Result<Self> {
-        Ok(if o.str("chain_space")? == "rsm" { ChainSpace::Rsm } else { ChainSpace::World })
+        o.choice("chain_space")
     }
 }
 

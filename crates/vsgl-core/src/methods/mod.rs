@@ -6,6 +6,7 @@
 //! frame script (`crate::renderer`) has filled with the shared targets. Adding a method is one
 //! new module here plus one line in [`REGISTRY`]; nothing else names methods.
 
+pub mod choices;
 pub mod options;
 mod brsm;
 mod interleaved;

@@ -226,6 +226,13 @@ impl Options {
         }
     }
 
+    /// A choice option as its enum. Parse checked the string against the option's `Choice`
+    /// list; an option declared with another list than `T::NAMES` is an error here, naming it.
+    pub fn choice<T: ChoiceEnum>(&self, name: &str) -> Result<T> {
+        let text = self.str(name)?;
+        T::from_name(text).ok_or_else(|| Error::invalid(name.to_string(), format!("must be one of {:?}, got {text:?}", T::NAMES)))
+    }
+
     pub fn str(&self, name: &str) -> Result<&str> {
         match self.get(name)? {
             OptionValue::Str(v) => Ok(v.as_ref()),
@@ -239,9 +246,50 @@ impl Options {
     }
 }
 
+/// A choice option's values as a Rust enum: each variant and its string are declared once, by
+/// [`choice_names!`](crate::choice_names), which makes the option's `Choice` list ([`NAMES`](Self::NAMES))
+/// and the name of each variant from that one list. The name is an exhaustive `match`, so a
+/// variant without a string does not compile, and [`Options::choice`] parses through `NAMES`, so
+/// a string is a variant or an error naming the option: no `_ =>` can hand a new string a
+/// default.
+pub trait ChoiceEnum: Copy + PartialEq + 'static {
+    /// The option's strings, in the order `describe_method` and errors list them.
+    const NAMES: &'static [&'static str];
+    /// The variants, in the order of `NAMES`.
+    const VALUES: &'static [Self];
+    /// The option's string for this variant.
+    fn name(self) -> &'static str;
+    /// The variant of `text`, if it is one of `NAMES`.
+    fn from_name(text: &str) -> Option<Self> {
+        Self::NAMES.iter().position(|n| *n == text).map(|i| Self::VALUES[i])
+    }
+}
+
+/// Declares an enum's option strings: `choice_names!(Kernel { Integral => "integral", … })`
+/// implements [`ChoiceEnum`](crate::methods::options::ChoiceEnum) for it.
+#[macro_export]
+macro_rules! choice_names {
+    ($ty:ident { $($variant:ident => $text:literal),+ $(,)? }) => {
+        impl $crate::methods::options::ChoiceEnum for $ty {
+            const NAMES: &'static [&'static str] = &[$($text),+];
+            const VALUES: &'static [Self] = &[$($ty::$variant),+];
+            fn name(self) -> &'static str {
+                match self {
+                    $($ty::$variant => $text),+
+                }
+            }
+        }
+    };
+}
+
 /// Options that several methods take, defined once so a name means the same everywhere.
 pub mod common {
-    use super::{OptionKind, OptionSpec, OptionValue};
+    use super::super::choices::{DenoiseForm, ImportanceChoice, VisibilityChoice};
+    use super::{ChoiceEnum, OptionKind, OptionSpec, OptionValue};
+    use crate::frame::uniforms::RsmFit;
+    use crate::methods::metropolis::ChainSpace;
+    use crate::passes::vpl_sample::Sampling;
+    use crate::passes::vsgl_shading::{DiffuseMode, LambertLobe, LightingMode};
     use std::borrow::Cow;
 
     const fn int(name: &'static str, min: i64, max: i64, default: i64, help: &'static str) -> OptionSpec {
@@ -280,12 +328,12 @@ pub mod common {
     }
     pub const SAMPLING: OptionSpec = choice(
         "sampling",
-        &["stratified", "random", "metropolis"],
+        Sampling::NAMES,
         "how RSM texels are drawn: hierarchical warping of a stratified lattice or of independent random numbers, or \"metropolis\": Markov chains kept across the frames of a Renderer, one Metropolis-Hastings step per frame (temporally coherent)",
     );
     pub const CHAIN_SPACE: OptionSpec = choice(
         "chain_space",
-        &["world", "rsm"],
+        ChainSpace::NAMES,
         "with sampling=\"metropolis\", where a chain's state lives between frames: \"world\" (the surface point, reprojected into each frame's RSM: it stays put when the light moves, and restarts when it leaves the light's view or its surface) or \"rsm\" (the RSM position: it moves with the light's view)",
     );
     pub const SEED: OptionSpec = int("seed", 0, u32::MAX as i64, 0, "seed of the random numbers (same seed, same image)");
@@ -298,7 +346,7 @@ pub mod common {
     };
     pub const VISIBILITY: OptionSpec = OptionSpec {
         name: "visibility",
-        kind: OptionKind::Choice(&["none", "ism", "raytrace"]),
+        kind: OptionKind::Choice(VisibilityChoice::NAMES),
         default: OptionValue::Str(Cow::Borrowed("none")),
         help: "visibility of virtual lights: \"none\" (unshadowed, the papers' accuracy setting), \"ism\" (an imperfect shadow map per virtual light, splatted from the scene's point set, as the papers do) or \"raytrace\" (a shadow ray per pixel and virtual light through the scene's BVH; to the mean position of a VSGL)",
         note: "",
@@ -326,7 +374,7 @@ pub mod common {
     /// importance"): the RSM's sampling density from the camera's view.
     pub const IMPORTANCE: OptionSpec = OptionSpec {
         name: "importance",
-        kind: OptionKind::Choice(&["rsm", "brsm"]),
+        kind: OptionKind::Choice(ImportanceChoice::NAMES),
         default: OptionValue::Str(Cow::Borrowed("rsm")),
         help: "sampling density of RSM texels: \"rsm\" (reflected power Φ·(R_d + R_s), the papers' default) or \"brsm\" (bidirectional: that power times the texel's importance to the view, estimated with importance_lights VSGLs of the camera's G-buffer, mixed with 1/11 of the \"rsm\" density; unbiased for vpl)",
         note: "",
@@ -341,7 +389,7 @@ pub mod common {
     /// to the scene"): "scene" since 2026-12-02, "cone" the frame before it, bit for bit.
     pub const RSM_FIT: OptionSpec = choice(
         "rsm_fit",
-        &["scene", "cone"],
+        RsmFit::NAMES,
         "what a spot light's reflective shadow map covers: \"scene\" (the narrowest square frustum that holds the scene's bounds and no more than the cone, so its texels land on geometry) or \"cone\" (the whole outer cone, as the papers do; point and directional lights are not fitted)",
     );
     pub const CAPTURE_RSM: OptionSpec = OptionSpec {
@@ -371,19 +419,19 @@ pub mod common {
     // block error 3-20% higher on the corpus.
     pub const DENOISE_FORM: OptionSpec = choice(
         "denoise_form",
-        &["gather", "exchange"],
+        DenoiseForm::NAMES,
         "how the filter averages: \"gather\" (each pixel the normalised average of its taps, by weights symmetric in the pair) or \"exchange\" (each pixel trades light with its taps, so the image keeps its total light per channel exactly; noisier where the taps stop, at creases and silhouettes)",
     );
     pub const DIFFUSE: OptionSpec = choice(
         "diffuse",
-        &["papers", "accurate", "sg_product"],
+        DiffuseMode::NAMES,
         "diffuse SG shading: the papers' clamped form, the unclamped SG-cosine product, or an SG product",
     );
     /// Normalization and shape of the Lambert lobe's SG (docs/rendering.md, "VSGLs": the
     /// hemisphere gain, and "The real-scene corpus" for the default).
     pub const LAMBERT_LOBE: OptionSpec = choice(
         "lambert_lobe",
-        &["exact_compact", "hemisphere", "papers"],
+        LambertLobe::NAMES,
         "each cluster's Lambert lobe: \"exact_compact\" (the default: the hemisphere-normalized SG blended with an exact Lambertian point emitter where the cluster is compact as seen from the receiver; closer to the reference on every corpus scene and built-in, worse where a wide lit floor lights a wall at grazing angles), \"hemisphere\" (the SG normalized over each texel's hemisphere, so all its diffuse power reaches where a Lambertian texel can light; the default until 2026-12-01) or \"papers\" (normalized over the sphere: 9.2% of it lies below the texel and is lost)",
     );
     /// The cluster's tangent-plane fade for the papers' diffuse form too (docs/rendering.md,
@@ -406,7 +454,7 @@ pub mod common {
     pub const fn lighting(default: &'static str) -> OptionSpec {
         OptionSpec {
             name: "lighting",
-            kind: OptionKind::Choice(&["asg", "accurate", "blend"]),
+            kind: OptionKind::Choice(LightingMode::NAMES),
             default: OptionValue::Str(Cow::Borrowed(default)),
             help: "SG lighting: \"asg\" (the papers' SG–ASG specular, diffuse as diffuse= says), \"accurate\" (GGX with its NDF widened by the light's spread, after Tokuyoshi et al. 2024, and the clamped-cosine diffuse) or \"blend\" (the two specular forms weighted by the receiver's share α/α' of the widened lobe: accurate for lights narrower than the lobe, the papers' for broad lights on sharp receivers; the clamped-cosine diffuse)",
             note: "",

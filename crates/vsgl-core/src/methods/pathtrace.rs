@@ -3,6 +3,7 @@
 //! the standard error of the mean as the `stderr` AOV.
 
 use super::{options::common, DirectLight, FrameContext, Method, MethodInfo, OptionKind, OptionSpec, OptionValue, Options};
+use super::options::ChoiceEnum;
 use crate::error::Result;
 use crate::gpu::Gpu;
 use crate::passes::pathtrace::{PathTraceInputs, PathTracePass, Strategy};
@@ -15,11 +16,7 @@ pub const INFO: MethodInfo = MethodInfo {
     indirect: true,
     extra_aovs: &["stderr"],
     configure: |o| {
-        let strategy = match o.str("strategy")? {
-            "camera" => Strategy::Camera,
-            "light" => Strategy::Light,
-            _ => Strategy::Bidirectional,
-        };
+        let strategy = o.choice("strategy")?;
         Ok(Box::new(PathTrace { options: o.clone(), spp: o.u32("spp")?, seed: o.u32("seed")?, time_budget_s: o.f32("time_budget_s")? as f64, strategy }))
     },
 };
@@ -42,7 +39,7 @@ const OPTIONS: &[OptionSpec] = &[
     },
     OptionSpec {
         name: "strategy",
-        kind: OptionKind::Choice(&["camera", "bidirectional", "light"]),
+        kind: OptionKind::Choice(Strategy::NAMES),
         // Bidirectional by default: camera paths alone do not converge on caustics (a polished
         // panel's beam on a wall), so the default is the strategy that converges everywhere.
         default: OptionValue::Str(std::borrow::Cow::Borrowed("bidirectional")),

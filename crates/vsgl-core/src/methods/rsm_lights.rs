@@ -72,7 +72,7 @@ pub fn power_budgets(n: u32, powers: &[f64]) -> Vec<u32> {
 
 /// `rsm_fit=` of the methods that render RSMs.
 pub fn rsm_fit(o: &super::Options) -> Result<RsmFit> {
-    Ok(if o.str("rsm_fit")? == "cone" { RsmFit::Cone } else { RsmFit::Scene })
+    o.choice("rsm_fit")
 }
 
 /// One light's RSM as a method sees it.

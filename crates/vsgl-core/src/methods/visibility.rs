@@ -8,6 +8,7 @@
 //! into one octahedral depth map per light (`passes/ism.rs`); shading looks them up.
 
 use super::{FrameContext, Options};
+use super::choices::VisibilityChoice;
 use crate::error::{Error, Result};
 use crate::passes::ism::{IsmLayout, IsmPass, IsmSources};
 use crate::upload::GpuPoints;
@@ -46,16 +47,16 @@ pub enum VisibilityMode {
 
 impl VisibilityMode {
     pub fn from_options(o: &Options) -> Result<Self> {
-        Ok(match o.str("visibility")? {
-            "raytrace" => Self::RayTraced,
-            "ism" => Self::Ism(IsmSettings {
+        Ok(match o.choice("visibility")? {
+            VisibilityChoice::Raytrace => Self::RayTraced,
+            VisibilityChoice::Ism => Self::Ism(IsmSettings {
                 size: o.u32("ism_size")?,
                 points: o.u32("ism_points")?,
                 points_per_map: o.u32("ism_points_per_map")?,
                 bias: o.f32("ism_bias")?,
                 pcf_radius: o.u32("ism_pcf")?,
             }),
-            _ => Self::None,
+            VisibilityChoice::None => Self::None,
         })
     }
 

@@ -69,11 +69,7 @@ struct Vpl {
 
 /// `sampling=` as the sampling pass takes it.
 pub(super) fn sampling(o: &Options) -> Result<Sampling> {
-    Ok(match o.str("sampling")? {
-        "random" => Sampling::Random,
-        "metropolis" => Sampling::Metropolis,
-        _ => Sampling::Stratified,
-    })
+    o.choice("sampling")
 }
 
 impl Vpl {

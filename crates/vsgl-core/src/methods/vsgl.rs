@@ -3,6 +3,8 @@
 //! interleaving and a geometry-aware filter.
 
 use super::brsm::{Importance, ViewImportance};
+use super::choices::{NearField, ShadowTarget};
+use super::options::ChoiceEnum;
 use super::interleaved::InterleavedShading;
 use super::metropolis::{ChainSpace, MetropolisSampling};
 use super::rsm_lights::{check_rsm_size, for_each_light, rsm_fit, RsmSettings};
@@ -39,7 +41,7 @@ const OPTIONS: &[OptionSpec] = &[
     common::SEED,
     OptionSpec {
         name: "kernel",
-        kind: OptionKind::Choice(&["integral", "density", "node"]),
+        kind: OptionKind::Choice(Kernel::NAMES),
         default: OptionValue::Str(Cow::Borrowed("integral")),
         help: "kernel size rule: \"integral\" (2016, bisection to mass K/N), \"density\" (2015) or \"node\" (quadtree nodes of mass <= K/N read exactly: unbiased cluster totals, VPL-like as N reaches the texel count)",
         note: "",
@@ -48,7 +50,7 @@ const OPTIONS: &[OptionSpec] = &[
     // 0.67 -> 0.98 of the every-texel reference at N = 1024, whatever K.
     common::choice(
         "kernel_filter",
-        &["nodes", "trilinear"],
+        KernelFilter::NAMES,
         "how kernel=\"integral\" and \"density\" read the moment mips at a kernel's level: \"nodes\" (the quadtree nodes that hold its centre at the two levels either side, blended by the fraction, so a kernel of about a texel is that texel: a bilinear blend spreads it over 2x2 texels and moves its mean, across a depth jump into the gap, and the light it sends a texel or two away is lost) or \"trilinear\" (the papers' trilinear mip read, bilinear within a level; before 2026-12-02)",
     ),
     OptionSpec {
@@ -92,14 +94,14 @@ const OPTIONS: &[OptionSpec] = &[
     // from 4-texel clusters, 8 resampled candidates 0.95-0.97.
     common::choice(
         "shadow_target",
-        &["resampled", "centre"],
+        ShadowTarget::NAMES,
         "with visibility=\"raytrace\", where each VSGL's shadow ray aims: \"resampled\" (at one of 8 texels of its cluster, drawn by power and kept per receiver by its geometric term there, so the ray goes where the cluster's light at that receiver comes from) or \"centre\" (at the cluster's sampled centre texel, the same for every receiver; before 2026-12-02)",
     ),
     // "texels" (docs/rendering.md, "The defaults this chose"): lower block error against the
     // every-texel reference on 9 of 13 corpus scenes and built-ins, none higher by over 0.1%.
     common::choice(
         "near_field",
-        &["texels", "sg"],
+        NearField::NAMES,
         "diffuse light at receivers inside a VSGL's positional Gaussian or behind its mean tangent plane: \"texels\" (also from 8 of its texels shaded one by one as patches, weighted in where the Gaussian's form does not hold) or \"sg\" (the Gaussian's SG alone, before 2026-12-02)",
     ),
     common::ISM_SIZE,
@@ -154,7 +156,7 @@ pub(super) fn diffuse_mode(o: &Options) -> Result<DiffuseMode> {
     let lighting = lighting_mode(o)?;
     if lighting.brings_clamped_cosine_diffuse() {
         let diffuse = o.str("diffuse")?;
-        if o.was_given("diffuse") && diffuse != "accurate" {
+        if o.was_given("diffuse") && o.choice::<DiffuseMode>("diffuse")? != DiffuseMode::Accurate {
             let name = o.str("lighting")?;
             return Err(Error::invalid(
                 "diffuse",
@@ -163,11 +165,7 @@ pub(super) fn diffuse_mode(o: &Options) -> Result<DiffuseMode> {
         }
         return Ok(DiffuseMode::Accurate);
     }
-    Ok(match o.str("diffuse")? {
-        "accurate" => DiffuseMode::Accurate,
-        "sg_product" => DiffuseMode::SgProduct,
-        _ => DiffuseMode::Papers,
-    })
+    o.choice("diffuse")
 }
 
 /// The options with `diffuse` resolved to the form `lighting` brings when it was left out, so
@@ -218,13 +216,10 @@ fn lighting_default_note(o: &Options) -> &'static str {
 /// given with it is an error rather than silently ignored.
 fn kernel_filter(o: &Options) -> Result<KernelFilter> {
     let filter = o.str("kernel_filter")?;
-    if o.was_given("kernel_filter") && o.str("kernel")? == "node" {
+    if o.was_given("kernel_filter") && o.choice::<Kernel>("kernel")? == Kernel::Node {
         return Err(Error::invalid("kernel_filter", format!("kernel_filter={filter:?} applies to kernel=\"integral\" and \"density\"; kernel=\"node\" reads each node's moments exactly")));
     }
-    Ok(match filter {
-        "trilinear" => KernelFilter::Trilinear,
-        _ => KernelFilter::Nodes,
-    })
+    o.choice("kernel_filter")
 }
 
 /// `coherence=`: a length of a mean of unit vectors, so at most 1.
@@ -238,11 +233,7 @@ fn coherence(o: &Options) -> Result<f32> {
 
 /// `lighting=` as the shading pass takes it.
 pub(super) fn lighting_mode(o: &Options) -> Result<LightingMode> {
-    Ok(match o.str("lighting")? {
-        "accurate" => LightingMode::Accurate,
-        "blend" => LightingMode::Blend,
-        _ => LightingMode::Asg,
-    })
+    o.choice("lighting")
 }
 
 impl Vsgl {
@@ -256,11 +247,7 @@ impl Vsgl {
             sampling: super::vpl::sampling(o)?,
             chain_space: ChainSpace::from_options(o)?,
             seed: o.u32("seed")?,
-            kernel: match o.str("kernel")? {
-                "density" => Kernel::Density,
-                "node" => Kernel::Node,
-                _ => Kernel::Integral,
-            },
+            kernel: o.choice("kernel")?,
             kernel_filter: kernel_filter(o)?,
             k: o.f32("K")?,
             coherence: coherence(o)?,
@@ -270,13 +257,13 @@ impl Vsgl {
             denoise_keeps_light: super::interleaved::keeps_light(o)?,
             diffuse: diffuse_mode(o)?,
             lighting: lighting_mode(o)?,
-            lambert_lobe: LambertLobe::from_name(o.str("lambert_lobe")?),
+            lambert_lobe: o.choice("lambert_lobe")?,
             plane_fade: plane_fade(o)?,
             importance: Importance::from_options(o)?,
             capture_rsm: o.bool("capture_rsm")?,
             rsm_fit: rsm_fit(o)?,
-            resampled_shadow_target: o.str("shadow_target")? == "resampled",
-            near_field_texels: o.str("near_field")? == "texels",
+            resampled_shadow_target: o.choice::<ShadowTarget>("shadow_target")? == ShadowTarget::Resampled,
+            near_field_texels: o.choice::<NearField>("near_field")? == NearField::Texels,
         })
     }
 

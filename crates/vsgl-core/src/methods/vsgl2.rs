@@ -2,6 +2,7 @@
 //! the whole RSM (Tokuyoshi 2015 poster): no pyramid, no sampling, no interleaving.
 
 use super::rsm_lights::{check_rsm_size, for_each_light, rsm_fit, RsmSettings};
+use super::options::ChoiceEnum;
 use crate::frame::uniforms::RsmFit;
 use super::{options::common, DirectLight, FrameContext, Method, MethodInfo, OptionKind, OptionSpec, OptionValue, Options};
 use super::visibility::{VirtualLightVisibility, VisibilityMode, VSGL_RECORD_WORDS};
@@ -34,7 +35,7 @@ const OPTIONS: &[OptionSpec] = &[
     common::plane_fade(false),
     OptionSpec {
         name: "vsgl2_reduction",
-        kind: OptionKind::Choice(&["auto", "subgroup", "shared_memory"]),
+        kind: OptionKind::Choice(Vsgl2Reduction::NAMES),
         default: OptionValue::Str(Cow::Borrowed("auto")),
         help: "how workgroups add: subgroup arithmetic where the adapter has it (auto), or a shared-memory tree",
         note: "",
@@ -65,12 +66,8 @@ struct Vsgl2 {
 impl Vsgl2 {
     fn new(given: &Options) -> Result<Self> {
         let o = &super::vsgl::with_resolved_diffuse_form(given.clone())?;
-        let reduction = match o.str("vsgl2_reduction")? {
-            "subgroup" => Vsgl2Reduction::Subgroup,
-            "shared_memory" => Vsgl2Reduction::SharedMemory,
-            _ => Vsgl2Reduction::Auto,
-        };
-        Ok(Self { options: o.clone(), visibility: VisibilityMode::from_options(o)?, rsm_size: o.u32("rsm_size")?, diffuse: super::vsgl::diffuse_mode(o)?, lighting: super::vsgl::lighting_mode(o)?, lambert_lobe: LambertLobe::from_name(o.str("lambert_lobe")?), plane_fade: super::vsgl::plane_fade(o)?, reduction, capture_rsm: o.bool("capture_rsm")?, rsm_fit: rsm_fit(o)? })
+        let reduction = o.choice("vsgl2_reduction")?;
+        Ok(Self { options: o.clone(), visibility: VisibilityMode::from_options(o)?, rsm_size: o.u32("rsm_size")?, diffuse: super::vsgl::diffuse_mode(o)?, lighting: super::vsgl::lighting_mode(o)?, lambert_lobe: o.choice("lambert_lobe")?, plane_fade: super::vsgl::plane_fade(o)?, reduction, capture_rsm: o.bool("capture_rsm")?, rsm_fit: rsm_fit(o)? })
     }
 }
 

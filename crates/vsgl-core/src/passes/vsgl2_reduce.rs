@@ -46,17 +46,6 @@ pub enum Vsgl2Reduction {
     SharedMemory,
 }
 
-impl Vsgl2Reduction {
-    /// The `vsgl2_reduction=` name.
-    pub fn name(self) -> &'static str {
-        match self {
-            Vsgl2Reduction::Auto => "auto",
-            Vsgl2Reduction::Subgroup => "subgroup",
-            Vsgl2Reduction::SharedMemory => "shared_memory",
-        }
-    }
-}
-
 /// The `tiles` and `merge` entry points of one implementation.
 struct ReducePipelines {
     tiles: PipelineVariants,

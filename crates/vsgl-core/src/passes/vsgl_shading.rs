@@ -77,15 +77,6 @@ pub enum DiffuseMode {
 }
 
 impl DiffuseMode {
-    /// The `diffuse=` name.
-    pub fn name(self) -> &'static str {
-        match self {
-            DiffuseMode::Papers => "papers",
-            DiffuseMode::Accurate => "accurate",
-            DiffuseMode::SgProduct => "sg_product",
-        }
-    }
-
     /// Whether this form's diffuse term always fades out below a cluster's mean tangent plane
     /// (issue 18, item 4; the specular term never needs it: the ASG form vanishes there). The
     /// accurate clamped cosine and the SG product integrate the incoming lobe's part above the
@@ -156,15 +147,6 @@ pub enum LambertLobe {
 }
 
 impl LambertLobe {
-    /// The `lambert_lobe=` value.
-    pub fn from_name(name: &str) -> Self {
-        match name {
-            "papers" => LambertLobe::Papers,
-            "exact_compact" => LambertLobe::ExactCompact,
-            _ => LambertLobe::Hemisphere,
-        }
-    }
-
     fn shader_code(self) -> u32 {
         match self {
             LambertLobe::Papers => 0,
