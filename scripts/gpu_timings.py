@@ -38,8 +38,9 @@ def quartiles(v: list[float]) -> tuple[float, float]:
 
 
 def write_report(report: dict, name: str) -> None:
-    """Writes `report` as JSON to $OUT/name (or ./name)."""
-    out = os.environ.get("OUT", ".")
+    """Writes `report` as JSON to $OUT/name (the device call's results), else to out/name: a
+    git-ignored folder, so a local run leaves nothing to commit by mistake."""
+    out = os.environ.get("OUT", "out")
     os.makedirs(out, exist_ok=True)
     with open(os.path.join(out, name), "w") as fh:
         json.dump(report, fh, indent=1)
