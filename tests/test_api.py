@@ -380,3 +380,20 @@ def test_every_choice_option_refuses_an_unknown_string_naming_it():
                 vsgl.check_method_options(method, **{option: "no_such_choice"})
             checked += 1
     assert checked >= 25, checked
+
+
+def test_import_leaves_the_environment_alone_and_opening_a_device_sets_a_runtime_dir():
+    # Mesa warns without XDG_RUNTIME_DIR; vsgl sets a private one where a GPU instance is
+    # opened, not at import, and leaves one the user set alone.
+    env = {k: v for k, v in os.environ.items() if k != "XDG_RUNTIME_DIR"}
+    code = (
+        "import os, vsgl\n"
+        "assert 'XDG_RUNTIME_DIR' not in os.environ, 'set at import'\n"
+        "vsgl.adapters()\n"
+        "d = os.environ['XDG_RUNTIME_DIR']\n"
+        "assert os.path.basename(d).startswith('vsgl-runtime-') and os.path.isdir(d), d\n"
+        "assert os.stat(d).st_mode & 0o777 == 0o700\n"
+    )
+    subprocess.run([sys.executable, "-c", code], check=True, env=env)
+    code_kept = "import os, vsgl\nvsgl.adapters()\nassert os.environ['XDG_RUNTIME_DIR'] == '/tmp', os.environ['XDG_RUNTIME_DIR']\n"
+    subprocess.run([sys.executable, "-c", code_kept], check=True, env={**env, "XDG_RUNTIME_DIR": "/tmp"})

@@ -14,15 +14,20 @@ import os as _os
 import shutil as _shutil
 import tempfile as _tempfile
 
-# Mesa's Vulkan drivers warn "XDG_RUNTIME_DIR is invalid or not set" on every device when the
-# machine has no user session (CI, containers, ssh). Headless rendering needs no runtime dir, so
-# a private one (mode 0700) is set before the device is created, unless the user set one.
-if not _os.environ.get("XDG_RUNTIME_DIR"):
-    _runtime_dir = _tempfile.mkdtemp(prefix="vsgl-runtime-")
-    _os.environ["XDG_RUNTIME_DIR"] = _runtime_dir
-    _atexit.register(_shutil.rmtree, _runtime_dir, ignore_errors=True)
 
-from vsgl._vsgl import (  # noqa: E402  (after the environment set-up above)
+def _prepare_device_environment() -> None:
+    """Called by the extension just before it opens a GPU instance (``Renderer()``,
+    ``adapters()``, ``stability_suite()``), not at import: Mesa's Vulkan drivers warn
+    "XDG_RUNTIME_DIR is invalid or not set" on every device when the machine has no user
+    session (CI, containers, ssh). Headless rendering needs no runtime dir, so a private one
+    (mode 0700, removed at exit) is set then, unless the user set one."""
+    if not _os.environ.get("XDG_RUNTIME_DIR"):
+        runtime_dir = _tempfile.mkdtemp(prefix="vsgl-runtime-")
+        _os.environ["XDG_RUNTIME_DIR"] = runtime_dir
+        _atexit.register(_shutil.rmtree, runtime_dir, ignore_errors=True)
+
+
+from vsgl._vsgl import (
     METHODS,
     ArgumentError,
     Camera,

@@ -862,6 +862,7 @@ impl PyRenderer {
     fn new(py: Python<'_>, width: IntArg, height: IntArg, adapter: Option<String>) -> PyResult<Self> {
         let width = width.in_range("width", 1, 16384)?;
         let height = height.in_range("height", 1, 16384)?;
+        prepare_device_environment(py)?;
         let r = py
             .detach(|| {
                 let gpu = vsgl_core::gpu::Gpu::new(adapter.as_deref())?;
@@ -1173,8 +1174,20 @@ fn adapter_dict<'py>(py: Python<'py>, a: &vsgl_core::gpu::AdapterSummary) -> PyR
 /// Every adapter wgpu sees, best first.
 #[pyfunction]
 fn adapters(py: Python<'_>) -> PyResult<Vec<Bound<'_, PyDict>>> {
+    prepare_device_environment(py)?;
     let list = py.detach(vsgl_core::gpu::adapters);
     list.iter().map(|a| adapter_dict(py, a)).collect()
+}
+
+/// Runs `vsgl._prepare_device_environment()` (the process environment a GPU instance needs,
+/// set where one is opened rather than at import); a no-op where the package does not define
+/// it (the extension imported on its own).
+pub(crate) fn prepare_device_environment(py: Python<'_>) -> PyResult<()> {
+    let package = py.import("vsgl")?;
+    if let Ok(prepare) = package.getattr("_prepare_device_environment") {
+        prepare.call0()?;
+    }
+    Ok(())
 }
 
 /// Names of the built-in procedural scenes.
