@@ -1,28 +1,16 @@
 //! The pass plan's shader variants are compiled on first use and then reused: rendering the
 //! same scene again compiles nothing, a scene that needs other variants compiles only those.
-//! Skips, with a message, only when there is no adapter at all.
+//! Skips, with a message, only when there is no adapter at all (under CI that is a failure).
+
+mod common;
 
 use std::sync::atomic::Ordering;
-use vsgl_core::gpu::Gpu;
 use vsgl_core::renderer::{RenderOptions, Renderer};
 use vsgl_core::scene::builtin;
-use vsgl_core::Error;
-
-/// The default adapter; `None` (and a message) only when there is no adapter at all.
-fn open_gpu() -> Option<std::sync::Arc<Gpu>> {
-    match Gpu::new(None) {
-        Ok(gpu) => Some(gpu),
-        Err(Error::NoAdapter(msg)) => {
-            println!("SKIPPED: no GPU or CPU adapter: {msg}");
-            None
-        }
-        Err(e) => panic!("could not open the default adapter: {e}"),
-    }
-}
 
 #[test]
 fn variants_are_compiled_once_and_only_when_a_plan_needs_them() {
-    let Some(gpu) = open_gpu() else { return };
+    let Some(gpu) = common::gpu_or_skip("the plan test") else { return };
     let renderer = Renderer::new(gpu.clone(), 16, 16).expect("renderer");
     let compiled = || gpu.variants_compiled.load(Ordering::Relaxed);
     assert_eq!(compiled(), 0, "no variant is compiled before a frame asks for one");
@@ -54,7 +42,7 @@ fn variants_are_compiled_once_and_only_when_a_plan_needs_them() {
 fn every_pass_binds_the_variant_its_plan_asks_for() {
     use vsgl_core::plan::Plan;
     use vsgl_core::shader_lib;
-    let Some(gpu) = open_gpu() else { return };
+    let Some(gpu) = common::gpu_or_skip("the plan test") else { return };
     let renderer = Renderer::new(gpu, 16, 16).expect("renderer");
     let mut checked = 0;
     for scene_name in ["diffuse_cornell", "cornell_box"] {

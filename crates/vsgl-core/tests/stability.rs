@@ -2,23 +2,12 @@
 //! wgsl/common/{math,sg,ggx,vsgl}.wgsl in f32 against its f64 oracle on grids with the extremes of
 //! issue 3. Every row must pass (no NaN/Inf, every case within its stated bound); the table is
 //! printed (`cargo test -p vsgl-core --release --test stability -- --nocapture`).
-//! Skips, with a message, only when there is no adapter at all.
+//! Skips, with a message, only when there is no adapter at all (under CI that is a failure).
+
+mod common;
 
 use std::time::Instant;
-use vsgl_core::gpu::Gpu;
 use vsgl_core::verify::stability::{self, StabilityRow};
-use vsgl_core::Error;
-
-fn gpu_or_skip() -> Option<std::sync::Arc<Gpu>> {
-    match Gpu::new(None) {
-        Ok(gpu) => Some(gpu),
-        Err(Error::NoAdapter(msg)) => {
-            println!("SKIPPED: no GPU or CPU adapter, the stability suite needs one: {msg}");
-            None
-        }
-        Err(e) => panic!("could not open the default adapter: {e}"),
-    }
-}
 
 fn print_table(rows: &[StabilityRow]) {
     println!(
@@ -42,7 +31,7 @@ fn print_table(rows: &[StabilityRow]) {
 
 #[test]
 fn every_function_is_within_its_bound_on_the_default_adapter() {
-    let Some(gpu) = gpu_or_skip() else { return };
+    let Some(gpu) = common::gpu_or_skip("the stability suite") else { return };
     let start = Instant::now();
     let rows = stability::run(&gpu, 1.0).expect("stability suite");
     let elapsed = start.elapsed();
@@ -65,7 +54,7 @@ fn every_function_is_within_its_bound_on_the_default_adapter() {
 /// (rows whose functions are exact, or that never round on this grid, still pass).
 #[test]
 fn the_suite_fails_when_the_bounds_are_too_tight() {
-    let Some(gpu) = gpu_or_skip() else { return };
+    let Some(gpu) = common::gpu_or_skip("the stability suite") else { return };
     let rows = stability::run(&gpu, 1e-3).expect("stability suite");
     let failed = rows.iter().filter(|r| !r.pass).count();
     println!("{failed} of {} rows fail at 1/1000 of the bounds", rows.len());

@@ -1,8 +1,27 @@
-//! Helpers the loader's integration tests share (`gltf_loader.rs`, `loader_fuzz.rs`): a fresh
-//! temporary folder, base64 for data URIs, and a GLB container around JSON and binary chunks.
+//! Helpers the integration tests share: a fresh temporary folder, base64 for data URIs and a GLB
+//! container around JSON and binary chunks (the loader's tests), and the default adapter for the
+//! GPU tests (`plan.rs`, `stability.rs`).
 #![allow(dead_code)]
 
 use std::path::PathBuf;
+use std::sync::Arc;
+use vsgl_core::gpu::Gpu;
+use vsgl_core::Error;
+
+/// The default adapter. Without any adapter at all: `None` and a message, so the test returns
+/// early, except under CI (`CI` set), where that is a failure, as it is for the pytest suite
+/// (tests/conftest.py): CI must never pass by skipping the GPU tests. `what` says what needs it.
+pub fn gpu_or_skip(what: &str) -> Option<Arc<Gpu>> {
+    match Gpu::new(None) {
+        Ok(gpu) => Some(gpu),
+        Err(Error::NoAdapter(msg)) => {
+            assert!(std::env::var_os("CI").is_none(), "CI has no GPU or CPU adapter, {what} needs one: {msg}");
+            println!("SKIPPED: no GPU or CPU adapter, {what} needs one: {msg}");
+            None
+        }
+        Err(e) => panic!("could not open the default adapter: {e}"),
+    }
+}
 
 /// An empty folder of its own under the system temp dir (`prefix`, process id, `what`).
 pub fn tmpdir(prefix: &str, what: &str) -> PathBuf {
