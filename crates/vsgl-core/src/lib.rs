@@ -8,6 +8,7 @@ pub mod image_io;
 pub mod methods;
 pub mod passes;
 pub mod plan;
+pub mod progress;
 pub mod renderer;
 pub mod rng;
 pub mod scene;

@@ -12,6 +12,7 @@ mod brsm;
 mod interleaved;
 pub mod metropolis;
 mod rsm_lights;
+mod sg_lighting;
 
 mod direct;
 mod pathtrace;
@@ -193,7 +194,7 @@ pub struct FrameContext<'a> {
     /// Extra `frame.settings` rows the method learnt while recording.
     pub settings: Vec<(String, String)>,
     /// Asked between the GPU batches of long renders; an error stops the render.
-    pub stop: Option<&'a crate::renderer::StopCheck>,
+    pub stop: Option<&'a crate::progress::StopCheck>,
     /// Kept from frame to frame (in the frame's readback slot) for the RSM powers that split
     /// the virtual-light budget over several lights or cube faces (`rsm_lights`).
     pub power_staging: &'a mut Option<wgpu::Buffer>,

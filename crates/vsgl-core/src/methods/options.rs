@@ -399,8 +399,8 @@ pub mod common {
         help: "keep the first light's RSM for Frame.rsm(name)",
         note: "",
     };
-    /// The largest interleave tile side (the denoiser's workgroup span holds 2·this taps).
-    pub const INTERLEAVE_MAX: i64 = 16;
+    /// The largest interleave tile side: the denoiser's (its workgroup span holds 2·this taps).
+    pub const INTERLEAVE_MAX: i64 = crate::passes::denoise::MAX_RADIUS as i64;
     /// Interleaved sampling (`wgsl/common/interleave.wgsl`); the default differs by method
     /// (8 for VSGLs as in the papers, 1 for VPLs so `vpl` stays the every-pixel baseline).
     pub const fn interleave(default: i64) -> OptionSpec {

@@ -96,7 +96,7 @@ impl Method for Reference {
                     ctx.submit_so_far();
                     gpu.wait("reference batch")?;
                     if let Some(stop) = ctx.stop {
-                        stop.check(crate::renderer::Progress { done: first, total: texels, unit: "texels" })?;
+                        stop.check(crate::progress::Progress { done: first, total: texels, unit: "texels" })?;
                     }
                 }
             }

@@ -340,3 +340,12 @@ mod tests {
         }
     }
 }
+
+/// The options with `rsm_size`, when not given, grown with `num_lights`
+/// ([`common::rsm_size_for`](super::options::common::rsm_size_for)); shared by `vpl` and `vsgl`.
+pub(super) fn with_rsm_size_for_num_lights(given: &super::Options) -> Result<super::Options> {
+    let mut o = given.clone();
+    let side = super::options::common::rsm_size_for(o.u32("num_lights")?);
+    o.resolve_default("rsm_size", super::options::OptionValue::Int(side as i64));
+    Ok(o)
+}

@@ -1,5 +1,5 @@
-//! `visibility=` of the virtual-light methods (issue 17): what the shading passes bind in their
-//! group 2 and which variant they run. `"none"`: unshadowed virtual lights (the papers'
+//! `visibility=` of the virtual-light methods: what the shading passes bind in their group 2
+//! (`frame::ShadingVisibility`) and which variant they run. `"none"`: unshadowed virtual lights (the papers'
 //! accuracy configuration); placeholders are bound and the visibility code is compiled out.
 //! `"raytrace"`: one shadow ray per (pixel, virtual light) through the scene's BVH — the path
 //! tracer's, built once per scene upload — to the VPL, or to a VSGL's mean position.
@@ -10,6 +10,7 @@
 use super::{FrameContext, Options};
 use super::choices::VisibilityChoice;
 use crate::error::{Error, Result};
+use crate::frame::{IsmLookupRaw, ShadingVisibility};
 use crate::passes::ism::{IsmLayout, IsmPass, IsmSources};
 use crate::upload::GpuPoints;
 use bytemuck::Zeroable;
@@ -69,19 +70,6 @@ impl VisibilityMode {
     }
 }
 
-/// GPU twin of `IsmLookup` in `wgsl/common/ism_lookup.wgsl`.
-#[repr(C)]
-#[derive(Clone, Copy, bytemuck::Pod, bytemuck::Zeroable)]
-struct IsmLookupRaw {
-    map_size: u32,
-    words_per_map: u32,
-    distance_bias: f32,
-    normal_offset: f32,
-    pcf_radius: i32,
-    _pad: [u32; 3],
-}
-const _: () = assert!(std::mem::size_of::<IsmLookupRaw>() == 32);
-
 /// The maps of one frame: an atlas for up to `capacity` lights, rebuilt for each batch.
 struct IsmMaps {
     settings: IsmSettings,
@@ -91,16 +79,18 @@ struct IsmMaps {
     points: Arc<GpuPoints>,
 }
 
-/// What a shading pass binds for visibility in its group 2: the BVH's nodes and triangles, the
-/// camera's triangle ids, the imperfect shadow maps and how to read them.
+/// A frame's virtual-light visibility: what the shading passes bind ([`ShadingVisibility`], which
+/// it derefs to) and, with `visibility="ism"`, the maps it builds before each batch.
 pub struct VirtualLightVisibility {
-    pub traced: bool,
     ism: Option<IsmMaps>,
-    nodes: wgpu::Buffer,
-    triangles: wgpu::Buffer,
-    ids: wgpu::TextureView,
-    ism_atlas: wgpu::Buffer,
-    ism_lookup: wgpu::Buffer,
+    shading: ShadingVisibility,
+}
+
+impl std::ops::Deref for VirtualLightVisibility {
+    type Target = ShadingVisibility;
+    fn deref(&self) -> &ShadingVisibility {
+        &self.shading
+    }
 }
 
 /// Bytes of a placeholder array binding: at least one BVH node (32) or triangle (48).
@@ -118,7 +108,7 @@ impl VirtualLightVisibility {
         let triangles = ctx.rec.storage_written("visibility_placeholder_triangle_buffer", PLACEHOLDER_BYTES);
         let ism_atlas = ctx.rec.storage_written("visibility_placeholder_ism_atlas_buffer", PLACEHOLDER_BYTES);
         let ism_lookup = ctx.rec.uniform("visibility_placeholder_ism_lookup_uniform_buffer", &IsmLookupRaw::zeroed());
-        Self { traced: false, ism: None, nodes, triangles, ids, ism_atlas, ism_lookup }
+        Self { ism: None, shading: ShadingVisibility { traced: false, ism: false, nodes, triangles, ids, ism_atlas, ism_lookup } }
     }
 
     /// `max_lights`: the most lights one batch shades (the maps of a batch are held at once).
@@ -146,7 +136,7 @@ impl VirtualLightVisibility {
                 }
                 let ism_atlas = placeholder(ctx, "visibility_placeholder_ism_atlas_buffer");
                 let ism_lookup = ctx.rec.uniform("visibility_placeholder_ism_lookup_uniform_buffer", &IsmLookupRaw::zeroed());
-                Ok(Self { traced: true, ism: None, nodes: bvh.nodes.clone(), triangles: bvh.triangles.clone(), ids, ism_atlas, ism_lookup })
+                Ok(Self { ism: None, shading: ShadingVisibility { traced: true, ism: false, nodes: bvh.nodes.clone(), triangles: bvh.triangles.clone(), ids, ism_atlas, ism_lookup } })
             }
             VisibilityMode::Ism(settings) => {
                 let (points, made) = ctx.gpu_scene.surface_points(ctx.gpu, ctx.scene, settings.points)?;
@@ -180,7 +170,7 @@ impl VirtualLightVisibility {
                 let nodes = placeholder(ctx, "visibility_placeholder_node_buffer");
                 let triangles = placeholder(ctx, "visibility_placeholder_triangle_buffer");
                 let ism = IsmMaps { settings, layout, atlas: atlas.clone(), capacity, points };
-                Ok(Self { traced: false, ism: Some(ism), nodes, triangles, ids, ism_atlas: atlas, ism_lookup })
+                Ok(Self { ism: Some(ism), shading: ShadingVisibility { traced: false, ism: true, nodes, triangles, ids, ism_atlas: atlas, ism_lookup } })
             }
         }
     }
@@ -207,32 +197,5 @@ impl VirtualLightVisibility {
         };
         pass.record(&mut ctx.rec, &maps.atlas, maps.layout, &sources);
         Ok(())
-    }
-
-    /// The override constants choosing the shading variant.
-    pub fn flags(&self) -> [(&'static str, bool); 2] {
-        [("VISIBILITY_TRACED", self.traced), ("VISIBILITY_ISM", self.ism.is_some())]
-    }
-
-    /// What `frame.passes` adds to a shading pass's name: its visibility variant.
-    pub fn label_suffix(&self) -> &'static str {
-        if self.traced {
-            "[raytrace]"
-        } else if self.ism.is_some() {
-            "[ism]"
-        } else {
-            ""
-        }
-    }
-
-    /// Group 2 of the shading passes.
-    pub fn bindings(&self) -> [wgpu::BindingResource<'_>; 5] {
-        [
-            self.nodes.as_entire_binding(),
-            self.triangles.as_entire_binding(),
-            wgpu::BindingResource::TextureView(&self.ids),
-            self.ism_atlas.as_entire_binding(),
-            self.ism_lookup.as_entire_binding(),
-        ]
     }
 }

@@ -5,7 +5,7 @@
 use super::brsm::{Importance, ViewImportance};
 use super::interleaved::InterleavedShading;
 use super::metropolis::{ChainSpace, MetropolisSampling};
-use super::rsm_lights::{check_rsm_size, for_each_light, rsm_fit, RsmSettings};
+use super::rsm_lights::{check_rsm_size, for_each_light, rsm_fit, with_rsm_size_for_num_lights, RsmSettings};
 use crate::frame::uniforms::RsmFit;
 use super::{options::common, DirectLight, FrameContext, Method, MethodInfo, OptionSpec, Options};
 use super::visibility::{VirtualLightVisibility, VisibilityMode, VPL_RECORD_WORDS};
@@ -67,11 +67,6 @@ struct Vpl {
     rsm_fit: RsmFit,
 }
 
-/// `sampling=` as the sampling pass takes it.
-pub(super) fn sampling(o: &Options) -> Result<Sampling> {
-    o.choice("sampling")
-}
-
 impl Vpl {
     fn new(given: &Options) -> Result<Self> {
         let o = &with_rsm_size_for_num_lights(given)?;
@@ -80,7 +75,7 @@ impl Vpl {
             visibility: VisibilityMode::from_options(o)?,
             num_lights: o.u32("num_lights")?,
             rsm_size: o.u32("rsm_size")?,
-            sampling: sampling(o)?,
+            sampling: o.choice("sampling")?,
             chain_space: ChainSpace::from_options(o)?,
             seed: o.u32("seed")?,
             vpl_clamp: o.f32("vpl_clamp")?,
@@ -147,11 +142,3 @@ impl Method for Vpl {
     }
 }
 
-/// The options with `rsm_size`, when not given, grown with `num_lights`
-/// ([`common::rsm_size_for`](super::options::common::rsm_size_for)); shared by `vpl` and `vsgl`.
-pub(super) fn with_rsm_size_for_num_lights(given: &Options) -> Result<Options> {
-    let mut o = given.clone();
-    let side = super::options::common::rsm_size_for(o.u32("num_lights")?);
-    o.resolve_default("rsm_size", super::options::OptionValue::Int(side as i64));
-    Ok(o)
-}

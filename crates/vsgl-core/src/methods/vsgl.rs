@@ -7,7 +7,8 @@ use super::choices::{NearField, ShadowTarget};
 use super::options::ChoiceEnum;
 use super::interleaved::InterleavedShading;
 use super::metropolis::{ChainSpace, MetropolisSampling};
-use super::rsm_lights::{check_rsm_size, for_each_light, rsm_fit, RsmSettings};
+use super::rsm_lights::{check_rsm_size, for_each_light, rsm_fit, with_rsm_size_for_num_lights, RsmSettings};
+use super::sg_lighting::{diffuse_mode, lighting_mode, plane_fade, with_resolved_diffuse_form};
 use crate::frame::uniforms::RsmFit;
 use super::visibility::{VirtualLightVisibility, VisibilityMode, VSGL_RECORD_WORDS};
 use super::{options::common, DirectLight, FrameContext, Method, MethodInfo, OptionKind, OptionSpec, OptionValue, Options};
@@ -149,69 +150,6 @@ struct Vsgl {
     near_field_texels: bool,
 }
 
-/// `diffuse=` as the shading pass takes it. `lighting="accurate"` brings its own diffuse form
-/// (the clamped cosine, `diffuse="accurate"`); another one given with it is an error rather than
-/// silently replaced.
-pub(super) fn diffuse_mode(o: &Options) -> Result<DiffuseMode> {
-    let lighting = lighting_mode(o)?;
-    if lighting.brings_clamped_cosine_diffuse() {
-        let diffuse = o.str("diffuse")?;
-        if o.was_given("diffuse") && o.choice::<DiffuseMode>("diffuse")? != DiffuseMode::Accurate {
-            let name = o.str("lighting")?;
-            return Err(Error::invalid(
-                "diffuse",
-                format!("diffuse={diffuse:?} is a form of lighting=\"asg\"; lighting={name:?}{} shades diffuse by the clamped-cosine integral (diffuse=\"accurate\"): give lighting=\"asg\" with it, or leave diffuse out", lighting_default_note(o)),
-            ));
-        }
-        return Ok(DiffuseMode::Accurate);
-    }
-    o.choice("diffuse")
-}
-
-/// The options with `diffuse` resolved to the form `lighting` brings when it was left out, so
-/// `frame.settings` shows the diffuse form the frame used (it had shown "papers" under
-/// `lighting="accurate"`, which shades the clamped cosine), and `plane_fade` to True for the
-/// forms that always fade.
-pub(super) fn with_resolved_diffuse_form(mut o: Options) -> Result<Options> {
-    if lighting_mode(&o)?.brings_clamped_cosine_diffuse() {
-        o.resolve_default("diffuse", super::options::OptionValue::Str("accurate".into()));
-    }
-    if diffuse_mode(&o)?.fades_below_tangent_plane() {
-        o.resolve_default("plane_fade", super::options::OptionValue::Bool(true));
-    }
-    Ok(o)
-}
-
-/// Whether the diffuse term fades below each VSGL's tangent plane: always for the forms that
-/// need it, and for the papers' with `plane_fade`. `plane_fade=False` given with a form that
-/// always fades is an error rather than silently ignored.
-pub(super) fn plane_fade(o: &Options) -> Result<bool> {
-    let diffuse = diffuse_mode(o)?;
-    if diffuse.fades_below_tangent_plane() {
-        if o.was_given("plane_fade") && !o.bool("plane_fade")? {
-            let name = diffuse.name();
-            let lighting = o.str("lighting")?;
-            return Err(Error::invalid(
-                "plane_fade",
-                format!("the diffuse form {name:?}, which lighting={lighting:?}{} brings, always fades below each cluster's tangent plane (without it a lit plane lights itself); plane_fade=False applies to lighting=\"asg\" with diffuse=\"papers\" only", lighting_default_note(o)),
-            ));
-        }
-        return Ok(true);
-    }
-    o.bool("plane_fade")
-}
-
-/// " (the method's default)" when `lighting` was left out: the errors above then name the
-/// default as what brought the clamped-cosine diffuse, so a caller who asked only for a papers'
-/// diffuse form learns to give lighting="asg" too.
-fn lighting_default_note(o: &Options) -> &'static str {
-    if o.was_given("lighting") {
-        ""
-    } else {
-        " (the method's default)"
-    }
-}
-
 /// `kernel_filter=`: for the filtered kernels; `kernel="node"` reads its node exactly, so one
 /// given with it is an error rather than silently ignored.
 fn kernel_filter(o: &Options) -> Result<KernelFilter> {
@@ -231,20 +169,15 @@ fn coherence(o: &Options) -> Result<f32> {
     Ok(c)
 }
 
-/// `lighting=` as the shading pass takes it.
-pub(super) fn lighting_mode(o: &Options) -> Result<LightingMode> {
-    o.choice("lighting")
-}
-
 impl Vsgl {
     fn new(given: &Options) -> Result<Self> {
-        let o = &with_resolved_diffuse_form(super::vpl::with_rsm_size_for_num_lights(given)?)?;
+        let o = &with_resolved_diffuse_form(with_rsm_size_for_num_lights(given)?)?;
         Ok(Self {
             options: o.clone(),
             visibility: VisibilityMode::from_options(o)?,
             num_lights: o.u32("num_lights")?,
             rsm_size: o.u32("rsm_size")?,
-            sampling: super::vpl::sampling(o)?,
+            sampling: o.choice("sampling")?,
             chain_space: ChainSpace::from_options(o)?,
             seed: o.u32("seed")?,
             kernel: o.choice("kernel")?,

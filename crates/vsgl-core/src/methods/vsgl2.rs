@@ -65,9 +65,9 @@ struct Vsgl2 {
 
 impl Vsgl2 {
     fn new(given: &Options) -> Result<Self> {
-        let o = &super::vsgl::with_resolved_diffuse_form(given.clone())?;
+        let o = &super::sg_lighting::with_resolved_diffuse_form(given.clone())?;
         let reduction = o.choice("vsgl2_reduction")?;
-        Ok(Self { options: o.clone(), visibility: VisibilityMode::from_options(o)?, rsm_size: o.u32("rsm_size")?, diffuse: super::vsgl::diffuse_mode(o)?, lighting: super::vsgl::lighting_mode(o)?, lambert_lobe: o.choice("lambert_lobe")?, plane_fade: super::vsgl::plane_fade(o)?, reduction, capture_rsm: o.bool("capture_rsm")?, rsm_fit: rsm_fit(o)? })
+        Ok(Self { options: o.clone(), visibility: VisibilityMode::from_options(o)?, rsm_size: o.u32("rsm_size")?, diffuse: super::sg_lighting::diffuse_mode(o)?, lighting: super::sg_lighting::lighting_mode(o)?, lambert_lobe: o.choice("lambert_lobe")?, plane_fade: super::sg_lighting::plane_fade(o)?, reduction, capture_rsm: o.bool("capture_rsm")?, rsm_fit: rsm_fit(o)? })
     }
 }
 

@@ -11,9 +11,9 @@ use crate::plan::ShaderFeatures;
 /// Pixels per workgroup along the filter's axis (`TILE` in the shader); a workgroup is one line of
 /// them, so the x pass dispatches ceil(W/TILE) × H workgroups and the y pass ceil(H/TILE) × W.
 const TILE: u32 = 64;
-/// The largest radius the shader's workgroup span holds (`MAX_RADIUS`): the largest interleave.
-const MAX_RADIUS: u32 = 16;
-const _: () = assert!(MAX_RADIUS as i64 == crate::methods::options::common::INTERLEAVE_MAX, "denoise.wgsl's MAX_RADIUS must be the interleave option's largest value");
+/// The largest radius the shader's workgroup span holds (`MAX_RADIUS`), and so the largest
+/// interleave tile side a method may take (its `interleave` option's bound).
+pub const MAX_RADIUS: u32 = 16;
 
 #[repr(C)]
 #[derive(Clone, Copy, bytemuck::Pod, bytemuck::Zeroable)]

@@ -66,7 +66,7 @@ pub struct PathTraceInputs<'a> {
     pub gbuffer: &'a GBuffer,
     pub ids: &'a wgpu::TextureView,
     /// Asked between batches; an error stops the render.
-    pub stop: Option<&'a crate::renderer::StopCheck>,
+    pub stop: Option<&'a crate::progress::StopCheck>,
     /// Stop adding samples once this many seconds have passed (the mean so far is the image).
     pub time_budget_s: Option<f64>,
     /// The plan's features: no texture fetches at bounce points without textured materials,
@@ -267,7 +267,7 @@ impl PathTracePass {
                 // Between batches: the caller may stop the render (Ctrl-C), and a time budget
                 // ends the sampling with the samples taken so far (a valid, noisier estimate).
                 if let Some(stop) = input.stop {
-                    stop.check(crate::renderer::Progress { done: done as u64, total: spp as u64, unit: "spp" })?;
+                    stop.check(crate::progress::Progress { done: done as u64, total: spp as u64, unit: "spp" })?;
                 }
                 if input.time_budget_s.is_some_and(|b| started.elapsed().as_secs_f64() >= b) {
                     break;

@@ -4,7 +4,7 @@ use crate::frame::IndirectTargets;
 use crate::error::Result;
 use crate::frame::GBuffer;
 use crate::gpu::{for_each_chunk, interleaved_groups, traced_lights_per_dispatch, Gpu, PipelineVariants, Recorder};
-use crate::methods::visibility::VirtualLightVisibility;
+use crate::frame::ShadingVisibility;
 use crate::plan::ShaderFeatures;
 
 const WORKGROUP: u32 = 8;
@@ -47,7 +47,7 @@ impl VplShadingPass {
         out: &IndirectTargets,
         features: ShaderFeatures,
         size: (u32, u32),
-        visibility: &VirtualLightVisibility,
+        visibility: &ShadingVisibility,
     ) {
         let gpu = rec.gpu;
         let [specular] = features.specular_flags();

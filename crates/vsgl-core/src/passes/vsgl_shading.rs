@@ -3,7 +3,7 @@
 use crate::error::Result;
 use crate::frame::{GBuffer, IndirectTargets};
 use crate::gpu::{for_each_chunk, interleaved_block_groups, traced_lights_per_dispatch, Gpu, PipelineVariants, Recorder};
-use crate::methods::visibility::VirtualLightVisibility;
+use crate::frame::ShadingVisibility;
 use crate::passes::vsgl_gen::SHADOW_CANDIDATES;
 use crate::plan::ShaderFeatures;
 
@@ -197,7 +197,7 @@ impl VsglShadingPass {
         out: &IndirectTargets,
         features: ShaderFeatures,
         size: (u32, u32),
-        visibility: &VirtualLightVisibility,
+        visibility: &ShadingVisibility,
         candidates: Option<&ShadingCandidates<'_>>,
     ) {
         let gpu = rec.gpu;

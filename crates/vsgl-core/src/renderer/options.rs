@@ -3,6 +3,7 @@
 
 use crate::error::{Error, Result};
 use crate::methods::{self, MethodInfo, OptionValue, Options};
+pub use crate::progress::{Progress, StopCheck};
 
 /// Every AOV a frame can hold, in the order a frame lists them (and the kinds of
 /// `wgsl/passes/aov_pack.wgsl`).
@@ -28,31 +29,6 @@ pub struct RenderOptions {
     /// Asked between the GPU batches of long renders (`pathtrace`, `reference`): an error
     /// stops the render there (Python: Ctrl-C raises `KeyboardInterrupt` within a batch).
     pub stop: Option<StopCheck>,
-}
-
-/// A check that a long render makes between GPU batches, told how far it is; `Err` stops it
-/// (e.g. [`Error::Interrupted`] when the user pressed Ctrl-C).
-#[derive(Clone)]
-pub struct StopCheck(pub std::sync::Arc<dyn Fn(Progress) -> Result<()> + Send + Sync>);
-
-/// How far a long render is: `done` of `total` units of `unit` (e.g. "spp", "texels").
-#[derive(Clone, Copy, Debug)]
-pub struct Progress {
-    pub done: u64,
-    pub total: u64,
-    pub unit: &'static str,
-}
-
-impl StopCheck {
-    pub fn check(&self, progress: Progress) -> Result<()> {
-        (self.0)(progress)
-    }
-}
-
-impl std::fmt::Debug for StopCheck {
-    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
-        f.write_str("StopCheck")
-    }
 }
 
 impl Default for RenderOptions {

@@ -1,0 +1,60 @@
+//! What a shading pass (`passes/vpl_shading.rs`, `passes/vsgl_shading.rs`) binds for
+//! virtual-light visibility in its group 2, and which variant it runs: the BVH's nodes and
+//! triangles, the camera's triangle ids, the imperfect shadow maps and how to read them
+//! (placeholders for what the variant does not read). `methods/visibility.rs` makes them from
+//! `visibility=`; the passes only bind them.
+
+/// GPU twin of `IsmLookup` in `wgsl/common/ism_lookup.wgsl`.
+#[repr(C)]
+#[derive(Clone, Copy, bytemuck::Pod, bytemuck::Zeroable)]
+pub struct IsmLookupRaw {
+    pub map_size: u32,
+    pub words_per_map: u32,
+    pub distance_bias: f32,
+    pub normal_offset: f32,
+    pub pcf_radius: i32,
+    pub _pad: [u32; 3],
+}
+const _: () = assert!(std::mem::size_of::<IsmLookupRaw>() == 32);
+
+/// Group 2 of the shading passes and the variant it selects.
+pub struct ShadingVisibility {
+    /// One shadow ray per (pixel, virtual light) through `nodes` / `triangles`.
+    pub traced: bool,
+    /// Imperfect shadow maps in `ism_atlas`, read as `ism_lookup` says.
+    pub ism: bool,
+    pub nodes: wgpu::Buffer,
+    pub triangles: wgpu::Buffer,
+    pub ids: wgpu::TextureView,
+    pub ism_atlas: wgpu::Buffer,
+    pub ism_lookup: wgpu::Buffer,
+}
+
+impl ShadingVisibility {
+    /// The override constants choosing the shading variant.
+    pub fn flags(&self) -> [(&'static str, bool); 2] {
+        [("VISIBILITY_TRACED", self.traced), ("VISIBILITY_ISM", self.ism)]
+    }
+
+    /// What `frame.passes` adds to a shading pass's name: its visibility variant.
+    pub fn label_suffix(&self) -> &'static str {
+        if self.traced {
+            "[raytrace]"
+        } else if self.ism {
+            "[ism]"
+        } else {
+            ""
+        }
+    }
+
+    /// Group 2 of the shading passes.
+    pub fn bindings(&self) -> [wgpu::BindingResource<'_>; 5] {
+        [
+            self.nodes.as_entire_binding(),
+            self.triangles.as_entire_binding(),
+            wgpu::BindingResource::TextureView(&self.ids),
+            self.ism_atlas.as_entire_binding(),
+            self.ism_lookup.as_entire_binding(),
+        ]
+    }
+}
