@@ -6,6 +6,7 @@ where a missing adapter is a failure: CI must never pass by skipping everything.
 
 from __future__ import annotations
 
+import inspect
 import os
 import pathlib
 
@@ -47,3 +48,21 @@ def shared_scenes() -> pathlib.Path:
     if not SHARED_SCENES.is_dir():
         pytest.skip(f"skipping: {SHARED_SCENES} not found (the shared scene folder is absent)")
     return SHARED_SCENES.resolve()
+
+
+# The fixtures that open a Renderer; a test that needs one (directly or through another
+# fixture) or builds one in its body is marked `gpu`, so `pytest -m "not gpu"` runs the rest.
+# Tests that open one another way (the CLI, bench, the scene suite) carry the mark themselves.
+GPU_FIXTURES = {"renderer", "make_renderer", "tiny"}
+
+
+def pytest_collection_modifyitems(items: list[pytest.Item]) -> None:
+    for item in items:
+        uses_fixture = GPU_FIXTURES & set(getattr(item, "fixturenames", ()))
+        function = getattr(item, "function", None)
+        try:
+            builds_one = function is not None and "vsgl.Renderer(" in inspect.getsource(function)
+        except (OSError, TypeError):
+            builds_one = False
+        if uses_fixture or builds_one:
+            item.add_marker(pytest.mark.gpu)

@@ -287,6 +287,7 @@ def test_option_types_are_checked(renderer):
     assert f.settings["rsm_size"] == str(vsgl.method_options("vsgl2")["rsm_size"])
 
 
+@pytest.mark.gpu
 def test_cli_prints_no_mesa_runtime_dir_warning(tmp_path):
     env = {k: v for k, v in os.environ.items() if k != "XDG_RUNTIME_DIR"}
     out = subprocess.run(
@@ -299,6 +300,7 @@ def test_cli_prints_no_mesa_runtime_dir_warning(tmp_path):
     assert methods.returncode == 0 and all(m in methods.stdout for m in vsgl.METHODS)
 
 
+@pytest.mark.gpu
 def test_cli_option_flag_reaches_every_method_option(tmp_path):
     """`render -O NAME=VALUE` passes any option of the method (typed: int, float, bool, text);
     a wrong name or value is the library's error naming the option, not a traceback."""

@@ -205,6 +205,7 @@ def test_the_reference_shows_its_progress_and_counts_every_batch(make_renderer):
     assert ref.wall_ms > 0
 
 
+@pytest.mark.gpu
 def test_bench_lights_scenes_from_the_shell(tmp_path, capsys):
     """--no-scene-lights and --light (any type) light every scene of the sweep; a bad --light
     is a usage error naming it."""
@@ -249,6 +250,7 @@ def test_sequence_reports_flicker_next_to_error_and_time(tmp_path, renderer):
     assert json.loads((tmp_path / "bench.json").read_text())["sequence"] == 4
 
 
+@pytest.mark.gpu
 def test_bench_shadows_every_virtual_light_and_the_reference_with_visibility(tmp_path):
     """--visibility raytrace: the methods cast shadow rays and the every-texel reference too,
     so a method agreeing with the reference has no visibility error to hide."""
@@ -283,6 +285,7 @@ def test_lighting_sweeps_the_sg_lighting_forms_of_vsgl_and_vsgl2(tmp_path, rende
         bench.run(lightings=("exact",), size=(8, 8), out=None, progress=False)
 
 
+@pytest.mark.gpu
 def test_option_sweeps_any_method_option_for_the_methods_that_take_it(tmp_path):
     """-O NAME=V1,V2 sweeps an option that has no axis of its own (here lambert_lobe, which
     vsgl and vsgl2 take and vpl does not): one row per value for the methods that take it, the
@@ -316,6 +319,7 @@ def test_option_sweeps_any_method_option_for_the_methods_that_take_it(tmp_path):
     assert refused.returncode == 2 and "NAME=V1,V2" in refused.stderr, refused.stderr
 
 
+@pytest.mark.gpu
 def test_bench_compares_rsm_and_brsm_importance(tmp_path):
     """--importance rsm,brsm: each vpl and vsgl configuration runs with both sampling densities
     (rows marked in the table, CSV and JSON); methods that sample nothing run once."""
@@ -336,6 +340,7 @@ def test_bench_compares_rsm_and_brsm_importance(tmp_path):
     assert {r["importance"] for r in json.loads((tmp_path / "bench.json").read_text())["rows"]} == {None, "rsm", "brsm"}
 
 
+@pytest.mark.gpu
 def test_bench_runs_brsm_with_metropolis_and_an_importance_interleave():
     """brsm and metropolis combine (the chains follow the re-weighted density), so the sweep no
     longer skips the pair; --importance-interleave sets the brsm rows' importance_interleave."""
@@ -350,6 +355,7 @@ def test_bench_runs_brsm_with_metropolis_and_an_importance_interleave():
     assert "brsm_importance_filter" in brsm.passes_ms or not brsm.passes_ms
 
 
+@pytest.mark.gpu
 def test_sampling_sweep_reports_error_flicker_and_time_for_warp_and_metropolis(tmp_path):
     """`--sampling stratified,metropolis`: a row per sampling with its own time, error and flicker
     (the cornell box's slid spot; docs/rendering.md, "Metropolis–Hastings sampling", has the
@@ -384,6 +390,7 @@ class _FakeClock(bench._SmClock):
         super().__init__(read, 1980)
 
 
+@pytest.mark.gpu
 def test_warm_up_waits_for_the_clock_and_cold_rows_are_flagged_and_out_of_equal_time(tmp_path, monkeypatch):
     """Warm-up goes on while the SM clock is below 90% of its boost; a row whose clock was still
     cold before or after its timed frames says so and does not compete for equal time (an H200

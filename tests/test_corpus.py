@@ -122,6 +122,7 @@ def _ratios(renderer, scene, method, **kw):
     return tuple(float(f.aov(a).mean() / ref.aov(a).mean()) for a in aovs)
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("name", sorted(MEASURED_LIGHTS))
 def test_vpls_are_near_the_reference_on_the_measured_scenes(name, make_renderer):
     # The corpus and its reference are consistent: VPLs, which estimate the reference without
@@ -154,6 +155,7 @@ def _corpus_bound_params(still_open: dict[str, str]) -> list:
     ]
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("name", _corpus_bound_params(_WITHIN_10_OPEN))
 def test_default_vsgl_within_10_percent_on_the_corpus(name, make_renderer):
     _needs_files(name)
@@ -174,6 +176,7 @@ _WITHIN_5_AT_LIT_TEXELS_OPEN = {
 }
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("name", _corpus_bound_params(_WITHIN_5_AT_LIT_TEXELS_OPEN))
 def test_default_vsgl_within_5_percent_at_one_texel_per_vsgl(name, make_renderer):
     _needs_files(name)
@@ -226,6 +229,7 @@ def _over_path_tracer(renderer, scene, runs, spp=256):
     return out
 
 
+@pytest.mark.slow
 def test_the_default_lighting_is_nearer_the_path_tracer_than_the_papers(make_renderer):
     # CornellBoxOriginal (roughness 1: rough lobes, where the papers' SG-ASG product loses half
     # of the light) against the path tracer (its own error 0.07% of the mean at 256 spp):
@@ -240,6 +244,7 @@ def test_the_default_lighting_is_nearer_the_path_tracer_than_the_papers(make_ren
     assert abs(got["default"][1] - 1) < 0.15, got
 
 
+@pytest.mark.slow
 def test_the_every_texel_reference_misses_most_of_boomboxs_specular(make_renderer):
     # What the docs explain BoomBox's "vsgl specular 9x the reference" by: against the path
     # tracer (1.4% own error) the every-texel reference of a 128² RSM over the spot's whole cone
@@ -259,6 +264,7 @@ def test_the_every_texel_reference_misses_most_of_boomboxs_specular(make_rendere
     assert got["reference"][1] > 0.3 and got["reference"][1] > 4 * got["reference_cone"][1], got
 
 
+@pytest.mark.slow
 def test_helmet_shell_carries_what_the_boxes_lack(make_renderer):
     # The generated helmet-like scene (no files needed): its many small touching parts give
     # vsgl a block error several times vpl's, as on the real helmet (measured at 128², RSM 128²

@@ -644,6 +644,7 @@ def test_bad_light_specs_name_what_is_wrong(text, says):
     assert says in str(e.value)
 
 
+@pytest.mark.gpu
 def test_cli_lights_a_scene_with_every_light_type(tmp_path):
     import subprocess
     import sys

@@ -5,7 +5,10 @@ from __future__ import annotations
 import pathlib
 import re
 
+import pytest
 
+
+@pytest.mark.gpu
 def test_readme_python_example_runs(tmp_path, monkeypatch):
     readme = (pathlib.Path(__file__).resolve().parents[1] / "README.md").read_text()
     blocks = re.findall(r"```python\n(.*?)```", readme, re.S)

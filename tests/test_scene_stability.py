@@ -13,6 +13,8 @@ import vsgl
 from vsgl import stability
 
 
+@pytest.mark.gpu
+@pytest.mark.slow
 def test_every_method_on_every_case_passes():
     rows = stability.scene_suite()
     print("\n" + stability.format_scene_table(rows))
@@ -40,6 +42,7 @@ def test_every_method_on_every_case_passes():
     assert edge and all(r["surface"] > 0 for r in edge), edge
 
 
+@pytest.mark.gpu
 def test_the_suite_can_fail(monkeypatch):
     # An intensity doubled but divided by 1: the invariance row must fail.
     real = stability._scene_cases
@@ -56,6 +59,7 @@ def test_the_suite_can_fail(monkeypatch):
     assert all(r["rel_rmse"] > 0.5 for r in rows if r["case"] != "base")
 
 
+@pytest.mark.gpu
 def test_pixels_that_change_surface_are_counted_apart_and_bounded(monkeypatch):
     """The G-buffer decides which pixels changed surface: a camera turned by 3° changes most of
     them, which must fail as "surface" (not pass because they were set apart)."""

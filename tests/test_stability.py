@@ -50,6 +50,7 @@ def _cli(*args: str) -> subprocess.CompletedProcess[str]:
     return subprocess.run([sys.executable, "-m", "vsgl", "stability", *args], capture_output=True, text=True, env=env, timeout=600)
 
 
+@pytest.mark.gpu
 def test_cli_passes_and_prints_every_function_and_family(rows: list[dict]) -> None:
     proc = _cli()
     assert proc.returncode == 0, proc.stdout[-3000:] + proc.stderr[-3000:]
@@ -65,6 +66,7 @@ def test_cli_passes_and_prints_every_function_and_family(rows: list[dict]) -> No
     assert f"{len(rows)} of {len(rows)} rows pass" in out
 
 
+@pytest.mark.gpu
 def test_rows_are_well_formed_and_pass(rows: list[dict]) -> None:
     keys = {"function", "family", "cases", "max_rel_error", "bound", "worst_ratio", "nonfinite", "passed", "worst_case"}
     assert rows and all(set(r) == keys for r in rows)
@@ -77,6 +79,7 @@ def test_rows_are_well_formed_and_pass(rows: list[dict]) -> None:
     assert stability.exit_code(rows) == 0
 
 
+@pytest.mark.gpu
 def test_suite_fails_when_bounds_are_too_tight(rows: list[dict]) -> None:
     # Real GPU errors against bounds / 1000: most rows must fail, and the CLI must exit non-zero.
     tight = stability.run(bound_scale=1e-3)

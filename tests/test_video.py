@@ -79,6 +79,7 @@ def test_a_png_folder_holds_every_tiled_frame(tiny, tmp_path):
     assert not np.array_equal(read_png(files[0]), read_png(files[1]))
 
 
+@pytest.mark.gpu
 def test_the_cli_writes_a_png_folder(tmp_path, capsys):
     out = tmp_path / "cli"
     rc = main(["animate", "cave_flashlight", "--method", "vsgl2", "--frames", "2", "--fps", "4",
@@ -89,6 +90,7 @@ def test_the_cli_writes_a_png_folder(tmp_path, capsys):
     assert "flashlight_sweep" in captured.out and "frame 2/2" in captured.err
 
 
+@pytest.mark.gpu
 @pytest.mark.parametrize("suffix", [".gif", ".mp4"])
 def test_video_files_need_the_extra(tmp_path, monkeypatch, suffix):
     monkeypatch.setitem(sys.modules, "imageio", None)  # import imageio → ImportError

@@ -50,6 +50,7 @@ def test_lights_that_reach_nothing_visible_say_so(renderer, light):
     assert any(w.startswith("the image is black: no light reaches any of the") for w in f.warnings), f.warnings
 
 
+@pytest.mark.gpu
 def test_the_cli_prints_the_warnings(tmp_path):
     # A built-in scene cannot be emptied from the shell; a glTF quad without lights can.
     import gltf_fixtures
