@@ -1,5 +1,8 @@
 //! Embeds every file under `wgsl/` into the binary (so a wheel is self-contained): writes a
-//! table `(relative path, contents)` that `shader_lib` composes at run time.
+//! table `(relative path, contents)` that `shader_lib` composes at run time. Also writes the
+//! integer constants each pass shader declares at its top level (`const NAME: u32 = 8u;`) as
+//! Rust constants, one module per `wgsl/passes/*.wgsl` (`shader_lib::constants::denoise::TILE`),
+//! so the numbers the host dispatches by are written once, in the shader.
 use std::{env, fs, path::Path};
 
 fn collect(dir: &Path, root: &Path, out: &mut Vec<String>) {
@@ -19,6 +22,50 @@ fn collect(dir: &Path, root: &Path, out: &mut Vec<String>) {
     }
 }
 
+/// `const NAME: u32 = 8u;` / `const NAME: i32 = -1i;` at the start of a line: (name, type, value).
+fn top_level_integer_constant(line: &str) -> Option<(String, &'static str, String)> {
+    let rest = line.strip_prefix("const ")?;
+    let (name, rest) = rest.split_once(':')?;
+    let (ty, rest) = rest.trim_start().split_once('=')?;
+    let ty = match ty.trim() {
+        "u32" => "u32",
+        "i32" => "i32",
+        _ => return None,
+    };
+    let value = rest.trim().strip_suffix(';')?.trim();
+    let digits = value.trim_end_matches(['u', 'i']);
+    let valid = !digits.is_empty() && digits.trim_start_matches('-').chars().all(|c| c.is_ascii_digit());
+    let name = name.trim();
+    if !valid || !name.chars().all(|c| c.is_ascii_uppercase() || c.is_ascii_digit() || c == '_') {
+        return None;
+    }
+    Some((name.to_string(), ty, digits.to_string()))
+}
+
+fn pass_constants(root: &Path) -> String {
+    let dir = root.join("passes");
+    let mut files: Vec<_> = fs::read_dir(&dir).expect("read wgsl/passes").flatten().map(|e| e.path()).collect();
+    files.sort();
+    let mut out = String::new();
+    let mut table = String::from("/// Every (shader, constant, value) above, for the test that checks them against naga.\npub static ALL: &[(&str, &str, i64)] = &[\n");
+    for p in files.iter().filter(|p| p.extension().is_some_and(|x| x == "wgsl")) {
+        let stem = p.file_stem().unwrap().to_string_lossy().to_string();
+        let consts: Vec<_> = fs::read_to_string(p).unwrap().lines().filter_map(top_level_integer_constant).collect();
+        if consts.is_empty() {
+            continue;
+        }
+        out.push_str(&format!("/// The integer constants of `wgsl/passes/{stem}.wgsl`.\npub mod {stem} {{\n"));
+        for (name, ty, value) in consts {
+            out.push_str(&format!("    pub const {name}: {ty} = {value};\n"));
+            table.push_str(&format!("    (\"passes/{stem}.wgsl\", \"{name}\", {value}),\n"));
+        }
+        out.push_str("}\n");
+    }
+    out.push_str(&table);
+    out.push_str("];\n");
+    out
+}
+
 fn main() {
     // Read at run time, not baked in with env!(): a build script compiled for another checkout
     // of the same crate (a git worktree sharing the target folder) must not read that one's wgsl/.
@@ -29,4 +76,5 @@ fn main() {
     collect(&root, &root, &mut rows);
     let src = format!("pub static WGSL_FILES: &[(&str, &str)] = &[\n{}];\n", rows.concat());
     fs::write(Path::new(&env::var("OUT_DIR").unwrap()).join("wgsl_files.rs"), src).unwrap();
+    fs::write(Path::new(&env::var("OUT_DIR").unwrap()).join("wgsl_constants.rs"), pass_constants(&root)).unwrap();
 }

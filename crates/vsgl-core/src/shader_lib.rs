@@ -10,6 +10,15 @@ use std::collections::HashSet;
 
 include!(concat!(env!("OUT_DIR"), "/wgsl_files.rs"));
 
+/// The integer constants each pass shader declares at its top level, as Rust constants (written
+/// by build.rs from `wgsl/passes/*.wgsl`): the workgroup sizes, tiles and radii the host
+/// dispatches by are written once, in the shader. `tests::pass_constants_are_what_naga_reads`
+/// checks them against naga's reading of each composed module.
+#[allow(clippy::all)]
+pub mod constants {
+    include!(concat!(env!("OUT_DIR"), "/wgsl_constants.rs"));
+}
+
 /// The embedded source of `path` (relative to `wgsl/`).
 pub fn source(path: &str) -> Option<&'static str> {
     WGSL_FILES.iter().find(|(p, _)| *p == path).map(|(_, s)| *s)
@@ -119,6 +128,25 @@ fn expand(path: &str, from: Option<(&str, u32)>, seen: &mut HashSet<String>, out
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// The Rust constants build.rs writes are what naga reads from each composed pass module:
+    /// the constant of that name, its initializer a literal of that value. (So the build
+    /// script's line reading cannot drift from the WGSL a pipeline is built from.)
+    #[test]
+    fn pass_constants_are_what_naga_reads() {
+        assert!(constants::ALL.len() >= 20, "{} constants", constants::ALL.len());
+        assert_eq!(constants::denoise::TILE, 64);
+        for (file, name, value) in constants::ALL {
+            let module = naga::front::wgsl::parse_str(&compose(file).unwrap()).unwrap_or_else(|e| panic!("{file}: {e}"));
+            let (_, constant) = module.constants.iter().find(|(_, c)| c.name.as_deref() == Some(*name)).unwrap_or_else(|| panic!("{file} has no constant {name}"));
+            let read = match module.global_expressions[constant.init] {
+                naga::Expression::Literal(naga::Literal::U32(v)) => v as i64,
+                naga::Expression::Literal(naga::Literal::I32(v)) => v as i64,
+                ref other => panic!("{file}: {name} is {other:?}, not an integer literal"),
+            };
+            assert_eq!(read, *value, "{file}: {name}");
+        }
+    }
 
     /// A syntax error inside an included file is reported at that file's own line, not at the
     /// line of the composed module.

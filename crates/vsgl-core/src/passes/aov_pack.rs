@@ -6,9 +6,9 @@ use crate::error::Result;
 use crate::frame::{GBuffer, IndirectTargets};
 use crate::gpu::{groups, Gpu, Recorder};
 
-const WORKGROUP: u32 = 8;
+use crate::shader_lib::constants::aov_pack::WORKGROUP;
 /// Most AOVs one frame packs (`MAX_ENTRIES` in the shader).
-pub const MAX_ENTRIES: usize = 10;
+pub const MAX_ENTRIES: usize = crate::shader_lib::constants::aov_pack::MAX_ENTRIES as usize;
 
 /// An AOV to pack: its kind (index in `renderer::AOV_NAMES`, or [`LDR_KIND`]) and its first
 /// 4-byte word in the packed buffer.
@@ -19,7 +19,7 @@ pub struct PackEntry {
 }
 
 /// The kind of the 8-bit tone-mapped AOV (`AOV_LDR` in the shader).
-pub const LDR_KIND: u32 = 9;
+pub const LDR_KIND: u32 = crate::shader_lib::constants::aov_pack::AOV_LDR;
 
 #[repr(C)]
 #[derive(Clone, Copy, bytemuck::Pod, bytemuck::Zeroable)]

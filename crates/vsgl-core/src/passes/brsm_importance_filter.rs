@@ -7,7 +7,7 @@ use crate::error::Result;
 use crate::frame::Rsm;
 use crate::gpu::{groups, Gpu, Recorder};
 
-const WORKGROUP: u32 = 8;
+use crate::shader_lib::constants::brsm_importance_filter::WORKGROUP;
 
 #[repr(C)]
 #[derive(Clone, Copy, bytemuck::Pod, bytemuck::Zeroable)]

@@ -6,7 +6,7 @@ use crate::error::Result;
 use crate::frame::Rsm;
 use crate::gpu::{groups, Gpu, Recorder};
 
-const WORKGROUP: u32 = 8;
+use crate::shader_lib::constants::brsm_mix::WORKGROUP;
 
 /// ε of the shader: the RSM density's share in the mixture `(q/Q + ε w/W)/(1 + ε)`.
 pub const RSM_SHARE: f64 = 0.1;

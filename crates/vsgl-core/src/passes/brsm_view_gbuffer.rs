@@ -8,7 +8,7 @@ use crate::frame::{pyramid_layout, GBuffer, Rsm};
 use crate::gpu::{groups, Gpu, PipelineVariants, Recorder};
 use crate::plan::ShaderFeatures;
 
-const WORKGROUP: u32 = 8;
+use crate::shader_lib::constants::brsm_view_gbuffer::WORKGROUP;
 
 /// Largest side of the view grid: a 1920×1080 view is subsampled onto 512² texels (every 3.75th
 /// column, every 2.1th row), which is plenty for an importance estimate and keeps the five

@@ -8,12 +8,12 @@ use crate::frame::{GBuffer, IndirectTargets};
 use crate::gpu::{groups, Gpu, PipelineVariants, Recorder};
 use crate::plan::ShaderFeatures;
 
-/// Pixels per workgroup along the filter's axis (`TILE` in the shader); a workgroup is one line of
-/// them, so the x pass dispatches ceil(W/TILE) × H workgroups and the y pass ceil(H/TILE) × W.
-const TILE: u32 = 64;
-/// The largest radius the shader's workgroup span holds (`MAX_RADIUS`), and so the largest
-/// interleave tile side a method may take (its `interleave` option's bound).
-pub const MAX_RADIUS: u32 = 16;
+// Pixels per workgroup along the filter's axis (`TILE` in the shader); a workgroup is one line of
+// them, so the x pass dispatches ceil(W/TILE) × H workgroups and the y pass ceil(H/TILE) × W.
+use crate::shader_lib::constants::denoise::TILE;
+// The largest radius the shader's workgroup span holds (`MAX_RADIUS`), and so the largest
+// interleave tile side a method may take (its `interleave` option's bound).
+pub use crate::shader_lib::constants::denoise::MAX_RADIUS;
 
 #[repr(C)]
 #[derive(Clone, Copy, bytemuck::Pod, bytemuck::Zeroable)]

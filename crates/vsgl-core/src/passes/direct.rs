@@ -5,7 +5,7 @@ use crate::frame::GBuffer;
 use crate::gpu::{groups, Gpu, PipelineRef, PipelineVariants, Recorder};
 use crate::plan::ShaderFeatures;
 
-const WORKGROUP: u32 = 8;
+use crate::shader_lib::constants::direct::WORKGROUP;
 
 pub struct DirectPass {
     pipelines: PipelineVariants,

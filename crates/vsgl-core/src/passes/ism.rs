@@ -5,7 +5,7 @@
 use crate::error::Result;
 use crate::gpu::{groups, Gpu, Recorder};
 
-const WORKGROUP: u32 = 64;
+use crate::shader_lib::constants::ism::WORKGROUP;
 /// Most maps one dispatch covers (the y dimension of a dispatch is at most 65535 workgroups).
 const MAPS_PER_DISPATCH: u32 = 65535;
 

@@ -10,7 +10,7 @@ use crate::gpu::{groups, Gpu, PipelineRef, PipelineVariants, Recorder};
 use crate::plan::ShaderFeatures;
 use crate::upload::GpuScene;
 
-const WORKGROUP: u32 = 8;
+use crate::shader_lib::constants::material::WORKGROUP;
 
 
 pub struct MaterialPass {

@@ -8,7 +8,7 @@ use crate::frame::uniforms::FrameUniforms;
 use crate::frame::Rsm;
 use crate::gpu::{groups, Gpu, Recorder};
 
-const WORKGROUP: u32 = 64;
+use crate::shader_lib::constants::metropolis_step::WORKGROUP;
 
 /// Bytes per chain state and per sample (one vec4f each).
 pub const STATE_BYTES: u64 = 16;

@@ -4,7 +4,7 @@ use crate::error::Result;
 use crate::frame::MomentChains;
 use crate::gpu::{groups, Gpu, Recorder};
 
-const WORKGROUP: u32 = 8;
+use crate::shader_lib::constants::moment_mips::WORKGROUP;
 
 #[repr(C)]
 #[derive(Clone, Copy, bytemuck::Pod, bytemuck::Zeroable)]

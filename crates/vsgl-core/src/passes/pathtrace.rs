@@ -11,7 +11,7 @@ use crate::plan::ShaderFeatures;
 use crate::scene::Scene;
 use crate::upload::GpuScene;
 
-const WORKGROUP: u32 = 8;
+use crate::shader_lib::constants::pathtrace::WORKGROUP;
 /// Bounce paths (pixel samples) per dispatch and submission. Each path is one closest-hit ray
 /// and one shadow ray per light. Measured on an H100 at 1920×1088 (2^21 pixels): 2^22 paths
 /// took 0.9 ms (built-in Cornell box, 36 triangles) to 1.8 ms (FlightHelmet, 95k triangles), so
@@ -29,8 +29,8 @@ const MAX_SAMPLES_PER_DISPATCH: u32 = 1024;
 /// built-ins), so 1024 samples ran past the cap. Measured on glossy_cornell at 64², camera paths:
 /// 1024 spp in one dispatch gave an image mean 0.73× that of 64 spp, blocks down to 0.27×.
 const CPU_MAX_SAMPLES_PER_DISPATCH: u32 = 16;
-/// Threads of a `light_paths` workgroup (pathtrace.wgsl LIGHT_WORKGROUP).
-const LIGHT_WORKGROUP: u32 = 64;
+// Threads of a `light_paths` workgroup (pathtrace.wgsl LIGHT_WORKGROUP).
+use crate::shader_lib::constants::pathtrace::LIGHT_WORKGROUP;
 /// WebGPU's guaranteed limit on workgroups per dispatch dimension.
 const MAX_WORKGROUPS_PER_DIMENSION: u32 = 65535;
 /// Fewest batches in bidirectional mode, whose light part's variance is taken over batches.

@@ -6,7 +6,7 @@ use crate::error::Result;
 use crate::frame::Rsm;
 use crate::gpu::{groups, Gpu, Recorder};
 
-const WORKGROUP: u32 = 8;
+use crate::shader_lib::constants::pdf_mips::WORKGROUP;
 
 
 #[repr(C)]

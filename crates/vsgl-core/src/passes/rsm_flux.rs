@@ -6,7 +6,7 @@ use crate::error::Result;
 use crate::gpu::{groups, Gpu, PipelineVariants, Recorder};
 use crate::plan::ShaderFeatures;
 
-const WORKGROUP: u32 = 8;
+use crate::shader_lib::constants::rsm_flux::WORKGROUP;
 
 
 pub struct RsmFluxPass {

@@ -6,7 +6,7 @@ use crate::frame::Rsm;
 use crate::gpu::{groups, storage_binding, uniform_binding, Gpu, PipelineVariants, Recorder};
 use crate::plan::ShaderFeatures;
 
-const WORKGROUP: u32 = 64;
+use crate::shader_lib::constants::vpl_sample::WORKGROUP;
 
 /// GPU twin of `Vpl` in `wgsl/common/vpl.wgsl` (80 bytes).
 #[repr(C)]

@@ -7,7 +7,7 @@ use crate::gpu::{for_each_chunk, interleaved_groups, traced_lights_per_dispatch,
 use crate::frame::ShadingVisibility;
 use crate::plan::ShaderFeatures;
 
-const WORKGROUP: u32 = 8;
+use crate::shader_lib::constants::vpl_shading::WORKGROUP;
 
 #[repr(C)]
 #[derive(Clone, Copy, bytemuck::Pod, bytemuck::Zeroable)]

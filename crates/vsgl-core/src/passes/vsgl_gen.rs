@@ -6,7 +6,7 @@ use crate::frame::{MomentChains, Rsm};
 use crate::gpu::{groups, Gpu, Recorder};
 use crate::passes::vpl_sample::Sampling;
 
-const WORKGROUP: u32 = 64;
+use crate::shader_lib::constants::vsgl_gen::WORKGROUP;
 
 /// GPU twin of `VsglRaw` in `wgsl/common/vsgl_record.wgsl` (128 bytes = 32 f32).
 pub const VSGL_FLOATS: usize = 32;

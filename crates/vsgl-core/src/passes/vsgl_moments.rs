@@ -7,7 +7,7 @@ use crate::frame::Rsm;
 use crate::gpu::{groups, Gpu, PipelineVariants, Recorder};
 use crate::plan::ShaderFeatures;
 
-const WORKGROUP: u32 = 8;
+use crate::shader_lib::constants::vsgl_moments::WORKGROUP;
 
 #[repr(C)]
 #[derive(Clone, Copy, bytemuck::Pod, bytemuck::Zeroable)]

@@ -7,7 +7,7 @@ use crate::frame::ShadingVisibility;
 use crate::passes::vsgl_gen::SHADOW_CANDIDATES;
 use crate::plan::ShaderFeatures;
 
-const WORKGROUP: u32 = 8;
+use crate::shader_lib::constants::vsgl_shading::WORKGROUP;
 /// Pixels each thread shades (register blocking; the shader's override `PIXELS_PER_THREAD`,
 /// 1 … 4): every VSGL read from the workgroup tile serves that many (pixel, VSGL) pairs. The
 /// pixels are neighbours of one interleave class along x, so a workgroup covers

@@ -76,3 +76,31 @@ impl RenderOptions {
         info.makes_aov(name) && asked
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::AOV_NAMES;
+    use crate::shader_lib::constants::aov_pack as shader;
+
+    /// `aov_pack.wgsl` numbers the AOV kinds as AOV_NAMES orders them, and packs them all.
+    #[test]
+    fn aov_kinds_are_the_shaders() {
+        let kinds = [
+            shader::AOV_IMAGE,
+            shader::AOV_INDIRECT,
+            shader::AOV_INDIRECT_DIFFUSE,
+            shader::AOV_INDIRECT_SPECULAR,
+            shader::AOV_DIRECT,
+            shader::AOV_ALBEDO,
+            shader::AOV_NORMAL,
+            shader::AOV_DEPTH,
+            shader::AOV_STDERR,
+            shader::AOV_LDR,
+        ];
+        assert_eq!(kinds.len(), AOV_NAMES.len());
+        for (i, kind) in kinds.iter().enumerate() {
+            assert_eq!(*kind as usize, i, "{}", AOV_NAMES[i]);
+        }
+        assert_eq!(shader::MAX_ENTRIES as usize, AOV_NAMES.len());
+    }
+}
