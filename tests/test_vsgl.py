@@ -4,8 +4,6 @@ convergence against the reference, interleaving and denoising."""
 from __future__ import annotations
 
 import math
-import pathlib
-import re
 
 import numpy as np
 import pytest
@@ -14,23 +12,14 @@ import vsgl
 from vsgl.metrics import rel_rmse
 from rsm_model import spot_texel_footprint_variance
 from camera_model import camera_rays
+from shader_constants import wgsl_constant
 
-# Constants of wgsl/common/sg.wgsl (the f64 twin in crates/vsgl-core/src/verify/oracle reads them too).
-LAMBERT_LOBE_SG_SHARPNESS = 2.2925
-
-
-def _wgsl_f32_constant(name: str) -> float:
-    """A `const NAME: f32 = value;` of wgsl/common/sg.wgsl, read from the shader itself so the
-    tests check the digits the GPU uses."""
-    src = (pathlib.Path(__file__).resolve().parent.parent / "wgsl" / "common" / "sg.wgsl").read_text()
-    match = re.search(rf"^const {name}: f32 = ([0-9.eE+-]+);", src, re.MULTILINE)
-    assert match, f"{name} not found in wgsl/common/sg.wgsl"
-    return float(match.group(1))
-
-
-LAMBERT_LOBE_SG_SHAPE_ERROR = _wgsl_f32_constant("LAMBERT_LOBE_SG_SHAPE_ERROR")
-LAMBERT_LOBE_HEMISPHERE_GAIN = _wgsl_f32_constant("LAMBERT_LOBE_HEMISPHERE_GAIN")
-TOKSVIG_SHARPNESS_MAX = 1.0e5
+# Constants of wgsl/common/sg.wgsl, read from the shader (the f64 twin in
+# crates/vsgl-core/src/verify/oracle reads them too).
+LAMBERT_LOBE_SG_SHARPNESS = wgsl_constant("common/sg.wgsl", "LAMBERT_LOBE_SG_SHARPNESS")
+LAMBERT_LOBE_SG_SHAPE_ERROR = wgsl_constant("common/sg.wgsl", "LAMBERT_LOBE_SG_SHAPE_ERROR")
+LAMBERT_LOBE_HEMISPHERE_GAIN = wgsl_constant("common/sg.wgsl", "LAMBERT_LOBE_HEMISPHERE_GAIN")
+TOKSVIG_SHARPNESS_MAX = wgsl_constant("common/sg.wgsl", "TOKSVIG_SHARPNESS_MAX")
 SG_SHARPNESS_MAX = 1.0e9
 VSGL_VARIANCE_MIN_FRACTION = 1.0e-6
 

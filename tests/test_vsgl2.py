@@ -14,9 +14,10 @@ import vsgl
 from rsm_model import spot_texel_footprint_variance
 from vsgl import bench
 from scene_builders import write_quads
+from shader_constants import wgsl_constant
 
 # Constants of wgsl/common/sg.wgsl, ggx.wgsl and vsgl.wgsl (as in test_vsgl.py).
-LAMBERT_LOBE_SG_SHARPNESS = 2.2925
+LAMBERT_LOBE_SG_SHARPNESS = wgsl_constant("common/sg.wgsl", "LAMBERT_LOBE_SG_SHARPNESS")
 TOKSVIG_SHARPNESS_MAX = 1.0e5
 SG_SHARPNESS_MAX = 1.0e9
 GGX_ALPHA_MIN = 1.0e-4
