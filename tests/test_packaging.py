@@ -31,3 +31,18 @@ def test_setup_installs_every_extra():
     missing = {f"{extra}: {req}" for extra, reqs in extras.items() for req in reqs if req not in installed}
     assert not missing, f"scripts/setup.sh does not install {sorted(missing)}"
     assert "metrics" in extras and "flip-evaluator>=1.7" in extras["metrics"]
+
+
+def test_no_source_comment_cites_a_tracker_number():
+    # Comments say why in words a reader can follow; a tracker number is not something a reader
+    # of the code can open. (A docs section title quoted with its page is a citation of the docs.)
+    pattern = re.compile(r"\bissues? \d+", re.IGNORECASE)
+    cited = []
+    for folder, suffixes in (("crates", {".rs"}), ("wgsl", {".wgsl"}), ("python", {".py", ".pyi"})):
+        for path in sorted((ROOT / folder).rglob("*")):
+            if path.suffix not in suffixes or "target" in path.parts:
+                continue
+            for number, line in enumerate(path.read_text(errors="replace").splitlines(), 1):
+                if pattern.search(line) and "docs/" not in line:
+                    cited.append(f"{path.relative_to(ROOT)}:{number}: {line.strip()}")
+    assert not cited, "\n".join(cited)

@@ -17,7 +17,7 @@ Per image, against a reference ``ref`` of the same shape:
 - ``flip(x, ref)``: NVIDIA FLIP (LDR, on tone-mapped sRGB) when the ``flip-evaluator`` package is
   installed (``pip install vsgl[metrics]``), else ``None``.
 
-Over a sequence of frames (temporal coherence, issue 19; docs/rendering.md, "Temporal coherence"):
+Over a sequence of frames (temporal coherence; docs/rendering.md, "Temporal coherence"):
 
 - ``flicker(frames, reference_frames)``: RMS over pixels, channels and consecutive frame pairs
   of (Δmethod − Δreference), Δ the difference between consecutive frames, relative to the RMS
@@ -374,7 +374,7 @@ def _sequence(frames, name: str) -> np.ndarray:
 
 
 def flicker(frames, reference_frames) -> float:
-    """Temporal error of a sequence against the true sequence (issue 19's definition):
+    """Temporal error of a sequence against the true sequence:
 
         flicker = sqrt(mean_{k, pixels} ((x_{k+1} − x_k) − (r_{k+1} − r_k))²) / sqrt(mean r²)
 

@@ -1,8 +1,8 @@
 """The numerical stability suite: ``python -m vsgl stability [--adapter NAME]``.
 
 Every WGSL math function of vsgl (``wgsl/common/{math,sg,ggx,vsgl}.wgsl``) is evaluated in f32 on
-the GPU and by its float64 oracle on the same inputs, over case families with the extremes of
-issue 3 (SG sharpness 1e-6…1e9, roughness 1e-4…1, grazing cosines down to 1e-6 and exactly 0,
+the GPU and by its float64 oracle on the same inputs, over case families with the extremes
+(SG sharpness 1e-6…1e9, roughness 1e-4…1, grazing cosines down to 1e-6 and exactly 0,
 axes equal / opposite / 1e-7 rad apart, variance down to 1e-12 of d² and 0, scenes 1e5 m from
 the origin, intensities 1e-8…1e8, zero power).
 
@@ -73,7 +73,7 @@ def format_table(rows: Sequence[dict[str, Any]]) -> str:
 
 # ---------------------------------------------------------------------------------------------
 # The scene-level suite: every method end to end on built-in scenes under stiff and extreme
-# transformations (issue 20, item 9).
+# transformations.
 # ---------------------------------------------------------------------------------------------
 
 SCENE_COLUMNS = ("scene", "method", "case", "rel. RMSE", "bound", "surface px", "flipped px", "NaN/Inf", "pass/fail")

@@ -31,7 +31,7 @@ fn rsm_lobe_means(y: vec3f, normal: vec3f, roughness: f32, light_dir: vec4f) -> 
     return out;
 }
 
-// A texel is not a point but a patch of the surface (issue 18, item 2). Its cross-section
+// A texel is not a point but a patch of the surface. Its cross-section
 // perpendicular to the light is a square of side a, a² = Δω·d² (perspective, Δω the texel's
 // solid angle, as in rsm_flux.wgsl) or (2R/N)² (orthographic); on a surface tilted by θ to the
 // light it is stretched by 1/cos θ along one axis. A uniform a × a/cos θ rectangle has

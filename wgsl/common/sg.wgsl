@@ -240,7 +240,7 @@ fn lambert_lobe_sg(normal: vec3f) -> Sg {
 }
 
 // Gain that normalizes the Lambert lobe's SG over the texel's own hemisphere instead of the
-// sphere (issue 18: VSGLs lost 9% of the diffuse light at every N). The papers' lobe
+// sphere (VSGLs lost 9% of the diffuse light at every N). The papers' lobe
 // G(ω; n, λd)/A(λd) [Tok16s Eq. 1] has the integral of ρd max(ω·n, 0) over the *sphere*, but the
 // fraction e^{−λd}/(1 + e^{−λd}) of it (9.2% at λd = 2.2925) lies below the texel's plane, where
 // a Lambertian texel emits nothing and no receiver of its light lies: that power is lost.

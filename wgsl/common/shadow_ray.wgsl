@@ -2,7 +2,7 @@
 //   storage arrays (bvh_nodes, bvh_triangles).
 //
 // Shadow rays between a receiver and a virtual light through the scene's BVH, for
-// `visibility="raytrace"` (issue 17). Points are relative to the frame origin (the eye), like the
+// `visibility="raytrace"`. Points are relative to the frame origin (the eye), like the
 // G-buffer and the virtual lights; the BVH is relative to the scene upload's anchor, where the
 // eye is at `view_origin`, so a point enters BVH space as p + view_origin. Offsets follow the
 // path tracer's rule (pathtrace.wgsl): 1e-5 of the point's coordinate magnitude in either

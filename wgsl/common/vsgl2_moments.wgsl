@@ -12,7 +12,7 @@
 //   specular_position  = (w_s y, 0)
 // = 6 vec4 per texel: the poster's three RGBA32F buffers per VSGL; and one shared by both,
 //   plane              = (w n, w (y·n))       w = w_d + w_s, n the texel normal
-// the mean tangent plane of issue 18 item 4 (vsgl_tangent_plane.wgsl; the fade's height
+// the cluster's mean tangent plane (vsgl_tangent_plane.wgsl; the fade's height
 // p·N̄ − E_w[y·n] does not depend on which weights gave μ, so one plane serves both records).
 // Shared by the two implementations of the reduction (passes/vsgl2_reduce.wgsl: shared memory;
 // passes/vsgl2_reduce_subgroup.wgsl: subgroup sums). Their entry points:
@@ -114,7 +114,7 @@ fn texel_moments(xy: vec2u) -> Moments2 {
     let lobes = rsm_lobe_means(y, normal, rsm_normal[i].w, params.light_dir);
     let mean_d = lobes.diffuse;
     let mean_s = lobes.specular;
-    // Each texel's own extent is part of the cluster's positional variance (issue 18, item 2).
+    // Each texel's own extent is part of the cluster's positional variance.
     let y2 = dot(y, y) + rsm_texel_footprint_variance(y, normal, params.light_dir, params.texel_footprint);
     return Moments2(
         vec4f(fd, wd * y2),

@@ -22,13 +22,13 @@ struct VsglRaw {
     center: vec2f,
     mass: f32,
     _pad: f32,
-    // The cluster's mean tangent plane (issue 18, item 4): plane_normal = Σw·n/Σw (not unit:
+    // The cluster's mean tangent plane: plane_normal = Σw·n/Σw (not unit:
     // its length says how coherent the normals are), plane_offset = E_w[(μ − y)·n], so that
     // (p − μ)·plane_normal + plane_offset is the weighted mean height of p above the texels'
     // tangent planes. Zero when the shading mode does not use it (vsgl_tangent_plane_fade).
     plane_normal: vec3f,
     plane_offset: f32,
-    // Where `visibility="raytrace"` aims its shadow ray (issue 18): the sampled centre texel's
+    // Where `visibility="raytrace"` aims its shadow ray: the sampled centre texel's
     // own surface point (relative to the frame origin, like `mean`), not μ. μ of a cluster that
     // wraps around an object lies inside it, and one ray to μ shadows the whole cluster at once;
     // the centre is a lit surface point drawn from the sampling density, so over the VSGLs

@@ -1,9 +1,9 @@
-// A VSGL's mean tangent plane and the fade of its light below it (issue 18, item 4): pure
+// A VSGL's mean tangent plane and the fade of its light below it: pure
 // functions used by VSGL generation (the plane from the moment chain F) and shading (the fade).
 #include "common/constants.wgsl"
 #include "common/vsgl.wgsl"
 
-// The cluster's mean tangent plane (issue 18, item 4; derived for vsgl, not in the papers).
+// The cluster's mean tangent plane (derived for vsgl, not in the papers).
 // Each texel j reflects only into its own hemisphere, (p − y_j)·n_j > 0. A VSGL keeps the
 // weighted mean of that height, which is linear in p:
 //   H(p) = E_w[(p − y)·n] = (p − μ)·N̄ + E_w[(μ − y)·n],  N̄ = Σw n/Σw,

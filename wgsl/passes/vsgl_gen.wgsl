@@ -6,7 +6,7 @@
 //  2. kernel level l_i:
 //     "density"  [Tok15 §4.2]: l = l_top − ½ log2(N p(x_i)),
 //     "integral" [Tok16 Eq. 3, Algorithm 1]: solve (4^l/M) p̄(x_i, l) = K/N by bisection;
-//     "node" (issue 18, item 1): the coarsest quadtree node on x_i's texel path whose mass
+//     "node": the coarsest quadtree node on x_i's texel path whose mass
 //     P_v = W_v/W is at most K/N — the 2016 rule applied to whole nodes;
 //     with `coherence` c > 0 (derived for vsgl, not in the papers; docs/rendering.md, "The
 //     real-scene corpus"), each kernel also shrinks until its texels' mean normal has length
@@ -21,7 +21,7 @@
 //     "node": the node's exact totals F_v/(N P_v) (moments read at the node, no filtering);
 //     with f̄, p̄ in density units on the unit square (M × the texel average);
 //  4. the VSGL from the moments [Tok15 §3.1; Tok16s §3]: Toksvig-merged lobes and the
-//     positional Gaussian (vsgl.wgsl), and (chain F, issue 18 item 4) the cluster's mean
+//     positional Gaussian (vsgl.wgsl), and (chain F) the cluster's mean
 //     tangent plane.
 // The sampling density p comes from `pyramid` (2×2 sums, level 0 = per-texel weights) and the
 // moments from the five (or six) chains. Usually the pyramid holds the moments' own weight w (chain A's

@@ -8,7 +8,7 @@
 //                                      v: the texel's own positional variance (footprint)
 //   E = (w y, 0)                       y: texel position relative to the light (local origin)
 //   F = (w n, w (y·n))                 n: texel normal — the cluster's mean tangent plane
-//                                      (issue 18, item 4; vsgl_tangent_plane_fade in vsgl.wgsl)
+//                                      (vsgl_tangent_plane_fade in vsgl.wgsl)
 // Mip levels hold 2×2 averages (passes/moment_mips.wgsl), so a cluster of 4^l texels sums to
 // 4^l × its level-l value [Tok15 §4.1].
 #include "common/constants.wgsl"

@@ -8,7 +8,7 @@
 // TILE: one device-memory load serves WORKGROUP²·PIXELS_PER_THREAD pixels, and each thread
 // shades PIXELS_PER_THREAD pixels of the class per tile read. Visibility is not evaluated
 // (visibility = "none"), or with `visibility="raytrace"` (VISIBILITY_TRACED) by one shadow ray
-// to each VSGL's shadow target (issue 18: its sampled centre texel's surface point, μ for vsgl2;
+// to each VSGL's shadow target (its sampled centre texel's surface point, μ for vsgl2;
 // the VSGL's lobes count only where it is visible), or with `visibility="ism"`
 // (VISIBILITY_ISM) by a lookup in μ's imperfect shadow map.
 #include "common/constants.wgsl"
@@ -36,11 +36,10 @@ struct ShadeParams {
     first: u32,
     // 1 (kernel="node"): a VSGL of one RSM texel (level 0) is shaded as that texel exactly —
     // its diffuse lobe as a Lambertian point emitter, I(ω) = P_d·max(ω·n_t, 0)/π — so VSGLs
-    // become VPLs as N reaches the texel count and converge with them (issue 18, item 3).
+    // become VPLs as N reaches the texel count and converge with them.
     exact_texels: u32,
     // 1 (diffuse "accurate" and "sg_product", and "papers" with the method's plane_fade): the
-    // diffuse term fades out below each VSGL's mean tangent plane (vsgl_tangent_plane_fade;
-    // issue 18, item 4).
+    // diffuse term fades out below each VSGL's mean tangent plane (vsgl_tangent_plane_fade).
     plane_fade: u32,
     // 0 = lighting="asg": the papers' SG–ASG specular (vsgl_specular); 1 = lighting="accurate":
     // the filtered-NDF specular (vsgl_specular_accurate); 2 = lighting="blend": the two weighted
@@ -149,7 +148,7 @@ fn lambert_patch_irradiance(mean: vec3f, axis: vec3f, variance: f32, p: vec3f, n
 }
 
 // Weight of the exact Lambertian emission against the cluster's SG (lambert_lobe=
-// "exact_compact"; issue 18, item 3, "exact lobes as clusters shrink"). The Lambert SG's shape
+// "exact_compact": exact lobes as clusters shrink). The Lambert SG's shape
 // differs from max(cos, 0)/π by ε = LAMBERT_LOBE_SG_SHAPE_ERROR (relative RMS over the
 // hemisphere) however small the cluster, while treating the cluster as one patch at μ errs by
 // about σ²/d²: equal where σ²/d² = ε, so w = ε·d²/(ε·d² + σ²) trusts the exact form where the
@@ -390,7 +389,7 @@ fn shade_pair(px: ptr<function, BlockPixel>, light: TileLight) {
     let has_diffuse = any(diffuse_power > vec3f(0.0));
     let lobe_d4 = light.diffuse_lobe;
     if (params.exact_texels == 1u && has_diffuse && light.target_level.w == 0.0) {
-        // The texel is a patch, not a point (issue 18, item 2): its positional
+        // The texel is a patch, not a point: its positional
         // variance σ² is its footprint (vsgl_moments.wgsl).
         let texel_irradiance = lambert_patch_irradiance(position.mean, lobe_d4.xyz, position.variance, p, n);
         (*px).diffuse += diffuse_power * (texel_irradiance * INV_PI);

@@ -1,6 +1,7 @@
 //! The stability suite on the default adapter (lavapipe in CI): every WGSL function of
-//! wgsl/common/{math,sg,ggx,vsgl}.wgsl in f32 against its f64 oracle on grids with the extremes of
-//! issue 3. Every row must pass (no NaN/Inf, every case within its stated bound); the table is
+//! wgsl/common/{math,sg,ggx,vsgl}.wgsl in f32 against its f64 oracle on grids with the extremes
+//! (sharpness 1e-6…1e9, grazing cosines, zero variance and power). Every row must pass (no
+//! NaN/Inf, every case within its stated bound); the table is
 //! printed (`cargo test -p vsgl-core --release --test stability -- --nocapture`).
 //! Skips, with a message, only when there is no adapter at all (under CI that is a failure).
 

@@ -59,7 +59,7 @@ impl Rsm {
 /// A, B, C, D, E of `wgsl/passes/vsgl_moments.wgsl`: what every VSGL needs.
 pub const BASE_CHAINS: u32 = 5;
 /// With F (Σw·n, Σw·(y·n)), the clusters' tangent planes, which only the shading modes that
-/// fade light below them read (issue 18, item 4); left out otherwise.
+/// fade light below them read; left out otherwise.
 pub const PLANE_CHAINS: u32 = 6;
 
 /// The moment mip chains in one buffer (chain c at c·chain_len vec4s).

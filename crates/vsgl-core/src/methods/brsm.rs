@@ -1,4 +1,4 @@
-//! Bidirectional RSM importance (`importance="brsm"`, issue 18 item 6) [Tok15 §4.3; Tok16 §5
+//! Bidirectional RSM importance (`importance="brsm"`) [Tok15 §4.3; Tok16 §5
 //! setup and Table 1]: VSGLs generated on the camera's G-buffer estimate what each RSM texel
 //! adds to the view, and the RSM's VPLs or VSGLs are then sampled from that importance instead
 //! of from the reflected power Φ·(R_d + R_s) alone. Shared by `vpl` and `vsgl`; the steps,

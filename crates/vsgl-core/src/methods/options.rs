@@ -317,7 +317,7 @@ pub mod common {
         note: "",
     };
 
-    /// The RSM side `vpl` and `vsgl` use when `rsm_size` is not given (issue 18, item 2): at least
+    /// The RSM side `vpl` and `vsgl` use when `rsm_size` is not given: at least
     /// four texels per virtual light, so clusters keep several texels and quadtree-node VSGLs
     /// (`kernel="node"`) reach single texels only where the light is concentrated:
     /// max(256, 2^⌈log2(2√N)⌉), at most 1024 (whose six moment chains take 134 MB). 256 up to
@@ -370,7 +370,7 @@ pub mod common {
         note: "",
     };
     pub const ISM_PCF: OptionSpec = int("ism_pcf", 0, 2, 0, "percentage-closer filter radius of the imperfect shadow map lookup in texels (0: one texel; 1: 3×3, softer and a few % darker where nothing occludes)");
-    /// Bidirectional RSM importance (issue 18 item 6; docs/rendering.md, "Bidirectional RSM
+    /// Bidirectional RSM importance (docs/rendering.md, "Bidirectional RSM
     /// importance"): the RSM's sampling density from the camera's view.
     pub const IMPORTANCE: OptionSpec = OptionSpec {
         name: "importance",

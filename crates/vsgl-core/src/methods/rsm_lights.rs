@@ -94,8 +94,8 @@ pub struct LightRsm<'a> {
 }
 
 impl LightRsm<'_> {
-    /// What `vsgl_moments.wgsl` needs to give each RSM texel its area on the surface
-    /// (issue 18, item 2): for a perspective RSM (spot light, point light face) the view
+    /// What `vsgl_moments.wgsl` needs to give each RSM texel its area on the surface: for a
+    /// perspective RSM (spot light, point light face) the view
     /// axis and t²·(2/N)², so that a texel at angle α to the axis spans the solid angle
     /// Δω = t²(2/N)²cos³α (as in rsm_flux.wgsl) and a cross-section Δω·d² at distance d;
     /// for an orthographic RSM (directional light) w is the cross-section (2R/N)² itself and

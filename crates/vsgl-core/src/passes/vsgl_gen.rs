@@ -49,7 +49,7 @@ pub enum Kernel {
     Density,
     /// 2016: (4^l/M) p̄(s, l) = K/N by bisection.
     Integral,
-    /// Quadtree nodes (issue 18, item 1): the coarsest node on the sampled texel's path whose
+    /// Quadtree nodes: the coarsest node on the sampled texel's path whose
     /// probability mass is at most K/N, its moments read exactly (no filtering): unbiased totals.
     Node,
 }

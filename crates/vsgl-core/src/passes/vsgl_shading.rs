@@ -78,7 +78,7 @@ pub enum DiffuseMode {
 
 impl DiffuseMode {
     /// Whether this form's diffuse term always fades out below a cluster's mean tangent plane
-    /// (issue 18, item 4; the specular term never needs it: the ASG form vanishes there). The
+    /// (the specular term never needs it: the ASG form vanishes there). The
     /// accurate clamped cosine and the SG product integrate the incoming lobe's part above the
     /// receiver's horizon, so a plane lights itself (3.9% of its direct light at N = 4096)
     /// unless the cluster's own hemisphere is enforced. The papers' form fades only with the

@@ -123,7 +123,7 @@ mod tests {
 
     #[test]
     fn shadow_memory_is_limited_and_the_limit_scales_with_the_side() {
-        // 1001 spot lights at the default 1024²: 4.2 GB, the "GPU out of memory" of issue 20.
+        // 1001 spot lights at the default 1024²: 4.2 GB, which failed as "GPU out of memory" before this bound.
         let e = check_lights(&vec![spot(); 1001], Some(1024), &limits()).unwrap_err().to_string();
         assert!(e.starts_with("shadow-map memory: the 1001 lights' 1001 shadow-map layers of 1024² texels need 1001 × 4194304 = 4198498304 bytes"), "{e}");
         assert!(e.contains("use at most 511 layers at shadow_size=1024"), "{e}");

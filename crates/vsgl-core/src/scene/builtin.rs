@@ -446,7 +446,7 @@ pub fn caustics_ring() -> Scene {
 
 /// A polished metal panel (roughness 0.02) tilted 45° on a diffuse floor in front of a diffuse
 /// wall, lit from straight above by a narrow spot: the panel throws the beam sideways onto the
-/// wall as a sharp bright patch (a planar caustic), issue 18's mirror-panel case. Unlike the
+/// wall as a sharp bright patch (a planar caustic). Unlike the
 /// ring, every texel of the panel reflects the same way, so the caustic is one coherent lobe
 /// that VSGL clusters of the panel can represent exactly, and the wall around the patch should
 /// stay dark: light that VSGLs spread there is their bias.

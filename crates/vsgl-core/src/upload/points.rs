@@ -1,4 +1,4 @@
-//! The scene as a point set, for imperfect shadow maps (`visibility="ism"`, issue 17): points
+//! The scene as a point set, for imperfect shadow maps (`visibility="ism"`): points
 //! spread over the triangles in proportion to their area [Ritschel et al. 2008, "Imperfect
 //! Shadow Maps", §3.1: the scene's surfaces as uniformly distributed points], generated once per
 //! scene upload on the CPU (in f64) and kept with it like the BVH; moved geometry re-uploads

@@ -101,7 +101,7 @@ pub enum HarnessFunction {
     VsglSpecularBlend = 43,
     VsglSpecularFiltered = 44,
     VsglSpecularBlendWithReceiver = 45,
-    // vsgl_tangent_plane.wgsl (issue 18 item 4; on vsgl's default path since plane_fade)
+    // vsgl_tangent_plane.wgsl (on vsgl's default path since plane_fade)
     VsglTangentPlaneFromMoments = 46,
     VsglTangentPlaneFade = 47,
 }

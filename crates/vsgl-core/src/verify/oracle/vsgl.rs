@@ -288,7 +288,7 @@ pub fn vsgl_specular_blend_with_receiver(radiance: Sg, receiver: &VsglSpecularRe
 /// Same as `VSGL_PLANE_TOLERANCE` in vsgl_tangent_plane.wgsl.
 pub const VSGL_PLANE_TOLERANCE: f64 = 1.0e-3;
 
-/// A VSGL's mean tangent plane (issue 18, item 4; derived for vsgl): the weighted mean height
+/// A VSGL's mean tangent plane (derived for vsgl): the weighted mean height
 /// H(p) = E_w[(p − y)·n] = (p − μ)·N̄ + offset, N̄ = Σw n/Σw, offset = μ·N̄ − Σw(y·n)/Σw.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct VsglTangentPlane {

@@ -1,6 +1,6 @@
 //! The stability suite: every WGSL function of `wgsl/common/{math,sg,ggx,vsgl}.wgsl`, evaluated in
 //! f32 on the GPU through [`crate::verify::harness`] and in f64 by its oracle twin on the *same* f32
-//! inputs, over case families that include the extremes of issue 3 (sharpness 1e-6…1e9,
+//! inputs, over case families that include the extremes (sharpness 1e-6…1e9,
 //! roughness 1e-4…1, cosines down to 1e-6 and exactly 0, axes equal / opposite / 1e-7 rad apart,
 //! variance down to 1e-12 of d² and exactly 0, positions 1e5 m from the origin relative to a
 //! local origin, intensities 1e-8…1e8, zero power).

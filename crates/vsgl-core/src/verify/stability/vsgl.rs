@@ -539,7 +539,7 @@ fn bound_plane_fade(i: &Input, _: &Output64) -> f64 {
     perturbation(F::VsglTangentPlaneFade, i, 0..1, 3.0, &[0, 4, 8]) + 4.0 * ULP + FLT_MIN
 }
 
-/// The mean tangent plane of issue 18 item 4 (vsgl_tangent_plane.wgsl): from the cluster sums,
+/// The cluster's mean tangent plane (vsgl_tangent_plane.wgsl): from the cluster sums,
 /// and the fade it gives a receiver.
 pub(super) fn tangent_plane_families(f: &mut Vec<Family>) {
     // From the moments: planar clusters and corners (half the weight on a second plane at 90°),
