@@ -399,3 +399,38 @@ def test_import_leaves_the_environment_alone_and_opening_a_device_sets_a_runtime
     subprocess.run([sys.executable, "-c", code], check=True, env=env)
     code_kept = "import os, vsgl\nvsgl.adapters()\nassert os.environ['XDG_RUNTIME_DIR'] == '/tmp', os.environ['XDG_RUNTIME_DIR']\n"
     subprocess.run([sys.executable, "-c", code_kept], check=True, env={**env, "XDG_RUNTIME_DIR": "/tmp"})
+
+
+def test_cli_leaves_num_lights_to_the_method_unless_given(monkeypatch, tmp_path):
+    # `render` and `animate` pass --lights only when given, so each method keeps its own
+    # default (vsgl 1024, vpl 256) as the library does.
+    from vsgl.__main__ import main
+
+    seen: list[dict] = []
+
+    class Stop(Exception):
+        pass
+
+    class RecordingRenderer:
+        def __init__(self, **_):
+            pass
+
+        def render(self, scene, **options):
+            seen.append(options)
+            raise Stop
+
+        def render_sequence(self, scene, changes, **options):
+            return self.render(scene, **options)
+
+    monkeypatch.setattr(vsgl, "Renderer", RecordingRenderer)
+    out = str(tmp_path / "x.png")
+    for method in ("vsgl", "vpl"):
+        with pytest.raises(Stop):
+            main(["render", "cornell_box", "--method", method, "--size", "8x8", "-o", out])
+        assert seen[-1]["method"] == method and "num_lights" not in seen[-1], seen[-1]
+    with pytest.raises(Stop):
+        main(["render", "cornell_box", "--method", "vpl", "--size", "8x8", "--lights", "64", "-o", out])
+    assert seen[-1]["num_lights"] == 64
+    with pytest.raises(Stop):
+        main(["animate", "cave_flashlight", "--method", "vsgl", "--frames", "2", "--size", "8x8", "-o", str(tmp_path / "f") + "/"])
+    assert "num_lights" not in seen[-1], seen[-1]

@@ -220,7 +220,7 @@ def main(argv: list[str] | None = None) -> int:
     render.add_argument("-o", "--output", default="out.png", help="output image, .png or .npy (default: out.png)")
     render.add_argument("--size", type=_size, default=(320, 180), help="WIDTHxHEIGHT (default: 320x180)")
     render.add_argument("--method", default="vsgl", choices=list(vsgl.METHODS), help="the method (default: vsgl); `python -m vsgl methods` describes each")
-    render.add_argument("--lights", type=int, default=1024, help="VPLs or VSGLs in all, split over the lights by reflected power (default: 1024)")
+    render.add_argument("--lights", type=int, default=None, help="VPLs or VSGLs in all, split over the lights by reflected power (default: the method's: vsgl 1024, vpl 256)")
     render.add_argument("--light", action="append", default=[], type=_light, metavar="SPEC",
                         help='add a light (repeatable): "spot position=X,Y,Z direction=X,Y,Z intensity=W [color=R,G,B] '
                              '[inner_cone_deg=D] [outer_cone_deg=D]", "point position=X,Y,Z intensity=W [color=R,G,B]" '
@@ -260,7 +260,7 @@ def main(argv: list[str] | None = None) -> int:
     animate.add_argument("--frames", type=int, default=120, help="number of frames (default: 120)")
     animate.add_argument("--fps", type=float, default=30.0, help="frames per second; frame k shows time k/fps (default: 30)")
     animate.add_argument("--size", type=_size, default=(320, 180), help="WIDTHxHEIGHT of each tile (default: 320x180)")
-    animate.add_argument("--lights", type=int, default=256, help="VPLs or VSGLs in all (default: 256)")
+    animate.add_argument("--lights", type=int, default=None, help="VPLs or VSGLs in all (default: the method's: vsgl 1024, vpl 256)")
     animate.add_argument("--rsm-size", type=int, default=None, help="RSM side (default: the method's)")
     animate.add_argument("--K", type=float, default=None, help="vsgl kernel mass K (default: 1)")
     animate.add_argument("--interleave", type=int, default=None, help="interleaving tile side of vsgl and vpl (default: the method's)")
