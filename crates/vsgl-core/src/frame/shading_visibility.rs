@@ -22,7 +22,7 @@ pub struct ShadingVisibility {
     /// One shadow ray per (pixel, virtual light) through `nodes` / `triangles`.
     pub traced: bool,
     /// Imperfect shadow maps in `ism_atlas`, read as `ism_lookup` says.
-    pub ism: bool,
+    pub reads_ism: bool,
     pub nodes: wgpu::Buffer,
     pub triangles: wgpu::Buffer,
     pub ids: wgpu::TextureView,
@@ -33,14 +33,14 @@ pub struct ShadingVisibility {
 impl ShadingVisibility {
     /// The override constants choosing the shading variant.
     pub fn flags(&self) -> [(&'static str, bool); 2] {
-        [("VISIBILITY_TRACED", self.traced), ("VISIBILITY_ISM", self.ism)]
+        [("VISIBILITY_TRACED", self.traced), ("VISIBILITY_ISM", self.reads_ism)]
     }
 
     /// What `frame.passes` adds to a shading pass's name: its visibility variant.
     pub fn label_suffix(&self) -> &'static str {
         if self.traced {
             "[raytrace]"
-        } else if self.ism {
+        } else if self.reads_ism {
             "[ism]"
         } else {
             ""

@@ -24,46 +24,26 @@ choice_names!(LightingMode { Asg => "asg", Accurate => "accurate", Blend => "ble
 choice_names!(Vsgl2Reduction { Auto => "auto", Subgroup => "subgroup", SharedMemory => "shared_memory" });
 choice_names!(Strategy { Camera => "camera", Bidirectional => "bidirectional", Light => "light" });
 
-/// `visibility=`; the ISM settings are read with it (`VisibilityMode::from_options`).
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub enum VisibilityChoice {
-    None,
-    Ism,
-    Raytrace,
-}
-choice_names!(VisibilityChoice { None => "none", Ism => "ism", Raytrace => "raytrace" });
-
-/// `importance=`; brsm's settings are read with it (`Importance::from_options`).
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub enum ImportanceChoice {
-    Rsm,
-    Brsm,
-}
-choice_names!(ImportanceChoice { Rsm => "rsm", Brsm => "brsm" });
-
-/// `denoise_form=`.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub enum DenoiseForm {
-    Gather,
-    Exchange,
-}
-choice_names!(DenoiseForm { Gather => "gather", Exchange => "exchange" });
-
-/// `shadow_target=` (vsgl).
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub enum ShadowTarget {
-    Resampled,
-    Centre,
-}
-choice_names!(ShadowTarget { Resampled => "resampled", Centre => "centre" });
-
-/// `near_field=` (vsgl).
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub enum NearField {
-    Texels,
-    Sg,
-}
-choice_names!(NearField { Texels => "texels", Sg => "sg" });
+choice_names!(
+    /// `visibility=`; the ISM settings are read with it (`VisibilityMode::from_options`).
+    pub enum VisibilityChoice { None => "none", Ism => "ism", Raytrace => "raytrace" }
+);
+choice_names!(
+    /// `importance=`; brsm's settings are read with it (`Importance::from_options`).
+    pub enum ImportanceChoice { Rsm => "rsm", Brsm => "brsm" }
+);
+choice_names!(
+    /// `denoise_form=`.
+    pub enum DenoiseForm { Gather => "gather", Exchange => "exchange" }
+);
+choice_names!(
+    /// `shadow_target=` (vsgl).
+    pub enum ShadowTarget { Resampled => "resampled", Centre => "centre" }
+);
+choice_names!(
+    /// `near_field=` (vsgl).
+    pub enum NearField { Texels => "texels", Sg => "sg" }
+);
 
 #[cfg(test)]
 mod tests {

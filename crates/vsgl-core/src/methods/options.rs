@@ -266,9 +266,19 @@ pub trait ChoiceEnum: Copy + PartialEq + 'static {
 }
 
 /// Declares an enum's option strings: `choice_names!(Kernel { Integral => "integral", … })`
-/// implements [`ChoiceEnum`](crate::methods::options::ChoiceEnum) for it.
+/// implements [`ChoiceEnum`](crate::methods::options::ChoiceEnum) for an enum declared
+/// elsewhere; `choice_names!(#[doc] pub enum NearField { Texels => "texels", … })` declares the
+/// enum too (Clone, Copy, Debug, PartialEq, Eq).
 #[macro_export]
 macro_rules! choice_names {
+    ($(#[$meta:meta])* $vis:vis enum $ty:ident { $($variant:ident => $text:literal),+ $(,)? }) => {
+        $(#[$meta])*
+        #[derive(Clone, Copy, Debug, PartialEq, Eq)]
+        $vis enum $ty {
+            $($variant),+
+        }
+        $crate::choice_names!($ty { $($variant => $text),+ });
+    };
     ($ty:ident { $($variant:ident => $text:literal),+ $(,)? }) => {
         impl $crate::methods::options::ChoiceEnum for $ty {
             const NAMES: &'static [&'static str] = &[$($text),+];

@@ -1,7 +1,7 @@
 //! The SG lighting options the VSGL methods (`vsgl`, `vsgl2`) share: `lighting=`, `diffuse=`
 //! and `plane_fade=`, read and checked against each other once, here.
 
-use super::options::{ChoiceEnum, Options};
+use super::options::{ChoiceEnum, OptionValue, Options};
 use crate::error::{Error, Result};
 use crate::passes::vsgl_shading::{DiffuseMode, LightingMode};
 
@@ -10,10 +10,10 @@ use crate::passes::vsgl_shading::{DiffuseMode, LightingMode};
 /// silently replaced.
 pub(super) fn diffuse_mode(o: &Options) -> Result<DiffuseMode> {
     let lighting = lighting_mode(o)?;
+    let diffuse: DiffuseMode = o.choice("diffuse")?;
     if lighting.brings_clamped_cosine_diffuse() {
-        let diffuse = o.str("diffuse")?;
-        if o.was_given("diffuse") && o.choice::<DiffuseMode>("diffuse")? != DiffuseMode::Accurate {
-            let name = o.str("lighting")?;
+        if o.was_given("diffuse") && diffuse != DiffuseMode::Accurate {
+            let (diffuse, name) = (diffuse.name(), lighting.name());
             return Err(Error::invalid(
                 "diffuse",
                 format!("diffuse={diffuse:?} is a form of lighting=\"asg\"; lighting={name:?}{} shades diffuse by the clamped-cosine integral (diffuse=\"accurate\"): give lighting=\"asg\" with it, or leave diffuse out", lighting_default_note(o)),
@@ -21,7 +21,7 @@ pub(super) fn diffuse_mode(o: &Options) -> Result<DiffuseMode> {
         }
         return Ok(DiffuseMode::Accurate);
     }
-    o.choice("diffuse")
+    Ok(diffuse)
 }
 
 /// The options with `diffuse` resolved to the form `lighting` brings when it was left out, so
@@ -30,10 +30,10 @@ pub(super) fn diffuse_mode(o: &Options) -> Result<DiffuseMode> {
 /// forms that always fade.
 pub(super) fn with_resolved_diffuse_form(mut o: Options) -> Result<Options> {
     if lighting_mode(&o)?.brings_clamped_cosine_diffuse() {
-        o.resolve_default("diffuse", super::options::OptionValue::Str("accurate".into()));
+        o.resolve_default("diffuse", OptionValue::Str("accurate".into()));
     }
     if diffuse_mode(&o)?.fades_below_tangent_plane() {
-        o.resolve_default("plane_fade", super::options::OptionValue::Bool(true));
+        o.resolve_default("plane_fade", OptionValue::Bool(true));
     }
     Ok(o)
 }
@@ -46,7 +46,7 @@ pub(super) fn plane_fade(o: &Options) -> Result<bool> {
     if diffuse.fades_below_tangent_plane() {
         if o.was_given("plane_fade") && !o.bool("plane_fade")? {
             let name = diffuse.name();
-            let lighting = o.str("lighting")?;
+            let lighting = lighting_mode(o)?.name();
             return Err(Error::invalid(
                 "plane_fade",
                 format!("the diffuse form {name:?}, which lighting={lighting:?}{} brings, always fades below each cluster's tangent plane (without it a lit plane lights itself); plane_fade=False applies to lighting=\"asg\" with diffuse=\"papers\" only", lighting_default_note(o)),

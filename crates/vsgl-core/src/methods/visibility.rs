@@ -108,7 +108,7 @@ impl VirtualLightVisibility {
         let triangles = ctx.rec.storage_written("visibility_placeholder_triangle_buffer", PLACEHOLDER_BYTES);
         let ism_atlas = ctx.rec.storage_written("visibility_placeholder_ism_atlas_buffer", PLACEHOLDER_BYTES);
         let ism_lookup = ctx.rec.uniform("visibility_placeholder_ism_lookup_uniform_buffer", &IsmLookupRaw::zeroed());
-        Self { ism: None, shading: ShadingVisibility { traced: false, ism: false, nodes, triangles, ids, ism_atlas, ism_lookup } }
+        Self { ism: None, shading: ShadingVisibility { traced: false, reads_ism: false, nodes, triangles, ids, ism_atlas, ism_lookup } }
     }
 
     /// `max_lights`: the most lights one batch shades (the maps of a batch are held at once).
@@ -136,7 +136,7 @@ impl VirtualLightVisibility {
                 }
                 let ism_atlas = placeholder(ctx, "visibility_placeholder_ism_atlas_buffer");
                 let ism_lookup = ctx.rec.uniform("visibility_placeholder_ism_lookup_uniform_buffer", &IsmLookupRaw::zeroed());
-                Ok(Self { ism: None, shading: ShadingVisibility { traced: true, ism: false, nodes: bvh.nodes.clone(), triangles: bvh.triangles.clone(), ids, ism_atlas, ism_lookup } })
+                Ok(Self { ism: None, shading: ShadingVisibility { traced: true, reads_ism: false, nodes: bvh.nodes.clone(), triangles: bvh.triangles.clone(), ids, ism_atlas, ism_lookup } })
             }
             VisibilityMode::Ism(settings) => {
                 let (points, made) = ctx.gpu_scene.surface_points(ctx.gpu, ctx.scene, settings.points)?;
@@ -170,7 +170,7 @@ impl VirtualLightVisibility {
                 let nodes = placeholder(ctx, "visibility_placeholder_node_buffer");
                 let triangles = placeholder(ctx, "visibility_placeholder_triangle_buffer");
                 let ism = IsmMaps { settings, layout, atlas: atlas.clone(), capacity, points };
-                Ok(Self { ism: Some(ism), shading: ShadingVisibility { traced: false, ism: true, nodes, triangles, ids, ism_atlas: atlas, ism_lookup } })
+                Ok(Self { ism: Some(ism), shading: ShadingVisibility { traced: false, reads_ism: true, nodes, triangles, ids, ism_atlas: atlas, ism_lookup } })
             }
         }
     }
