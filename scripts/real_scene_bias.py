@@ -62,9 +62,11 @@ def measure(r: vsgl.Renderer, scene: vsgl.Scene, rsm: int, n: int, variants, out
             settings.setdefault("denoise", False)
         if method == "vsgl2":
             settings.pop("num_lights", None)
+        # vsgl2 draws nothing, so it takes no seed: its seeds are the same frame.
+        takes_seed = method != "vsgl2"
         per_seed = []
         for seed in range(seeds):
-            f = r.render(scene, method=method, aovs=aovs, seed=seed, **settings)
+            f = r.render(scene, method=method, aovs=aovs, **settings, **({"seed": seed} if takes_seed else {}))
             one = {}
             for a, short in (("indirect_diffuse", "diffuse"), ("indirect_specular", "specular")):
                 ref_mean = truth[a].mean()

@@ -1,8 +1,9 @@
-"""`lighting=` of the VSGL methods (issue 18, item 5): "asg" (`vsgl2`'s default, the papers' SG–ASG
-specular and diffuse=), "accurate" (GGX with its NDF widened by the light's spread, and the
-clamped-cosine diffuse) and "blend" (the two specular forms weighted by the receiver's share of
-the widened lobe, and the clamped-cosine diffuse; `vsgl`'s default since it was measured on the
-real-scene corpus, docs/rendering.md "The real-scene corpus"). The formulas are tested against quadrature in the Rust oracle
+"""`lighting=` of the VSGL methods: "asg" (the papers' SG–ASG specular and diffuse=), "accurate"
+(GGX with its NDF widened by the light's spread, and the clamped-cosine diffuse) and "blend" (the
+two specular forms weighted by the receiver's share of the widened lobe; both methods' default
+since they were measured on the real-scene corpus, docs/rendering.md "The real-scene corpus" and
+"Two VSGLs"). Under "blend" `vsgl` shades diffuse by the clamped cosine, `vsgl2` as diffuse=
+says (its one plane spans the whole RSM). The formulas are tested against quadrature in the Rust oracle
 (crates/vsgl-core/src/verify/oracle/vsgl.rs) and on the GPU by the stability suite; here: the
 option itself, each method's default, and finite frames on the stability scenes."""
 
@@ -23,7 +24,10 @@ def renderer():
 
 
 # Each method's default lighting and the diffuse form it brings.
-DEFAULTS = {"vsgl": ("blend", "accurate"), "vsgl2": ("asg", "papers")}
+DEFAULTS = {"vsgl": ("blend", "accurate"), "vsgl2": ("blend", "papers")}
+# The diffuse form each lighting form brings, by method, when diffuse= is not given.
+BROUGHT_DIFFUSE = {("vsgl", "accurate"): "accurate", ("vsgl", "blend"): "accurate",
+                   ("vsgl2", "accurate"): "accurate", ("vsgl2", "blend"): "papers"}
 
 
 @pytest.mark.parametrize("form", ["accurate", "blend"])
@@ -34,16 +38,17 @@ def test_the_default_and_each_form_change_only_what_they_say(renderer, method, e
     default = renderer.render(scene, method=method, aovs=aovs, **SMALL, **extra)
     asg = renderer.render(scene, method=method, aovs=aovs, lighting="asg", **SMALL, **extra)
     accurate = renderer.render(scene, method=method, aovs=aovs, lighting=form, **SMALL, **extra)
-    clamped = renderer.render(scene, method=method, aovs=aovs, lighting="asg", diffuse="accurate", **SMALL, **extra)
+    brought = BROUGHT_DIFFUSE[method, form]
+    same_diffuse = renderer.render(scene, method=method, aovs=aovs, lighting="asg", diffuse=brought, **SMALL, **extra)
     default_form, default_diffuse = DEFAULTS[method]
     assert default.settings["lighting"] == default_form and accurate.settings["lighting"] == form
     # The settings name the diffuse form the frame used: the clamped cosine under "accurate".
-    assert default.settings["diffuse"] == default_diffuse and accurate.settings["diffuse"] == "accurate"
+    assert default.settings["diffuse"] == default_diffuse and accurate.settings["diffuse"] == brought
     explicit = renderer.render(scene, method=method, aovs=aovs, lighting=default_form, **SMALL, **extra)
     for aov in aovs:
         assert np.array_equal(default.aov(aov), explicit.aov(aov)), aov
-    # The accurate diffuse is the clamped cosine of diffuse="accurate", bit for bit.
-    assert np.array_equal(accurate.aov("indirect_diffuse"), clamped.aov("indirect_diffuse"))
+    # The form's diffuse is that of the diffuse form it brings under "asg", bit for bit.
+    assert np.array_equal(accurate.aov("indirect_diffuse"), same_diffuse.aov("indirect_diffuse"))
     spec_asg, spec_acc = asg.aov("indirect_specular"), accurate.aov("indirect_specular")
     assert np.isfinite(spec_acc).all() and (spec_acc >= 0).all()
     assert not np.array_equal(spec_asg, spec_acc)
@@ -59,13 +64,28 @@ def test_bad_lighting_names_the_option(renderer):
         renderer.render(scene, method="vsgl", lighting="exact", **SMALL)
     with pytest.raises(vsgl.ArgumentError, match="lighting"):
         renderer.render(scene, method="vpl", lighting="accurate", **SMALL)
-    # lighting="accurate" brings its own diffuse form: another one given with it is refused.
+    # lighting="accurate" (and "blend" in vsgl) brings its own diffuse form: another one given
+    # with it is refused.
     for diffuse in ("papers", "sg_product"):
-        for form in ("accurate", "blend"):
+        for method, form in (("vsgl2", "accurate"), ("vsgl", "accurate"), ("vsgl", "blend")):
             with pytest.raises(vsgl.ArgumentError, match=rf"diffuse.*{diffuse}.*lighting=\"{form}\""):
-                renderer.render(scene, method="vsgl2", lighting=form, diffuse=diffuse, **SMALL)
+                renderer.render(scene, method=method, lighting=form, diffuse=diffuse, **SMALL)
     f = renderer.render(scene, method="vsgl2", lighting="accurate", diffuse="accurate", aovs=["image"], **SMALL)
     assert np.isfinite(f.image).all()
+
+
+def test_vsgl2s_blend_shades_diffuse_as_diffuse_says(renderer):
+    # vsgl2's one diffuse VSGL spans the whole RSM: under lighting="blend" its diffuse is the
+    # form diffuse= names (each one bit for bit that form under "asg"), and plane_fade stays off.
+    scene = vsgl.scenes.glossy_cornell()
+    aovs = ["indirect_diffuse", "indirect_specular"]
+    for diffuse in ("papers", "accurate", "sg_product"):
+        blend = renderer.render(scene, method="vsgl2", lighting="blend", diffuse=diffuse, aovs=aovs, **SMALL)
+        asg = renderer.render(scene, method="vsgl2", lighting="asg", diffuse=diffuse, aovs=aovs, **SMALL)
+        assert blend.settings["diffuse"] == diffuse
+        assert blend.settings["plane_fade"] == ("true" if diffuse != "papers" else "false")
+        assert np.array_equal(blend.aov("indirect_diffuse"), asg.aov("indirect_diffuse")), diffuse
+        assert not np.array_equal(blend.aov("indirect_specular"), asg.aov("indirect_specular")), diffuse
 
 
 def test_a_papers_form_under_vsgls_default_lighting_says_to_give_asg(renderer):

@@ -133,8 +133,7 @@ class Row:
     block_rmse_indirect: float | None = None
     # vsgl's kernel mass K when --K sweeps it (None: the method's default, 1).
     K: float | None = None
-    # vsgl / vsgl2's lighting= when --lighting sweeps it (None: the method's default, "blend"
-    # for vsgl, "asg" for vsgl2).
+    # vsgl / vsgl2's lighting= when --lighting sweeps it (None: the method's default, "blend").
     lighting: str | None = None
     # The RSM sampling density of vpl and vsgl, "rsm" or "brsm" (bidirectional importance,
     # --importance); None for the methods that sample nothing.
@@ -1115,7 +1114,7 @@ def main(argv: list[str] | None = None) -> int:
     p.add_argument("--K", type=lambda t: [float(x) for x in t.split(",")], default=None, metavar="K1,K2,...",
                    help="vsgl kernel masses K to sweep, e.g. 1,2,4 (default: the method's, 1); larger K is smoother in space and time")
     p.add_argument("--lighting", type=_strs, default=None, metavar="asg,accurate,blend",
-                   help="SG lighting forms of vsgl and vsgl2 to sweep: asg (the papers'), accurate (filtered-NDF specular, clamped-cosine diffuse), blend (the two specular forms weighted by the receiver's share of the widened lobe, clamped-cosine diffuse) (default: the methods' own, asg)")
+                   help="SG lighting forms of vsgl and vsgl2 to sweep: asg (the papers'), accurate (filtered-NDF specular, clamped-cosine diffuse), blend (the two specular forms weighted by the receiver's share of the widened lobe; clamped-cosine diffuse in vsgl, diffuse= in vsgl2) (default: the methods' own, blend)")
     p.add_argument("--importance", type=_strs, default=["rsm"], metavar="rsm,brsm",
                    help="RSM sampling densities of vpl and vsgl to compare: rsm (reflected power), brsm (bidirectional importance from the camera's view); default: rsm")
     p.add_argument("--importance-interleave", type=int, default=None, metavar="K",

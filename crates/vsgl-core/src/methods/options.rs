@@ -299,6 +299,7 @@ pub mod common {
     use crate::frame::uniforms::RsmFit;
     use crate::methods::metropolis::ChainSpace;
     use crate::passes::vpl_sample::Sampling;
+    use crate::methods::sg_lighting::BlendDiffuse;
     use crate::passes::vsgl_shading::{DiffuseMode, LambertLobe, LightingMode};
     use std::borrow::Cow;
 
@@ -461,12 +462,15 @@ pub mod common {
     /// the two specular forms (with the clamped-cosine diffuse). The default differs by method:
     /// `vsgl`'s is "blend", chosen on the real-scene corpus and the built-ins (docs/rendering.md,
     /// "The real-scene corpus"); `vsgl2` keeps the papers'.
-    pub const fn lighting(default: &'static str) -> OptionSpec {
+    pub const fn lighting(default: &'static str, blend: BlendDiffuse) -> OptionSpec {
         OptionSpec {
             name: "lighting",
             kind: OptionKind::Choice(LightingMode::NAMES),
             default: OptionValue::Str(Cow::Borrowed(default)),
-            help: "SG lighting: \"asg\" (the papers' SG–ASG specular, diffuse as diffuse= says), \"accurate\" (GGX with its NDF widened by the light's spread, after Tokuyoshi et al. 2024, and the clamped-cosine diffuse) or \"blend\" (the two specular forms weighted by the receiver's share α/α' of the widened lobe: accurate for lights narrower than the lobe, the papers' for broad lights on sharp receivers; the clamped-cosine diffuse)",
+            help: match blend {
+                BlendDiffuse::ClampedCosine => "SG lighting: \"asg\" (the papers' SG–ASG specular, diffuse as diffuse= says), \"accurate\" (GGX with its NDF widened by the light's spread, after Tokuyoshi et al. 2024, and the clamped-cosine diffuse) or \"blend\" (the two specular forms weighted by the receiver's share α/α' of the widened lobe: accurate for lights narrower than the lobe, the papers' for broad lights on sharp receivers; the clamped-cosine diffuse)",
+                BlendDiffuse::AsDiffuseSays => "SG lighting: \"asg\" (the papers' SG–ASG specular), \"accurate\" (GGX with its NDF widened by the light's spread, after Tokuyoshi et al. 2024, and the clamped-cosine diffuse) or \"blend\" (the two specular forms weighted by the receiver's share α/α' of the widened lobe: accurate for lights narrower than the lobe, the papers' for broad lights on sharp receivers); with \"asg\" and \"blend\" diffuse as diffuse= says",
+            },
             note: "",
         }
     }

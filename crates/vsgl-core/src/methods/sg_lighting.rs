@@ -5,13 +5,35 @@ use super::options::{ChoiceEnum, OptionValue, Options};
 use crate::error::{Error, Result};
 use crate::passes::vsgl_shading::{DiffuseMode, LightingMode};
 
-/// `diffuse=` as the shading pass takes it. `lighting="accurate"` brings its own diffuse form
-/// (the clamped cosine, `diffuse="accurate"`); another one given with it is an error rather than
-/// silently replaced.
-pub(super) fn diffuse_mode(o: &Options) -> Result<DiffuseMode> {
+/// Which diffuse form `lighting="blend"` shades by, a property of the method.
+/// `lighting="accurate"` always brings the clamped cosine.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum BlendDiffuse {
+    /// The clamped-cosine integral (`diffuse="accurate"`), which fades below each VSGL's tangent
+    /// plane: `vsgl`, whose VSGL is one cluster with one plane.
+    ClampedCosine,
+    /// The form `diffuse=` names: `vsgl2`, whose one diffuse VSGL spans the whole RSM, so that
+    /// fading by its one plane removes most of the light (FlightHelmet's diffuse 0.24 -> 0.01 of
+    /// the reference; docs/rendering.md, "Two VSGLs").
+    AsDiffuseSays,
+}
+
+/// Whether `lighting` shades diffuse by the clamped cosine whatever `diffuse=` says.
+fn brings_clamped_cosine_diffuse(lighting: LightingMode, blend: BlendDiffuse) -> bool {
+    match lighting {
+        LightingMode::Asg => false,
+        LightingMode::Accurate => true,
+        LightingMode::Blend => blend == BlendDiffuse::ClampedCosine,
+    }
+}
+
+/// `diffuse=` as the shading pass takes it. `lighting="accurate"` (and `"blend"` where the
+/// method says so) brings its own diffuse form (the clamped cosine, `diffuse="accurate"`);
+/// another one given with it is an error rather than silently replaced.
+pub(super) fn diffuse_mode(o: &Options, blend: BlendDiffuse) -> Result<DiffuseMode> {
     let lighting = lighting_mode(o)?;
     let diffuse: DiffuseMode = o.choice("diffuse")?;
-    if lighting.brings_clamped_cosine_diffuse() {
+    if brings_clamped_cosine_diffuse(lighting, blend) {
         if o.was_given("diffuse") && diffuse != DiffuseMode::Accurate {
             let (diffuse, name) = (diffuse.name(), lighting.name());
             return Err(Error::invalid(
@@ -28,11 +50,11 @@ pub(super) fn diffuse_mode(o: &Options) -> Result<DiffuseMode> {
 /// `frame.settings` shows the diffuse form the frame used (it had shown "papers" under
 /// `lighting="accurate"`, which shades the clamped cosine), and `plane_fade` to True for the
 /// forms that always fade.
-pub(super) fn with_resolved_diffuse_form(mut o: Options) -> Result<Options> {
-    if lighting_mode(&o)?.brings_clamped_cosine_diffuse() {
+pub(super) fn with_resolved_diffuse_form(mut o: Options, blend: BlendDiffuse) -> Result<Options> {
+    if brings_clamped_cosine_diffuse(lighting_mode(&o)?, blend) {
         o.resolve_default("diffuse", OptionValue::Str("accurate".into()));
     }
-    if diffuse_mode(&o)?.fades_below_tangent_plane() {
+    if diffuse_mode(&o, blend)?.fades_below_tangent_plane() {
         o.resolve_default("plane_fade", OptionValue::Bool(true));
     }
     Ok(o)
@@ -41,8 +63,8 @@ pub(super) fn with_resolved_diffuse_form(mut o: Options) -> Result<Options> {
 /// Whether the diffuse term fades below each VSGL's tangent plane: always for the forms that
 /// need it, and for the papers' with `plane_fade`. `plane_fade=False` given with a form that
 /// always fades is an error rather than silently ignored.
-pub(super) fn plane_fade(o: &Options) -> Result<bool> {
-    let diffuse = diffuse_mode(o)?;
+pub(super) fn plane_fade(o: &Options, blend: BlendDiffuse) -> Result<bool> {
+    let diffuse = diffuse_mode(o, blend)?;
     if diffuse.fades_below_tangent_plane() {
         if o.was_given("plane_fade") && !o.bool("plane_fade")? {
             let name = diffuse.name();

@@ -8,7 +8,7 @@ use super::options::ChoiceEnum;
 use super::interleaved::InterleavedShading;
 use super::metropolis::{ChainSpace, MetropolisSampling};
 use super::rsm_lights::{check_rsm_size, for_each_light, rsm_fit, with_rsm_size_for_num_lights, RsmSettings};
-use super::sg_lighting::{diffuse_mode, lighting_mode, plane_fade, with_resolved_diffuse_form};
+use super::sg_lighting::{diffuse_mode, lighting_mode, plane_fade, with_resolved_diffuse_form, BlendDiffuse};
 use crate::frame::uniforms::RsmFit;
 use super::visibility::{VirtualLightVisibility, VisibilityMode, VSGL_RECORD_WORDS};
 use super::{options::common, DirectLight, FrameContext, Method, MethodInfo, OptionKind, OptionSpec, OptionValue, Options};
@@ -32,6 +32,9 @@ pub const INFO: MethodInfo = MethodInfo {
     extra_aovs: &[],
     configure: |o| Ok(Box::new(Vsgl::new(o)?)),
 };
+
+/// `lighting="blend"` brings the clamped-cosine diffuse, faded below each cluster's plane.
+const BLEND_DIFFUSE: BlendDiffuse = BlendDiffuse::ClampedCosine;
 
 const OPTIONS: &[OptionSpec] = &[
     common::SHADOW_SIZE,
@@ -84,7 +87,7 @@ const OPTIONS: &[OptionSpec] = &[
     common::DIFFUSE,
     // "blend" by default (docs/rendering.md, "The real-scene corpus"): against the path tracer it
     // is closer than the papers' form on every corpus scene and built-in measured.
-    common::lighting("blend"),
+    common::lighting("blend", BLEND_DIFFUSE),
     common::LAMBERT_LOBE,
     // On by default (docs/rendering.md, "The cluster's tangent plane"): without it the papers'
     // form lights the back of a lit plane with about half its front's direct light.
@@ -171,7 +174,7 @@ fn coherence(o: &Options) -> Result<f32> {
 
 impl Vsgl {
     fn new(given: &Options) -> Result<Self> {
-        let o = &with_resolved_diffuse_form(with_rsm_size_for_num_lights(given)?)?;
+        let o = &with_resolved_diffuse_form(with_rsm_size_for_num_lights(given)?, BLEND_DIFFUSE)?;
         Ok(Self {
             options: o.clone(),
             visibility: VisibilityMode::from_options(o)?,
@@ -188,10 +191,10 @@ impl Vsgl {
             interleave: o.u32("interleave")?,
             denoise: o.bool("denoise")?,
             denoise_keeps_light: super::interleaved::keeps_light(o)?,
-            diffuse: diffuse_mode(o)?,
+            diffuse: diffuse_mode(o, BLEND_DIFFUSE)?,
             lighting: lighting_mode(o)?,
             lambert_lobe: o.choice("lambert_lobe")?,
-            plane_fade: plane_fade(o)?,
+            plane_fade: plane_fade(o, BLEND_DIFFUSE)?,
             importance: Importance::from_options(o)?,
             capture_rsm: o.bool("capture_rsm")?,
             rsm_fit: rsm_fit(o)?,

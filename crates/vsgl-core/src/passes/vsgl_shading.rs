@@ -121,12 +121,6 @@ impl LightingMode {
             LightingMode::Blend => 2,
         }
     }
-
-    /// Whether the form shades diffuse by the clamped-cosine integral (`diffuse="accurate"`)
-    /// whatever `diffuse=` says: every form but the papers'.
-    pub fn brings_clamped_cosine_diffuse(self) -> bool {
-        self != LightingMode::Asg
-    }
 }
 
 /// How the Lambert lobe's SG is normalized (`lambert_lobe=`).
