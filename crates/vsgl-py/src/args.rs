@@ -7,6 +7,7 @@
 
 use crate::errors::argument_error;
 use pyo3::exceptions::PyTypeError;
+use glam::DVec3;
 use pyo3::prelude::*;
 use pyo3::types::{PyBool, PyInt};
 
@@ -94,3 +95,19 @@ pub fn floats(value: &Bound<'_, PyAny>) -> PyResult<Vec<f64>> {
     }
     value.try_iter()?.map(|item| float(&item?)).collect()
 }
+
+pub fn vec3(name: &str, v: Vec<f64>) -> PyResult<DVec3> {
+    if v.len() != 3 {
+        return Err(argument_error(format!("{name}: expected 3 numbers, got {}", v.len())));
+    }
+    let d = DVec3::new(v[0], v[1], v[2]);
+    if !d.is_finite() {
+        return Err(argument_error(format!("{name}: every component must be finite, got {v:?}")));
+    }
+    Ok(d)
+}
+
+pub fn finite(name: &str, x: f64) -> PyResult<f64> {
+    if x.is_finite() { Ok(x) } else { Err(argument_error(format!("{name}: must be finite, got {x}"))) }
+}
+

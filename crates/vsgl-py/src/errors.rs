@@ -80,3 +80,20 @@ pub fn to_py(e: Error) -> PyErr {
         Error::ResourceLimit(_) => resource_limit_error(msg),
     }
 }
+
+/// The `OSError` that Python's own `open()` would raise for `e` on `path`: the subclass of its
+/// kind (`PermissionError`, `FileNotFoundError`, `IsADirectoryError`, ...) with `errno`,
+/// `strerror` and `filename` set, so the message names the path.
+pub(crate) fn os_error(py: Python<'_>, path: &std::path::Path, e: std::io::Error) -> PyErr {
+    let ty = PyErr::from(std::io::Error::from(e.kind())).get_type(py);
+    let filename = path.display().to_string();
+    match e.raw_os_error() {
+        Some(code) => {
+            let text = e.to_string();
+            // Rust appends " (os error N)"; errno already says it.
+            let strerror = text.split(" (os error").next().unwrap_or(&text).to_string();
+            PyErr::from_type(ty, (code, strerror, filename))
+        }
+        None => PyErr::from_type(ty, format!("cannot write {filename}: {e}")),
+    }
+}

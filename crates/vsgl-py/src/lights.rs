@@ -1,8 +1,9 @@
 //! Point and directional lights as Python classes, and the conversions between Python light
-//! objects (any of the three classes) and the core `Light` enum. `SpotLight` stays in lib.rs.
+//! objects (any of the three classes) and the core `Light` enum.
 
 use crate::errors::{argument_error, to_py};
-use crate::{finite, vec3, PySpotLight};
+use crate::args::{finite, vec3};
+use vsgl_core::scene::SpotLight;
 use pyo3::prelude::*;
 use vsgl_core::scene::{limits, DirectionalLight, Light, PointLight};
 
@@ -129,4 +130,84 @@ pub(crate) fn light_to_py(py: Python<'_>, light: &Light) -> PyResult<Py<PyAny>> 
 /// Counts of the scene's lights by glTF type name (`scene.stats["lights_by_type"]`).
 pub fn count_by_type(lights: &[Light]) -> Vec<(&'static str, usize)> {
     ["spot", "point", "directional"].iter().map(|&k| (k, lights.iter().filter(|l| l.kind() == k).count())).collect()
+}
+
+/// A spot light (KHR_lights_punctual conventions): intensity in candela, smooth cone falloff
+/// between `inner_cone_deg` and `outer_cone_deg` (half-angles).
+#[pyclass(name = "SpotLight", module = "vsgl", from_py_object)]
+#[derive(Clone)]
+pub(crate) struct PySpotLight {
+    pub(crate) inner: SpotLight,
+}
+
+#[pymethods]
+impl PySpotLight {
+    #[new]
+    #[pyo3(signature = (position, direction, intensity, color=vec![1.0, 1.0, 1.0], inner_cone_deg=30.0, outer_cone_deg=40.0))]
+    fn new(
+        #[pyo3(from_py_with = crate::args::floats)] position: Vec<f64>,
+        #[pyo3(from_py_with = crate::args::floats)] direction: Vec<f64>,
+        #[pyo3(from_py_with = crate::args::float)] intensity: f64,
+        #[pyo3(from_py_with = crate::args::floats)] color: Vec<f64>,
+        #[pyo3(from_py_with = crate::args::float)] inner_cone_deg: f64,
+        #[pyo3(from_py_with = crate::args::float)] outer_cone_deg: f64,
+    ) -> PyResult<Self> {
+        let position = limits::position("position", vec3("position", position)?).map_err(to_py)?;
+        let direction = limits::unit_direction("direction", vec3("direction", direction)?).map_err(to_py)?;
+        let intensity = limits::intensity("intensity", "candela", finite("intensity", intensity)?).map_err(to_py)?;
+        let color = vec3("color", color)?;
+        if color.min_element() < 0.0 {
+            return Err(argument_error(format!("color: components must be >= 0, got {color:?}")));
+        }
+        let outer = finite("outer_cone_deg", outer_cone_deg)?;
+        let inner = finite("inner_cone_deg", inner_cone_deg)?;
+        if !(outer > 0.0 && outer <= 90.0) {
+            return Err(argument_error(format!("outer_cone_deg: must be in (0, 90], got {outer}")));
+        }
+        if !(inner >= 0.0 && inner < outer) {
+            return Err(argument_error(format!("inner_cone_deg: must be in [0, outer_cone_deg={outer}), got {inner}")));
+        }
+        Ok(Self {
+            inner: SpotLight {
+                position,
+                direction,
+                intensity,
+                color: color.as_vec3(),
+                inner_cone: (inner as f32).to_radians(),
+                outer_cone: (outer as f32).to_radians(),
+            },
+        })
+    }
+    #[getter]
+    fn position(&self) -> (f64, f64, f64) {
+        self.inner.position.into()
+    }
+    #[getter]
+    fn direction(&self) -> (f64, f64, f64) {
+        self.inner.direction.into()
+    }
+    #[getter]
+    fn intensity(&self) -> f32 {
+        self.inner.intensity
+    }
+    #[getter]
+    fn color(&self) -> (f32, f32, f32) {
+        self.inner.color.into()
+    }
+    #[getter]
+    fn inner_cone_deg(&self) -> f32 {
+        self.inner.inner_cone.to_degrees()
+    }
+    #[getter]
+    fn outer_cone_deg(&self) -> f32 {
+        self.inner.outer_cone.to_degrees()
+    }
+    fn __repr__(&self) -> String {
+        let l = &self.inner;
+        format!(
+            "SpotLight(position={:?}, direction={:?}, intensity={}, color={:?}, inner_cone_deg={:.3}, outer_cone_deg={:.3})",
+            l.position.to_array(), l.direction.to_array(), l.intensity, l.color.to_array(),
+            l.inner_cone.to_degrees(), l.outer_cone.to_degrees()
+        )
+    }
 }

@@ -20,7 +20,7 @@ pub fn stability_suite(
     if !(bound_scale.is_finite() && bound_scale > 0.0) {
         return Err(argument_error(format!("bound_scale: must be positive and finite, got {bound_scale}")));
     }
-    crate::prepare_device_environment(py)?;
+    crate::renderer::prepare_device_environment(py)?;
     let rows = py
         .detach(|| vsgl_core::verify::stability::run_on_adapter(adapter.as_deref(), bound_scale))
         .map_err(to_py)?;

@@ -1,0 +1,96 @@
+//! Keyword options: their conversion to the core's values, and the registry's description of
+//! each method (`describe_method`, `method_options`, `check_method_options`).
+
+use crate::args::py_int;
+use crate::errors::{argument_error, to_py};
+use pyo3::exceptions::PyTypeError;
+use pyo3::prelude::*;
+use pyo3::types::{PyBool, PyDict, PyFloat, PyString, PyTuple};
+use vsgl_core::RenderOptions;
+use vsgl_core::methods::{self, OptionValue};
+
+/// The settings of `render` and `render_sequence` as the core takes them.
+pub(crate) fn render_options(method: &str, plan: &str, aovs: Option<Vec<String>>, options: Option<&Bound<'_, PyDict>>) -> PyResult<RenderOptions> {
+    let mut opts = RenderOptions::new(method);
+    opts.plan = plan.into();
+    opts.aovs = aovs;
+    for (key, value) in options.into_iter().flat_map(|d| d.iter()) {
+        let name: String = key.extract()?;
+        if value.is_none() {
+            continue; // None: the method's default
+        }
+        opts.options.push((name.clone(), option_value(method, &name, &value)?));
+    }
+    Ok(opts)
+}
+
+/// A keyword option as the core takes it. Names that no method takes are a `TypeError`, as
+/// for any unexpected keyword; values are checked by the method's option specs.
+pub(crate) fn option_value(method: &str, name: &str, value: &Bound<'_, PyAny>) -> PyResult<OptionValue> {
+    if !methods::every_option_name().contains(&name) {
+        return Err(PyTypeError::new_err(format!(
+            "render() got an unexpected keyword argument {name:?}; options of the methods: {}",
+            methods::every_option_name().join(", ")
+        )));
+    }
+    if value.is_instance_of::<PyBool>() {
+        Ok(OptionValue::Bool(value.extract()?))
+    } else if let Some(v) = py_int(value) {
+        match v.as_ref().map(|v| i64::try_from(*v)) {
+            Ok(Ok(v)) => Ok(OptionValue::Int(v)),
+            // Beyond i64: no option allows it; say what the method's option does allow.
+            _ => {
+                let size = match v { Ok(v) => v.to_string(), Err(size) => size };
+                let spec = methods::info(method).ok().and_then(|info| info.options.iter().find(|o| o.name == name));
+                let allowed = spec.map(|s| s.allowed()).unwrap_or_else(|| format!("an option of method={method:?}"));
+                Err(argument_error(format!("{name}: must be {allowed}, got {size}")))
+            }
+        }
+    } else if value.is_instance_of::<PyFloat>() {
+        Ok(OptionValue::Float(value.extract()?))
+    } else if value.is_instance_of::<PyString>() {
+        Ok(OptionValue::from(value.extract::<String>()?))
+    } else {
+        Err(argument_error(format!("{name}: expected an int, float, bool or str, got {}", value.get_type().name()?)))
+    }
+}
+
+/// The method names, in registry order (`vsgl.METHODS`).
+pub(crate) fn method_names<'py>(py: Python<'py>) -> PyResult<Bound<'py, PyTuple>> {
+    PyTuple::new(py, methods::names())
+}
+
+/// What method `name` does and the options it takes, with their allowed values and defaults.
+#[pyfunction]
+pub(crate) fn describe_method(name: &str) -> PyResult<String> {
+    Ok(methods::info(name).map_err(to_py)?.describe())
+}
+
+/// The keyword options of method `name` mapped to their defaults.
+#[pyfunction]
+pub(crate) fn method_options<'py>(py: Python<'py>, name: &str) -> PyResult<Bound<'py, PyDict>> {
+    let info = methods::info(name).map_err(to_py)?;
+    let d = PyDict::new(py);
+    for o in info.options {
+        match &o.default {
+            OptionValue::Int(v) => d.set_item(o.name, v)?,
+            OptionValue::Float(v) => d.set_item(o.name, v)?,
+            OptionValue::Bool(v) => d.set_item(o.name, v)?,
+            OptionValue::Str(v) => d.set_item(o.name, v.as_ref())?,
+        }
+    }
+    Ok(d)
+}
+
+/// Checks keyword options for method `name` as `render` would, without rendering: raises the
+/// same `ArgumentError` (or `TypeError` for a name no method takes) naming the option. The
+/// benchmark calls it for every configuration of a sweep before the first (possibly long)
+/// reference render.
+#[pyfunction]
+#[pyo3(signature = (name, **options))]
+pub(crate) fn check_method_options(name: &str, options: Option<&Bound<'_, PyDict>>) -> PyResult<()> {
+    let info = methods::info(name).map_err(to_py)?;
+    let given = render_options(name, "auto", None, options)?.options;
+    info.parse_options(&given).map_err(to_py)?;
+    Ok(())
+}
