@@ -3,10 +3,12 @@
 //! ([`rsm`]). Passes and methods read and write these; nothing here records GPU work.
 
 pub mod rsm;
+pub mod shading_inputs;
 pub mod shading_visibility;
 pub mod targets;
 pub mod uniforms;
 
 pub use rsm::{pyramid_layout, MomentChains, Rsm};
+pub use shading_inputs::{ShadingInputs, VirtualLightList};
 pub use shading_visibility::{IsmLookupRaw, ShadingVisibility};
 pub use targets::{GBuffer, IndirectTargets, VisibilityTargets};

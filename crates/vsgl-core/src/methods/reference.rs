@@ -8,6 +8,7 @@ use super::visibility::{VirtualLightVisibility, VisibilityMode, VPL_RECORD_WORDS
 use crate::error::Result;
 use crate::gpu::Gpu;
 use crate::passes::vpl_sample::{VplSamplePass, VPL_BYTES};
+use crate::frame::{ShadingInputs, VirtualLightList};
 use crate::passes::vpl_shading::VplShadingPass;
 
 pub const INFO: MethodInfo = MethodInfo {
@@ -89,7 +90,8 @@ impl Method for Reference {
                 let count = per_batch.min(texels - first);
                 sample.record_every_texel(&mut ctx.rec, light.light.as_entire_binding(), light.rsm, first as u32, count as u32, &vpls, feat);
                 vis.build_maps(ctx, &vpls, count as u32, VPL_RECORD_WORDS)?;
-                shading.record(&mut ctx.rec, ctx.frame_uniforms, &vpls, count as u32, 1, min_distance2, ctx.gbuffer, ctx.indirect, feat, ctx.size, &vis);
+                let io = ShadingInputs { frame_uniforms: ctx.frame_uniforms, gbuffer: ctx.gbuffer, out: ctx.indirect, features: feat, size: ctx.size, visibility: &vis };
+                shading.record(&mut ctx.rec, &io, VirtualLightList { records: &vpls, count: count as u32, interleave: 1 }, min_distance2);
                 first += count;
                 if first < texels && count * pixels >= batch_evaluations / 2 {
                     // Submit this batch on its own so no submission runs for long.

@@ -13,6 +13,7 @@ use crate::error::Result;
 use crate::gpu::Gpu;
 use crate::passes::pdf_mips::PdfMipsPass;
 use crate::passes::vpl_sample::{Sampling, VplSamplePass, VPL_BYTES};
+use crate::frame::{ShadingInputs, VirtualLightList};
 use crate::passes::vpl_shading::VplShadingPass;
 
 pub const INFO: MethodInfo = MethodInfo {
@@ -128,7 +129,8 @@ impl Method for Vpl {
             sample.record_importance(&mut ctx.rec, light.light.as_entire_binding(), light.rsm, pdf, light.budget, self.sampling, self.seed, &vpls, feat, samples.as_ref());
             vis.build_maps(ctx, &vpls, light.budget, VPL_RECORD_WORDS)?;
             let target = shading_out.target(ctx.indirect);
-            shading.record(&mut ctx.rec, ctx.frame_uniforms, &vpls, light.budget, self.interleave, min_distance2, ctx.gbuffer, target, feat, ctx.size, &vis);
+            let io = ShadingInputs { frame_uniforms: ctx.frame_uniforms, gbuffer: ctx.gbuffer, out: target, features: feat, size: ctx.size, visibility: &vis };
+            shading.record(&mut ctx.rec, &io, VirtualLightList { records: &vpls, count: light.budget, interleave: self.interleave }, min_distance2);
             Ok(())
         })?;
         if lit {

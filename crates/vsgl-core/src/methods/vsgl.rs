@@ -20,7 +20,8 @@ use crate::passes::pdf_mips::PdfMipsPass;
 use crate::passes::vpl_sample::Sampling;
 use crate::passes::vsgl_gen::{GenSettings, Kernel, KernelFilter, VsglGenPass, SHADOW_CANDIDATE_BYTES, VSGL_BYTES};
 use crate::passes::vsgl_moments::VsglMomentsPass;
-use crate::passes::vsgl_shading::{DiffuseMode, LambertLobe, LightingMode, ShadingCandidates, VsglShadingPass};
+use crate::frame::{ShadingInputs, VirtualLightList};
+use crate::passes::vsgl_shading::{DiffuseMode, LambertLobe, LightingMode, ShadingCandidates, VsglShadingForm, VsglShadingPass};
 use std::borrow::Cow;
 
 pub const INFO: MethodInfo = MethodInfo {
@@ -283,7 +284,9 @@ impl Method for Vsgl {
             gen.record_with_pdf(&mut ctx.rec, "vsgl_gen", light.rsm, pdf, chains, &settings, &buf);
             vis.build_maps(ctx, &buf, light.budget, VSGL_RECORD_WORDS)?;
             let target = shading_out.target(ctx.indirect);
-            shading.record(&mut ctx.rec, ctx.frame_uniforms, &buf, light.budget, self.interleave, self.diffuse, self.lighting, self.lambert_lobe, self.kernel == Kernel::Node, self.plane_fade, ctx.gbuffer, target, feat, ctx.size, &vis, candidates.as_ref().map(|buffer| ShadingCandidates { buffer, seed: self.seed, resample_target, near_field: self.near_field_texels }).as_ref());
+            let io = ShadingInputs { frame_uniforms: ctx.frame_uniforms, gbuffer: ctx.gbuffer, out: target, features: feat, size: ctx.size, visibility: &vis };
+            let form = VsglShadingForm { diffuse: self.diffuse, lighting: self.lighting, lambert_lobe: self.lambert_lobe, exact_texels: self.kernel == Kernel::Node, plane_fade: self.plane_fade };
+            shading.record(&mut ctx.rec, &io, VirtualLightList { records: &buf, count: light.budget, interleave: self.interleave }, form, candidates.as_ref().map(|buffer| ShadingCandidates { buffer, seed: self.seed, resample_target, near_field: self.near_field_texels }).as_ref());
             if ctx.vsgls.is_none() {
                 ctx.vsgls = Some(buf);
             }

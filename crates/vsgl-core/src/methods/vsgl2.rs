@@ -11,7 +11,8 @@ use crate::error::Result;
 use crate::gpu::Gpu;
 use crate::passes::vsgl2_reduce::{Vsgl2Reduce, Vsgl2Reduction, VSGL2_COUNT};
 use crate::passes::vsgl_gen::VSGL_BYTES;
-use crate::passes::vsgl_shading::{DiffuseMode, LambertLobe, LightingMode, VsglShadingPass};
+use crate::frame::{ShadingInputs, VirtualLightList};
+use crate::passes::vsgl_shading::{DiffuseMode, LambertLobe, LightingMode, VsglShadingForm, VsglShadingPass};
 use std::borrow::Cow;
 
 pub const INFO: MethodInfo = MethodInfo {
@@ -95,7 +96,10 @@ impl Method for Vsgl2 {
             let buf = ctx.rec.storage("vsgl2_buffer", VSGL2_COUNT as u64 * VSGL_BYTES);
             reduce.record(&mut ctx.rec, light.rsm, light.raw.position, light.raw.rsm_light_dir(), light.texel_footprint(), &buf, feat, reduction)?;
             vis.build_maps(ctx, &buf, VSGL2_COUNT, VSGL_RECORD_WORDS)?;
-            shading.record(&mut ctx.rec, ctx.frame_uniforms, &buf, VSGL2_COUNT, 1, self.diffuse, self.lighting, self.lambert_lobe, false, self.plane_fade, ctx.gbuffer, ctx.indirect, feat, ctx.size, &vis, None);
+            let io = ShadingInputs { frame_uniforms: ctx.frame_uniforms, gbuffer: ctx.gbuffer, out: ctx.indirect, features: feat, size: ctx.size, visibility: &vis };
+            // One record per lobe, never a single texel: nothing to shade exactly.
+            let form = VsglShadingForm { diffuse: self.diffuse, lighting: self.lighting, lambert_lobe: self.lambert_lobe, exact_texels: false, plane_fade: self.plane_fade };
+            shading.record(&mut ctx.rec, &io, VirtualLightList { records: &buf, count: VSGL2_COUNT, interleave: 1 }, form, None);
             if ctx.vsgls.is_none() {
                 ctx.vsgls = Some(buf);
             }

@@ -1,11 +1,8 @@
 //! VPL shading (compute): adds the radiance of a batch of VPLs to the indirect buffers.
 
-use crate::frame::IndirectTargets;
 use crate::error::Result;
-use crate::frame::GBuffer;
+use crate::frame::{ShadingInputs, VirtualLightList};
 use crate::gpu::{for_each_chunk, interleaved_groups, traced_lights_per_dispatch, Gpu, PipelineVariants, Recorder};
-use crate::frame::ShadingVisibility;
-use crate::plan::ShaderFeatures;
 
 use crate::shader_lib::constants::vpl_shading::WORKGROUP;
 
@@ -34,21 +31,9 @@ impl VplShadingPass {
         Ok(Self { pipelines: PipelineVariants::new(gpu, "passes/vpl_shading.wgsl", "main")? })
     }
 
-    #[allow(clippy::too_many_arguments)]
-    pub fn record(
-        &self,
-        rec: &mut Recorder<'_>,
-        frame: &wgpu::Buffer,
-        vpls: &wgpu::Buffer,
-        vpl_count: u32,
-        interleave: u32,
-        min_distance2: f32,
-        gbuffer: &GBuffer,
-        out: &IndirectTargets,
-        features: ShaderFeatures,
-        size: (u32, u32),
-        visibility: &ShadingVisibility,
-    ) {
+    pub fn record(&self, rec: &mut Recorder<'_>, io: &ShadingInputs<'_>, lights: VirtualLightList<'_>, min_distance2: f32) {
+        let ShadingInputs { frame_uniforms: frame, gbuffer, out, features, size, visibility } = *io;
+        let VirtualLightList { records: vpls, count: vpl_count, interleave } = lights;
         let gpu = rec.gpu;
         let [specular] = features.specular_flags();
         let [traced, ism] = visibility.flags();

@@ -1,11 +1,9 @@
 //! VSGL shading (compute): SG incoming radiance, diffuse and SG–ASG specular, interleaved.
 
 use crate::error::Result;
-use crate::frame::{GBuffer, IndirectTargets};
+use crate::frame::{ShadingInputs, VirtualLightList};
 use crate::gpu::{for_each_chunk, interleaved_block_groups, traced_lights_per_dispatch, Gpu, PipelineVariants, Recorder};
-use crate::frame::ShadingVisibility;
 use crate::passes::vsgl_gen::SHADOW_CANDIDATES;
-use crate::plan::ShaderFeatures;
 
 use crate::shader_lib::constants::vsgl_shading::WORKGROUP;
 /// Pixels each thread shades (register blocking; the shader's override `PIXELS_PER_THREAD`,
@@ -37,6 +35,18 @@ struct ShadeParamsRaw {
     seed: u32,
     resample_target: u32,
     near_field_texels: u32,
+}
+
+/// How `vsgl_shading` shades each VSGL: the forms and switches the method chose.
+#[derive(Clone, Copy, Debug)]
+pub struct VsglShadingForm {
+    pub diffuse: DiffuseMode,
+    pub lighting: LightingMode,
+    pub lambert_lobe: LambertLobe,
+    /// Shade a VSGL of one texel (level 0, `kernel="node"`) as that texel exactly.
+    pub exact_texels: bool,
+    /// Fade the papers' diffuse form below each VSGL's tangent plane (`plane_fade=`).
+    pub plane_fade: bool,
 }
 
 /// Candidate texels per VSGL written by `vsgl_gen` ([`crate::passes::vsgl_gen::SHADOW_CANDIDATES`]
@@ -174,26 +184,10 @@ impl VsglShadingPass {
         Ok(Self { pipelines: PipelineVariants::with_numeric_constants(gpu, "passes/vsgl_shading.wgsl", "main", numeric_constants)? })
     }
 
-    #[allow(clippy::too_many_arguments)]
-    pub fn record(
-        &self,
-        rec: &mut Recorder<'_>,
-        frame: &wgpu::Buffer,
-        vsgls: &wgpu::Buffer,
-        count: u32,
-        interleave: u32,
-        diffuse: DiffuseMode,
-        lighting: LightingMode,
-        lambert_lobe: LambertLobe,
-        exact_texels: bool,
-        plane_fade: bool,
-        gbuffer: &GBuffer,
-        out: &IndirectTargets,
-        features: ShaderFeatures,
-        size: (u32, u32),
-        visibility: &ShadingVisibility,
-        candidates: Option<&ShadingCandidates<'_>>,
-    ) {
+    pub fn record(&self, rec: &mut Recorder<'_>, io: &ShadingInputs<'_>, lights: VirtualLightList<'_>, form: VsglShadingForm, candidates: Option<&ShadingCandidates<'_>>) {
+        let ShadingInputs { frame_uniforms: frame, gbuffer, out, features, size, visibility } = *io;
+        let VirtualLightList { records: vsgls, count, interleave } = lights;
+        let VsglShadingForm { diffuse, lighting, lambert_lobe, exact_texels, plane_fade } = form;
         let gpu = rec.gpu;
         let [specular] = features.specular_flags();
         let [traced, ism] = visibility.flags();
