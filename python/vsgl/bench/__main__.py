@@ -1,0 +1,7 @@
+"""``python -m vsgl.bench``: the same as ``python -m vsgl bench``."""
+
+import sys
+
+from .cli import main
+
+sys.exit(main())
