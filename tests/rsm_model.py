@@ -12,9 +12,8 @@ def spot_rsm_view(frame: vsgl.Frame, light_index: int = 0) -> tuple[np.ndarray, 
     """The axis and tan(half field of view) of a spot light's RSM in ``frame``
     (``frame.settings["rsm_view"]``: the cone's, or narrower where ``rsm_fit="scene"`` fitted it
     to the scene)."""
-    row = frame.settings["rsm_view"].split(";")[light_index]
-    forward, tan = (part.split("=")[1] for part in row.split())
-    return np.array([float(c) for c in forward.split(",")]), float(tan)
+    view = frame.settings["rsm_view"][light_index]
+    return np.array(view["forward"], dtype=np.float64), float(view["tan"])
 
 
 def spot_texel_footprint_variance(y: np.ndarray, normal: np.ndarray, frame: vsgl.Frame, side: int) -> np.ndarray:

@@ -97,7 +97,7 @@ def test_frame_aovs_and_metadata(renderer):
     with pytest.raises(ValueError, match="unknown AOV"):
         frame.aov("nope")
     assert frame.settings["method"] == "direct"
-    assert frame.settings["width"] == "64"
+    assert frame.settings["width"] == 64
     assert "total" in frame.timings_ms
 
 
@@ -284,7 +284,7 @@ def test_option_types_are_checked(renderer):
         renderer.render(vsgl.scenes.cornell_box(), method="vsgl", denoise=1)
     # None means the method's default.
     f = renderer.render(vsgl.scenes.cornell_box(), method="vsgl2", rsm_size=None, aovs=["image"])
-    assert f.settings["rsm_size"] == str(vsgl.method_options("vsgl2")["rsm_size"])
+    assert f.settings["rsm_size"] == vsgl.method_options("vsgl2")["rsm_size"]
 
 
 @pytest.mark.gpu
@@ -434,3 +434,39 @@ def test_cli_leaves_num_lights_to_the_method_unless_given(monkeypatch, tmp_path)
     with pytest.raises(Stop):
         main(["animate", "cave_flashlight", "--method", "vsgl", "--frames", "2", "--size", "8x8", "-o", str(tmp_path / "f") + "/"])
     assert "num_lights" not in seen[-1], seen[-1]
+
+
+def test_frame_settings_are_typed_as_their_values(renderer):
+    """Counts are ints, fractions floats, flags bools, budgets lists: no caller compares against
+    "0" or splits "0+0+0+256+0+0". Text only where the value is a name."""
+    f = renderer.render(vsgl.scenes.cornell_box(), method="vsgl", num_lights=16, rsm_size=32, aovs=[])
+    s = f.settings
+    for name in ("width", "num_lights", "rsm_size", "seed", "interleave", "allocated_bytes", "frames_in_flight"):
+        assert type(s[name]) is int, (name, s[name])
+    for name in ("K", "coherence", "readback_ms"):
+        assert type(s[name]) is float, (name, s[name])
+    for name in ("denoise", "plane_fade", "capture_rsm"):
+        assert type(s[name]) is bool, (name, s[name])
+    assert s["num_lights"] == 16 and s["denoise"] is True and s["capture_rsm"] is False
+    assert s["virtual_lights_per_light"] == [[16]]
+    (view,) = s["rsm_view"]
+    assert len(view["forward"]) == 3 and abs(np.linalg.norm(view["forward"]) - 1) < 1e-5 and view["tan"] > 0
+    # Whatever stays text is a name, never a number or flag written out.
+    for name, value in s.items():
+        if isinstance(value, str):
+            assert not re.fullmatch(r"-?[0-9.e+-]+|true|false", value), (name, value)
+    # A point light beside the spot light: its RSM frame is not a spot's, so None.
+    both = vsgl.scenes.cornell_box()
+    both.lights = [*both.lights, vsgl.PointLight(position=(0.0, 0.5, 0.0), intensity=1.0)]
+    views = renderer.render(both, method="vpl", num_lights=12, rsm_size=32, aovs=[]).settings["rsm_view"]
+    assert isinstance(views[0], dict) and views[1] is None
+
+
+def test_check_method_options_catches_options_that_contradict_each_other():
+    """The method's own parse runs, not only each option's range: a papers' diffuse form given
+    with lighting="accurate" (which brings its own) fails before any render, naming diffuse."""
+    vsgl.check_method_options("vsgl", lighting="asg", diffuse="papers")
+    with pytest.raises(vsgl.ArgumentError, match="diffuse"):
+        vsgl.check_method_options("vsgl", lighting="accurate", diffuse="papers")
+    with pytest.raises(vsgl.ArgumentError, match="kernel_filter"):
+        vsgl.check_method_options("vsgl", kernel="node", kernel_filter="trilinear")

@@ -93,7 +93,7 @@ def test_brsm_runs_and_times_each_step(renderer, method):
     for p in BRSM_PASSES:
         assert p in names, (p, f.passes)
     assert names.index("brsm_view_vsgl_gen") < names.index("brsm_importance") < names.index("brsm_importance_filter") < names.index("brsm_mix")
-    assert f.settings["importance"] == "brsm" and f.settings["importance_lights"] == "64" and f.settings["importance_interleave"] == "4"
+    assert f.settings["importance"] == "brsm" and f.settings["importance_lights"] == 64 and f.settings["importance_interleave"] == 4
     # k = 1: every view VSGL at every texel, nothing to recombine.
     every = renderer.render(vsgl.scenes.glossy_cornell(), method=method, num_lights=64, rsm_size=32, importance="brsm", importance_lights=64, importance_interleave=1)
     assert "brsm_importance" in every.passes and not any(p.startswith("brsm_importance_filter") for p in every.passes)

@@ -115,7 +115,7 @@ def test_aovs_add_up(renderer):
     np.testing.assert_allclose(frame.aov("indirect"), frame.aov("indirect_diffuse") + frame.aov("indirect_specular"), rtol=1e-6, atol=1e-7)
     np.testing.assert_allclose(frame.image, frame.aov("direct") + frame.aov("indirect"), rtol=1e-6, atol=1e-7)
     assert frame.aov("indirect_specular").max() > 0 and frame.aov("indirect_diffuse").max() > 0
-    assert "pdf_mips" in frame.passes and frame.settings["num_lights"] == "64"
+    assert "pdf_mips" in frame.passes and frame.settings["num_lights"] == 64
 
 
 def _rmse(a: np.ndarray, b: np.ndarray) -> float:
@@ -168,7 +168,7 @@ def test_vpl_clamp_bounds_spikes_and_is_off_by_default(renderer):
     scene = vsgl.scenes.cornell_box()
     free = renderer.render(scene, method="vpl", num_lights=64, rsm_size=64, seed=3)
     clamped = renderer.render(scene, method="vpl", num_lights=64, rsm_size=64, seed=3, vpl_clamp=0.05)
-    assert free.settings["vpl_clamp"] == "0"
+    assert free.settings["vpl_clamp"] == 0.0
     assert clamped.aov("indirect").max() < 0.5 * free.aov("indirect").max()
     # Clamping only removes energy (it is biased low), never adds it.
     assert clamped.aov("indirect").mean() <= free.aov("indirect").mean()

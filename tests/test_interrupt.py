@@ -47,7 +47,7 @@ def test_sigint_stops_a_long_render_and_the_renderer_stays_usable(tiny, default_
     assert elapsed < 5.0, f"the interrupt took {elapsed:.1f} s to stop the render"
     f = tiny.render(scene, method="pathtrace", spp=16, aovs=["image"])
     assert np.isfinite(f.image).all() and f.image.max() > 0
-    assert f.settings["spp_done"] == "16"
+    assert f.settings["spp_done"] == 16
 
 
 def test_a_time_budget_ends_the_sampling_with_what_was_taken(tiny):
@@ -59,7 +59,7 @@ def test_a_time_budget_ends_the_sampling_with_what_was_taken(tiny):
     assert 0 < done < 65536 and elapsed < 10.0, (done, elapsed)
     assert np.isfinite(f.image).all() and f.image.max() > 0
     # Without a budget every sample is taken.
-    assert tiny.render(scene, method="pathtrace", spp=8, aovs=["image"]).settings["spp_done"] == "8"
+    assert tiny.render(scene, method="pathtrace", spp=8, aovs=["image"]).settings["spp_done"] == 8
     with pytest.raises(vsgl.ArgumentError, match="time_budget_s"):
         tiny.render(scene, method="pathtrace", time_budget_s=-1.0)
 
@@ -72,7 +72,7 @@ def test_progress_is_reported_between_batches_and_can_stop_the_render(tiny):
     assert all(t == 4096 and u == "spp" for _, t, u in calls)
     done = [d for d, _, _ in calls]
     assert done == sorted(done) and 0 < done[0] and done[-1] < 4096
-    assert f.settings["spp_done"] == "4096"
+    assert f.settings["spp_done"] == 4096
 
     class Enough(Exception):
         pass

@@ -83,7 +83,7 @@ def test_vsgl2s_blend_shades_diffuse_as_diffuse_says(renderer):
         blend = renderer.render(scene, method="vsgl2", lighting="blend", diffuse=diffuse, aovs=aovs, **SMALL)
         asg = renderer.render(scene, method="vsgl2", lighting="asg", diffuse=diffuse, aovs=aovs, **SMALL)
         assert blend.settings["diffuse"] == diffuse
-        assert blend.settings["plane_fade"] == ("true" if diffuse != "papers" else "false")
+        assert blend.settings["plane_fade"] is (diffuse != "papers")
         assert np.array_equal(blend.aov("indirect_diffuse"), asg.aov("indirect_diffuse")), diffuse
         assert not np.array_equal(blend.aov("indirect_specular"), asg.aov("indirect_specular")), diffuse
 

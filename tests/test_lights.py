@@ -118,7 +118,7 @@ def test_shadow_maps_that_miss_the_scene_are_left_out_and_change_nothing(tmp_pat
     # The virtual-light methods leave out the same views' RSMs.
     vpl = r.render(scene, camera=cam, method="vpl", num_lights=64, rsm_size=32)
     assert sorted(k for k in vpl.skipped if k.startswith("virtual lights of")) == [f"virtual lights of light 0 view {f}" for f in (0, 1, 2, 4, 5)] + ["virtual lights of light 1"]
-    assert vpl.settings["virtual_lights_per_light"] == "0+0+0+64+0+0;0"
+    assert vpl.settings["virtual_lights_per_light"] == [[0, 0, 0, 64, 0, 0], [0]]
     _assert_finite(vpl)
 
 
@@ -405,16 +405,16 @@ def test_virtual_light_budget_is_split_over_lights_and_faces_by_rsm_power(tmp_pa
     opts = dict(method=method, num_lights=num_lights, rsm_size=32, capture_rsm=True)
     scene.lights = [point, spot]
     frame = renderer.render(scene, camera=cam, **opts)
-    faces, spot_share = frame.settings["virtual_lights_per_light"].split(";")
-    shares = [int(x) for x in faces.split("+")] + [int(spot_share)]
+    faces, spot_share = frame.settings["virtual_lights_per_light"]
+    shares = faces + spot_share
     powers = list(_face_powers(frame, 6))
     _assert_finite(frame)
     assert frame.aov("indirect").max() > 0
     scene.lights = [spot, point]
     swapped = renderer.render(scene, camera=cam, **opts)
     powers.append(_face_powers(swapped, 1)[0])
-    spot_first, rest = swapped.settings["virtual_lights_per_light"].split(";")
-    assert [int(spot_first)] + [int(x) for x in rest.split("+")] == shares[-1:] + shares[:-1], "the split depends on the lights' order"
+    spot_first, rest = swapped.settings["virtual_lights_per_light"]
+    assert spot_first + rest == shares[-1:] + shares[:-1], "the split depends on the lights' order"
     assert len(shares) == 7 and sum(shares) == num_lights
     powers = np.array(powers)
     assert np.all(powers > 0) and powers.max() > 1.5 * powers.min(), f"test scene should have unequal face powers: {powers}"
@@ -435,7 +435,7 @@ def test_cube_faces_that_see_nothing_are_left_out_and_lose_no_light(tmp_path, re
     cam = vsgl.Camera.look_at(eye=(-1.2, 0.8, 1.0), target=(0.0, 0.1, 0.0), fov_y_deg=50)  # sees the wall's lit side
     n = 256
     frame = renderer.render(scene, camera=cam, method=method, num_lights=n, rsm_size=32, seed=0)
-    assert frame.settings["virtual_lights_per_light"] == f"0+0+0+{n}+0+0"
+    assert frame.settings["virtual_lights_per_light"] == [[0, 0, 0, n, 0, 0]]
     left_out = [what for what in frame.skipped if what.startswith("virtual lights of light 0 view")]
     assert sorted(left_out) == [f"virtual lights of light 0 view {v}" for v in (0, 1, 2, 4, 5)]
     _assert_finite(frame)

@@ -149,7 +149,7 @@ def test_stderr_falls_as_one_over_sqrt_spp_and_is_deterministic(renderer):
     other = renderer.render(scene, method="pathtrace", strategy="camera", spp=16, seed=4)
     assert not np.array_equal(other.aov("indirect"), f16.aov("indirect"))
     np.testing.assert_array_equal(other.aov("direct"), f16.aov("direct"))
-    assert f16.settings["spp"] == "16" and f16.settings["seed"] == "3"
+    assert f16.settings["spp"] == 16 and f16.settings["seed"] == 3
 
 
 def test_stderr_matches_the_spread_of_independent_renders(renderer):

@@ -86,8 +86,8 @@ def test_the_next_frame_is_submitted_before_this_one_is_read(renderer):
     with pytest.raises(StopIteration):
         next(seq)
     # Frames 0 and 1 were read back while the next frame was on the GPU; the last had none.
-    assert [f.settings["frames_in_flight"] for f in got] == ["2", "2", "1"]
-    assert renderer.render(vsgl.scenes.cornell_box()).settings["frames_in_flight"] == "1"
+    assert [f.settings["frames_in_flight"] for f in got] == [2, 2, 1]
+    assert renderer.render(vsgl.scenes.cornell_box()).settings["frames_in_flight"] == 1
 
 
 def test_a_steady_sequence_allocates_nothing_after_its_ring_is_made(renderer):
@@ -107,9 +107,9 @@ def test_an_abandoned_sequence_leaves_no_frame_counted_in_flight(renderer):
     # Leaving a sequence with frame 1 already submitted (a `break` in a for loop) drops it
     # unread; the next lone render must still report 1 frame in flight, not 2.
     seq = renderer.render_sequence(vsgl.scenes.cornell_box(), [{}] * 3, aovs=["image"])
-    assert next(seq).settings["frames_in_flight"] == "2"
+    assert next(seq).settings["frames_in_flight"] == 2
     del seq
     import gc
 
     gc.collect()
-    assert renderer.render(vsgl.scenes.cornell_box(), aovs=["image"]).settings["frames_in_flight"] == "1"
+    assert renderer.render(vsgl.scenes.cornell_box(), aovs=["image"]).settings["frames_in_flight"] == 1

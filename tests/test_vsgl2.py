@@ -204,7 +204,7 @@ def test_rsm_size_for_vsgl2(renderer):
     with pytest.raises(ValueError, match="rsm_size"):
         renderer.render(scene, method="vsgl", rsm_size=100)
     f = renderer.render(scene, method="vsgl2", rsm_size=33)
-    assert f.settings["rsm_size"] == "33" and f.settings["diffuse"] == "papers"
+    assert f.settings["rsm_size"] == 33 and f.settings["diffuse"] == "papers"
     assert np.isfinite(f.image).all() and f.aov("indirect").mean() > 0
 
 

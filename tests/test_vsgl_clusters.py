@@ -76,7 +76,7 @@ def test_the_back_of_a_lit_plane_gets_no_indirect_light(tmp_path, make_renderer,
     # The method's default and, for vsgl, the papers' form with the fade.
     for form in ({}, papers) if papers else ({},):
         faded = r.render(scene, camera=back, method=method, rsm_size=64, aovs=["indirect"], **extra, **kw, **form)
-        assert faded.settings["plane_fade"] == "true"
+        assert faded.settings["plane_fade"] is True
         indirect = faded.aov("indirect").astype(np.float64)
         assert np.all(np.isfinite(indirect))
         assert indirect.max() == 0.0, f"{form}: the back of the plane gets {indirect.sum() / direct:.3f} of the front's direct light"
@@ -90,10 +90,10 @@ def test_plane_fade_false_is_refused_where_the_form_always_fades(renderer):
     for method, form in (("vsgl", dict(lighting="asg", diffuse="accurate")), ("vsgl", dict(lighting="blend")), ("vsgl", {}), ("vsgl2", dict(diffuse="sg_product"))):
         with pytest.raises(vsgl.ArgumentError, match=r"^plane_fade: .* always fades"):
             renderer.render(scene, method=method, plane_fade=False, **form, **kw[method])
-        assert renderer.render(scene, method=method, **form, **kw[method]).settings["plane_fade"] == "true"
-    assert renderer.render(scene, method="vsgl2", **kw["vsgl2"]).settings["plane_fade"] == "false"
-    assert renderer.render(scene, method="vsgl", lighting="asg", **kw["vsgl"]).settings["plane_fade"] == "true"
-    assert renderer.render(scene, method="vsgl", lighting="asg", plane_fade=False, **kw["vsgl"]).settings["plane_fade"] == "false"
+        assert renderer.render(scene, method=method, **form, **kw[method]).settings["plane_fade"] is True
+    assert renderer.render(scene, method="vsgl2", **kw["vsgl2"]).settings["plane_fade"] is False
+    assert renderer.render(scene, method="vsgl", lighting="asg", **kw["vsgl"]).settings["plane_fade"] is True
+    assert renderer.render(scene, method="vsgl", lighting="asg", plane_fade=False, **kw["vsgl"]).settings["plane_fade"] is False
 
 
 def _floor_and_wall(tmp_path):
@@ -195,9 +195,9 @@ def test_the_default_rsm_grows_with_num_lights(renderer):
     for method in ("vpl", "vsgl"):
         for n, side in ((4096, 256), (16385, 512), (70000, 1024)):
             f = renderer.render(scene, method=method, num_lights=n, interleave=8, aovs=["indirect"])
-            assert f.settings["rsm_size"] == str(side), (method, n, f.settings["rsm_size"])
+            assert f.settings["rsm_size"] == side, (method, n, f.settings["rsm_size"])
         f = renderer.render(scene, method=method, num_lights=70000, rsm_size=64, interleave=8, aovs=["indirect"])
-        assert f.settings["rsm_size"] == "64"
+        assert f.settings["rsm_size"] == 64
 
 
 # --- Normal coherence of the kernels (coherence=, docs/rendering.md "The real-scene corpus") -----
@@ -246,7 +246,7 @@ def test_coherence_is_checked(renderer):
         with pytest.raises(vsgl.ArgumentError, match="coherence"):
             renderer.render(scene, method="vsgl", coherence=bad, num_lights=16, rsm_size=32)
     f = renderer.render(scene, method="vsgl", coherence=1.0, lighting="asg", plane_fade=False, num_lights=16, rsm_size=32, aovs=["image"])
-    assert np.isfinite(f.image).all() and f.settings["coherence"] == "1"
+    assert np.isfinite(f.image).all() and f.settings["coherence"] == 1.0
 
 
 # --- How the filtered kernels read the mips (kernel_filter=, docs/rendering.md "Kernels read at

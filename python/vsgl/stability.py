@@ -373,7 +373,7 @@ def scene_suite(scenes: Sequence[str] = ("cornell_box", "glossy_cornell", "caust
                     scaled = image / divide
                     scale = max(float(np.abs(base).max()), 1e-30)
                     surface = surface_changed(base_normal, base_depth, normal, depth)
-                    unsure = widen(surface, int(frame.settings.get("interleave") or 1)) if frame.settings.get("denoise") == "true" else surface
+                    unsure = widen(surface, int(frame.settings.get("interleave") or 1)) if frame.settings.get("denoise") is True else surface
                     flipped = (np.abs(scaled - base).max(axis=-1) > 1e-2 * np.maximum(np.abs(base).max(axis=-1), 1e-3 * scale)) & ~unsure
                     keep = ~(flipped | unsure)
                     rel = lambda a, b: float(np.sqrt(np.mean((a - b) ** 2)) / np.sqrt(np.mean(b**2))) if b.size and np.any(b) else 0.0  # noqa: E731

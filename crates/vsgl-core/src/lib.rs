@@ -12,9 +12,11 @@ pub mod progress;
 pub mod renderer;
 pub mod rng;
 pub mod scene;
+pub mod setting;
 pub mod shader_lib;
 pub mod upload;
 pub mod verify;
 
 pub use error::{Error, Result};
 pub use renderer::{Frame, RenderOptions, Renderer};
+pub use setting::Setting;

@@ -10,7 +10,7 @@ use std::path::{Path, PathBuf};
 /// Top-level modules from the bottom up; a module may use its own layer's other modules only
 /// where they share a group (one entry).
 const LAYERS: &[&[&str]] = &[
-    &["error", "rng", "progress"],
+    &["error", "rng", "progress", "setting"],
     &["shader_lib", "image_io"],
     &["gpu"],
     &["scene"],

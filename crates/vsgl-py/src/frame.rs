@@ -3,10 +3,10 @@
 use crate::errors::{argument_error, os_error, to_py};
 use numpy::{PyArray1, PyArrayMethods};
 use pyo3::prelude::*;
-use pyo3::types::{PyBytes, PyDict};
+use pyo3::types::{PyBool, PyBytes, PyDict, PyList, PyString};
 use vsgl_core::methods::{self};
 use vsgl_core::passes::vsgl_gen::{VSGL_FIELDS, VSGL_FLOATS};
-use vsgl_core::{image_io, Frame};
+use vsgl_core::{image_io, Frame, Setting};
 
 /// A rendered frame: linear float32 AOVs of shape (H, W, C), row 0 at the top.
 #[pyclass(name = "Frame", module = "vsgl", frozen)]
@@ -53,7 +53,7 @@ impl PyFrame {
         if !vsgl_core::renderer::AOV_NAMES.contains(&name) {
             return Err(argument_error(format!("name: unknown AOV {name:?}; read back: {available}")));
         }
-        let method = self.inner.settings.iter().find(|(k, _)| k == "method").map(|(_, v)| v.as_str());
+        let method = self.inner.settings.iter().find(|(k, _)| k == "method").and_then(|(_, v)| v.as_text());
         let made = method.and_then(|m| methods::info(m).ok()).map(|info| info.makes_aov(name));
         Err(match (method, made) {
             (Some(method), Some(false)) => argument_error(format!(
@@ -199,7 +199,7 @@ impl PyFrame {
     fn settings<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyDict>> {
         let d = PyDict::new(py);
         for (k, v) in &self.inner.settings {
-            d.set_item(k, v)?;
+            d.set_item(k, setting_object(py, v)?)?;
         }
         Ok(d)
     }
@@ -234,4 +234,24 @@ impl PyFrame {
         let total = self.inner.timings_ms.iter().find(|(k, _)| k == "total").map(|(_, v)| *v).unwrap_or(0.0);
         format!("Frame({}x{}, passes={:?}, total_ms={total:.3})", self.inner.width, self.inner.height, self.inner.passes)
     }
+}
+
+/// A `frame.settings` value as the Python object of its type: int, float, bool, str, list, dict
+/// or None.
+fn setting_object<'py>(py: Python<'py>, value: &Setting) -> PyResult<Bound<'py, PyAny>> {
+    Ok(match value {
+        Setting::Int(v) => v.into_pyobject(py)?.into_any(),
+        Setting::Float(v) => v.into_pyobject(py)?.into_any(),
+        Setting::Bool(v) => PyBool::new(py, *v).to_owned().into_any(),
+        Setting::Text(t) => PyString::new(py, t).into_any(),
+        Setting::List(items) => PyList::new(py, items.iter().map(|item| setting_object(py, item)).collect::<PyResult<Vec<_>>>()?)?.into_any(),
+        Setting::Record(fields) => {
+            let d = PyDict::new(py);
+            for (name, field) in fields {
+                d.set_item(name, setting_object(py, field)?)?;
+            }
+            d.into_any()
+        }
+        Setting::Absent => py.None().into_bound(py),
+    })
 }

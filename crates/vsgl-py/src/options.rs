@@ -41,7 +41,7 @@ pub(crate) fn option_value(method: &str, name: &str, value: &Bound<'_, PyAny>) -
             // Beyond i64: no option allows it; say what the method's option does allow.
             _ => {
                 let size = match v { Ok(v) => v.to_string(), Err(size) => size };
-                let spec = methods::info(method).ok().and_then(|info| info.options.iter().find(|o| o.name == name));
+                let spec = methods::info(method).ok().and_then(|info| info.options().find(|o| o.name == name));
                 let allowed = spec.map(|s| s.allowed()).unwrap_or_else(|| format!("an option of method={method:?}"));
                 Err(argument_error(format!("{name}: must be {allowed}, got {size}")))
             }
@@ -71,7 +71,7 @@ pub(crate) fn describe_method(name: &str) -> PyResult<String> {
 pub(crate) fn method_options<'py>(py: Python<'py>, name: &str) -> PyResult<Bound<'py, PyDict>> {
     let info = methods::info(name).map_err(to_py)?;
     let d = PyDict::new(py);
-    for o in info.options {
+    for o in info.options() {
         match &o.default {
             OptionValue::Int(v) => d.set_item(o.name, v)?,
             OptionValue::Float(v) => d.set_item(o.name, v)?,
@@ -83,14 +83,16 @@ pub(crate) fn method_options<'py>(py: Python<'py>, name: &str) -> PyResult<Bound
 }
 
 /// Checks keyword options for method `name` as `render` would, without rendering: raises the
-/// same `ArgumentError` (or `TypeError` for a name no method takes) naming the option. The
-/// benchmark calls it for every configuration of a sweep before the first (possibly long)
-/// reference render.
+/// same `ArgumentError` (or `TypeError` for a name no method takes) naming the option, for
+/// each option alone and for options that contradict each other (the method's own parse runs;
+/// what depends on the adapter is checked at render). The benchmark calls it for every
+/// configuration of a sweep before the first (possibly long) reference render.
 #[pyfunction]
 #[pyo3(signature = (name, **options))]
 pub(crate) fn check_method_options(name: &str, options: Option<&Bound<'_, PyDict>>) -> PyResult<()> {
     let info = methods::info(name).map_err(to_py)?;
     let given = render_options(name, "auto", None, options)?.options;
-    info.parse_options(&given).map_err(to_py)?;
+    let mut options = info.parse_options(&given).map_err(to_py)?;
+    (info.configure)(&mut options).map_err(to_py)?;
     Ok(())
 }

@@ -69,12 +69,12 @@ mod tests {
         use super::super::REGISTRY;
         let mut checked = 0;
         for method in REGISTRY {
-            for spec in method.options {
+            for spec in method.options() {
                 let OptionKind::Choice(values) = spec.kind else { continue };
                 for value in values {
                     let given = vec![(spec.name.to_string(), OptionValue::from(value.to_string()))];
-                    let options = method.parse_options(&given).unwrap_or_else(|e| panic!("{} {}={value:?}: {e}", method.name, spec.name));
-                    if let Err(e) = (method.configure)(&options) {
+                    let mut options = method.parse_options(&given).unwrap_or_else(|e| panic!("{} {}={value:?}: {e}", method.name, spec.name));
+                    if let Err(e) = (method.configure)(&mut options) {
                         let text = e.to_string();
                         assert!(!text.contains("must be one of"), "{} {}={value:?}: {text}", method.name, spec.name);
                     }

@@ -7,9 +7,21 @@ use crate::error::Result;
 use crate::frame::IndirectTargets;
 use crate::passes::denoise::DenoisePass;
 
-/// `denoise_form=` as the filter takes it: whether it keeps the image's total light.
-pub fn keeps_light(o: &super::Options) -> crate::error::Result<bool> {
-    Ok(o.choice::<super::choices::DenoiseForm>("denoise_form")? == super::choices::DenoiseForm::Exchange)
+/// `interleave`, `denoise` and `denoise_form` (`options::common::DENOISE_OPTIONS` and the
+/// method's own `interleave`), parsed once.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct InterleaveSettings {
+    pub interleave: u32,
+    pub denoise: bool,
+    /// `denoise_form="exchange"`: the filter keeps the image's total light.
+    pub keep_light: bool,
+}
+
+impl InterleaveSettings {
+    pub fn from_options(o: &super::Options) -> Result<Self> {
+        let keep_light = o.choice::<super::choices::DenoiseForm>("denoise_form")? == super::choices::DenoiseForm::Exchange;
+        Ok(Self { interleave: o.u32("interleave")?, denoise: o.bool("denoise")?, keep_light })
+    }
 }
 
 /// Where a method's shading writes, and whether the filter runs after it.
@@ -26,7 +38,8 @@ pub struct InterleavedShading {
 impl InterleavedShading {
     /// Takes the noisy targets the frame needs (placeholders when it shades straight into the
     /// indirect targets).
-    pub fn new(ctx: &mut FrameContext<'_>, interleave: u32, denoise: bool, keep_light: bool) -> Self {
+    pub fn new(ctx: &mut FrameContext<'_>, settings: InterleaveSettings) -> Self {
+        let InterleaveSettings { interleave, denoise, keep_light } = settings;
         let filtered = interleave > 1 && denoise;
         let pixel_bytes = ctx.size.0 as u64 * ctx.size.1 as u64 * 16;
         // Without specular materials the specular targets are never written.

@@ -10,6 +10,7 @@ use super::brsm::Importance;
 use super::rsm_lights::LightRsm;
 use super::FrameContext;
 use crate::error::{Error, Result};
+use crate::passes::vpl_sample::Sampling;
 use crate::passes::metropolis_step::{MetropolisStepPass, StepSettings, STATE_BYTES};
 use crate::scene::Light;
 use glam::DVec3;
@@ -30,9 +31,19 @@ pub enum ChainSpace {
     Rsm,
 }
 
-impl ChainSpace {
+/// How `vpl` and `vsgl` draw RSM texels: `sampling`, `chain_space` and `seed`
+/// (`options::common::SAMPLING_OPTIONS`), parsed once.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct TexelSampling {
+    pub sampling: Sampling,
+    /// Where a Metropolis chain's state lives between frames.
+    pub chain_space: ChainSpace,
+    pub seed: u32,
+}
+
+impl TexelSampling {
     pub fn from_options(o: &super::Options) -> Result<Self> {
-        o.choice("chain_space")
+        Ok(Self { sampling: o.choice("sampling")?, chain_space: o.choice("chain_space")?, seed: o.u32("seed")? })
     }
 }
 

@@ -28,6 +28,7 @@ use crate::frame::{GBuffer, IndirectTargets, VisibilityTargets};
 use crate::gpu::{Gpu, PassCache, Recorder};
 use crate::plan::ShaderFeatures;
 use crate::scene::Scene;
+use crate::setting::Setting;
 use crate::upload::GpuScene;
 pub use options::{OptionKind, OptionSpec, OptionValue, Options};
 
@@ -48,15 +49,19 @@ pub struct MethodInfo {
     pub name: &'static str,
     /// One line for `vsgl.describe_method` and `--help`.
     pub summary: &'static str,
-    /// The keyword options it takes (besides the frame's `plan` and `aovs`).
-    pub options: &'static [OptionSpec],
+    /// The keyword options it takes (besides the frame's `plan` and `aovs`), in groups: its own
+    /// and the groups several methods share (`options::common::VISIBILITY_OPTIONS`, …), each
+    /// declared once. [`Self::options`] lists them in order.
+    pub option_groups: &'static [&'static [OptionSpec]],
     pub direct_light: DirectLight,
     /// Whether it makes the indirect AOVs (indirect, indirect_diffuse, indirect_specular).
     pub indirect: bool,
     /// AOVs only some methods make (e.g. `stderr`).
     pub extra_aovs: &'static [&'static str],
-    /// Builds the method's frame settings from validated options.
-    pub configure: fn(&Options) -> Result<Box<dyn Method>>,
+    /// Parses validated options into the method's typed settings, once. It may resolve a
+    /// default that depends on other options in place ([`Options::resolve_default`]), so
+    /// `frame.settings`, which the frame script makes from these options, shows what ran.
+    pub configure: fn(&mut Options) -> Result<Box<dyn Method>>,
 }
 
 impl MethodInfo {
@@ -69,18 +74,23 @@ impl MethodInfo {
         }
     }
 
+    /// Every option it takes, in declaration order.
+    pub fn options(&self) -> impl Iterator<Item = &'static OptionSpec> {
+        self.option_groups.iter().flat_map(|group| group.iter())
+    }
+
     /// Whether it takes option `name`.
     pub fn takes(&self, name: &str) -> bool {
-        self.options.iter().any(|o| o.name == name)
+        self.options().any(|o| o.name == name)
     }
 
     /// Several lines: the summary, then each option with its allowed values and default.
     pub fn describe(&self) -> String {
         let mut s = format!("{}: {}", self.name, self.summary);
-        if self.options.is_empty() {
+        if self.options().next().is_none() {
             s.push_str("\n  (no options)");
         }
-        for o in self.options {
+        for o in self.options() {
             s.push_str(&format!("\n  {}={} ({}): {}", o.name, python_literal(&o.default), o.allowed(), o.help));
         }
         s
@@ -88,7 +98,8 @@ impl MethodInfo {
 
     /// Validated options of a frame of this method (see [`Options::parse`]).
     pub fn parse_options(&self, given: &[(String, OptionValue)]) -> Result<Options> {
-        Options::parse(self.name, self.options, given, &every_option_name())
+        let specs: Vec<&OptionSpec> = self.options().collect();
+        Options::parse(self.name, &specs, given, &every_option_name())
     }
 }
 
@@ -119,7 +130,7 @@ pub fn names() -> Vec<&'static str> {
 /// Every option any method takes, once each, in first-declared order.
 pub fn every_option_name() -> Vec<&'static str> {
     let mut all: Vec<&'static str> = Vec::new();
-    for o in REGISTRY.iter().flat_map(|m| m.options) {
+    for o in REGISTRY.iter().flat_map(|m| m.options()) {
         if !all.contains(&o.name) {
             all.push(o.name);
         }
@@ -150,8 +161,12 @@ pub trait Method: Send + Sync {
     /// `ctx.skipped` for each pass it leaves out.
     fn record(&self, ctx: &mut FrameContext<'_>) -> Result<()>;
 
-    /// `frame.settings` rows of the method, after the frame's own.
-    fn settings(&self, gpu: &Gpu) -> Result<Vec<(String, String)>>;
+    /// `frame.settings` rows beyond the method's options, or in place of one where what ran
+    /// differs from what was asked (an "auto" resolved for the adapter). The frame script lists
+    /// every option as [`MethodInfo::configure`] left it; most methods add nothing.
+    fn settings(&self, _gpu: &Gpu) -> Result<Vec<(String, Setting)>> {
+        Ok(Vec::new())
+    }
 }
 
 /// The RSM of the first light, read back for `Frame.rsm`: side and (name, channels, data).
@@ -192,7 +207,7 @@ pub struct FrameContext<'a> {
     /// Per-pixel standard error (`stderr` AOV).
     pub stderr: Option<wgpu::Buffer>,
     /// Extra `frame.settings` rows the method learnt while recording.
-    pub settings: Vec<(String, String)>,
+    pub settings: Vec<(String, Setting)>,
     /// Asked between the GPU batches of long renders; an error stops the render.
     pub stop: Option<&'a crate::progress::StopCheck>,
     /// Kept from frame to frame (in the frame's readback slot) for the RSM powers that split
@@ -213,5 +228,22 @@ impl FrameContext<'_> {
 
     pub fn skip(&mut self, what: &str, why: impl Into<String>) {
         self.skipped.push((what.to_string(), why.into()));
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::REGISTRY;
+
+    /// Option groups are shared: a method that lists a group twice, or an option both alone and
+    /// in a group, would take one name twice (and `Options::parse` would keep the first).
+    #[test]
+    fn no_method_takes_an_option_twice() {
+        for method in REGISTRY {
+            let names: Vec<&str> = method.options().map(|o| o.name).collect();
+            for (i, name) in names.iter().enumerate() {
+                assert!(!names[..i].contains(name), "{} takes {name:?} twice", method.name);
+            }
+        }
     }
 }

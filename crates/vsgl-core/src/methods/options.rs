@@ -4,6 +4,7 @@
 //! does not take is an error that names it and lists what the method does take.
 
 use crate::error::{Error, Result};
+use crate::setting::Setting;
 use std::borrow::Cow;
 
 /// A value of a keyword option, as a caller gives it (Python int, float, bool or str).
@@ -16,7 +17,7 @@ pub enum OptionValue {
 }
 
 impl OptionValue {
-    /// The value as `frame.settings` shows it.
+    /// The value as written in errors and `describe_method`.
     pub fn display(&self) -> String {
         match self {
             OptionValue::Int(v) => v.to_string(),
@@ -32,6 +33,17 @@ impl OptionValue {
             OptionValue::Float(_) => "a float",
             OptionValue::Bool(_) => "a bool",
             OptionValue::Str(_) => "a string",
+        }
+    }
+}
+
+impl From<&OptionValue> for Setting {
+    fn from(v: &OptionValue) -> Self {
+        match v {
+            OptionValue::Int(v) => Setting::Int(*v),
+            OptionValue::Float(v) => Setting::Float(*v),
+            OptionValue::Bool(v) => Setting::Bool(*v),
+            OptionValue::Str(v) => Setting::Text(v.clone()),
         }
     }
 }
@@ -152,7 +164,7 @@ impl Options {
     /// Validates `given` against `specs` (the options of `method`): unknown names, types and
     /// ranges; options not given take their defaults. `every_option` is the union over all
     /// methods, so an option of another method is named as such.
-    pub fn parse(method: &str, specs: &[OptionSpec], given: &[(String, OptionValue)], every_option: &[&str]) -> Result<Self> {
+    pub fn parse(method: &str, specs: &[&OptionSpec], given: &[(String, OptionValue)], every_option: &[&str]) -> Result<Self> {
         for (name, _) in given {
             if !specs.iter().any(|s| s.name == name) {
                 let takes: Vec<&str> = specs.iter().map(|s| s.name).collect();
@@ -240,9 +252,9 @@ impl Options {
         }
     }
 
-    /// (name, value as shown in `frame.settings`), in declaration order.
-    pub fn rows(&self) -> Vec<(String, String)> {
-        self.values.iter().map(|(n, v)| (n.to_string(), v.display())).collect()
+    /// (name, value) as `frame.settings` shows them, in declaration order.
+    pub fn rows(&self) -> Vec<(String, Setting)> {
+        self.values.iter().map(|(n, v)| (n.to_string(), v.into())).collect()
     }
 }
 
@@ -410,6 +422,20 @@ pub mod common {
         help: "keep the first light's RSM for Frame.rsm(name)",
         note: "",
     };
+    /// The option groups several methods take, each declared once here and parsed once into a
+    /// typed value: visibility of virtual lights (`VisibilityMode::from_options`)…
+    pub const VISIBILITY_OPTIONS: &[OptionSpec] = &[VISIBILITY, ISM_SIZE, ISM_POINTS, ISM_POINTS_PER_MAP, ISM_BIAS, ISM_PCF];
+    /// …how RSM texels are drawn (`TexelSampling::from_options`)…
+    pub const SAMPLING_OPTIONS: &[OptionSpec] = &[SAMPLING, CHAIN_SPACE, SEED];
+    /// …the RSM's sampling density (`Importance::from_options`)…
+    pub const IMPORTANCE_OPTIONS: &[OptionSpec] = &[IMPORTANCE, IMPORTANCE_LIGHTS, IMPORTANCE_INTERLEAVE];
+    /// …the interleaved shading's filter (`InterleaveSettings::from_options`, with the method's
+    /// own `interleave`)…
+    pub const DENOISE_OPTIONS: &[OptionSpec] = &[DENOISE, DENOISE_FORM];
+    /// …and the RSM's frame and readback (`RsmSettings::from_options`, with the method's own
+    /// `rsm_size`).
+    pub const RSM_OPTIONS: &[OptionSpec] = &[RSM_FIT, CAPTURE_RSM];
+
     /// The largest interleave tile side: the denoiser's (its workgroup span holds 2·this taps).
     pub const INTERLEAVE_MAX: i64 = crate::passes::denoise::MAX_RADIUS as i64;
     /// Interleaved sampling (`wgsl/common/interleave.wgsl`); the default differs by method

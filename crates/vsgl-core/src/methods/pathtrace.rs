@@ -2,22 +2,21 @@
 //! direct light, `spp` BRDF-sampled bounces per pixel through the scene's BVH, progressive, with
 //! the standard error of the mean as the `stderr` AOV.
 
-use super::{options::common, DirectLight, FrameContext, Method, MethodInfo, OptionKind, OptionSpec, OptionValue, Options};
+use super::{options::common, DirectLight, FrameContext, Method, MethodInfo, OptionKind, OptionSpec, OptionValue};
 use super::options::ChoiceEnum;
 use crate::error::Result;
-use crate::gpu::Gpu;
 use crate::passes::pathtrace::{PathTraceInputs, PathTracePass, Strategy};
 
 pub const INFO: MethodInfo = MethodInfo {
     name: "pathtrace",
     summary: "one-bounce ground truth by path tracing (exact visibility, progressive, stderr AOV)",
-    options: OPTIONS,
+    option_groups: &[OPTIONS],
     direct_light: DirectLight::ByMethod,
     indirect: true,
     extra_aovs: &["stderr"],
     configure: |o| {
         let strategy = o.choice("strategy")?;
-        Ok(Box::new(PathTrace { options: o.clone(), spp: o.u32("spp")?, seed: o.u32("seed")?, time_budget_s: o.f32("time_budget_s")? as f64, strategy }))
+        Ok(Box::new(PathTrace { spp: o.u32("spp")?, seed: o.u32("seed")?, time_budget_s: o.f32("time_budget_s")? as f64, strategy }))
     },
 };
 
@@ -49,7 +48,6 @@ const OPTIONS: &[OptionSpec] = &[
 ];
 
 struct PathTrace {
-    options: Options,
     spp: u32,
     seed: u32,
     time_budget_s: f64,
@@ -72,16 +70,12 @@ impl Method for PathTrace {
             strategy: self.strategy,
         };
         let out = pass.record(&mut ctx.rec, &input, ctx.indirect, ctx.direct, self.spp, self.seed, ctx.size)?;
-        ctx.settings.push(("spp_done".into(), out.spp_done.to_string()));
+        ctx.settings.push(("spp_done".into(), out.spp_done.into()));
         if !out.bvh_built {
             ctx.skip("bvh_build", "the BVH built for this scene upload is reused");
         }
         ctx.stderr = Some(out.stderr);
         ctx.skip("rsm", "method=\"pathtrace\" traces rays instead of virtual lights");
         Ok(())
-    }
-
-    fn settings(&self, _gpu: &Gpu) -> Result<Vec<(String, String)>> {
-        Ok(self.options.rows())
     }
 }

@@ -1,8 +1,7 @@
 //! `method="reference"`: every texel of a high-resolution RSM as a VPL, no visibility (the
 //! papers' own reference), in batches so no submission runs long enough to trip a watchdog.
 
-use super::rsm_lights::{check_rsm_size, for_each_light, rsm_fit, RsmSettings};
-use crate::frame::uniforms::RsmFit;
+use super::rsm_lights::{check_rsm_size, for_each_light, RsmSettings};
 use super::{options::common, DirectLight, FrameContext, Method, MethodInfo, OptionSpec, OptionValue, Options};
 use super::visibility::{VirtualLightVisibility, VisibilityMode, VPL_RECORD_WORDS};
 use crate::error::Result;
@@ -14,7 +13,7 @@ use crate::passes::vpl_shading::VplShadingPass;
 pub const INFO: MethodInfo = MethodInfo {
     name: "reference",
     summary: "every texel of a high-resolution reflective shadow map as a VPL, unshadowed (the papers' reference)",
-    options: OPTIONS,
+    option_groups: &[OPTIONS, common::VISIBILITY_OPTIONS, common::RSM_OPTIONS],
     direct_light: DirectLight::ShadowMapped,
     indirect: true,
     extra_aovs: &[],
@@ -26,14 +25,6 @@ const OPTIONS: &[OptionSpec] = &[
     // A larger default than the sampling methods: the reference must resolve what they miss.
     OptionSpec { default: OptionValue::Int(1024), ..common::RSM_SIZE },
     common::VPL_CLAMP,
-    common::VISIBILITY,
-    common::ISM_SIZE,
-    common::ISM_POINTS,
-    common::ISM_POINTS_PER_MAP,
-    common::ISM_BIAS,
-    common::ISM_PCF,
-    common::RSM_FIT,
-    common::CAPTURE_RSM,
 ];
 
 /// Most VPL batches the reference splits its work into (each is one timed pass).
@@ -49,38 +40,35 @@ const BATCH_EVALUATIONS_CPU: u64 = 1 << 24;
 const REFERENCE_ISM_BYTES: u64 = 96 << 20;
 
 struct Reference {
-    options: Options,
     visibility: VisibilityMode,
-    rsm_size: u32,
+    rsm: RsmSettings,
     vpl_clamp: f32,
-    capture_rsm: bool,
-    rsm_fit: RsmFit,
 }
 
 impl Reference {
     fn new(o: &Options) -> Result<Self> {
-        Ok(Self { options: o.clone(), visibility: VisibilityMode::from_options(o)?, rsm_size: o.u32("rsm_size")?, vpl_clamp: o.f32("vpl_clamp")?, capture_rsm: o.bool("capture_rsm")?, rsm_fit: rsm_fit(o)? })
+        // Every texel a VPL: no sampling, no budget.
+        Ok(Self { visibility: VisibilityMode::from_options(o)?, rsm: RsmSettings::from_options(o, false, 0)?, vpl_clamp: o.f32("vpl_clamp")? })
     }
 }
 
 impl Method for Reference {
     fn check(&self, gpu: &Gpu) -> Result<()> {
-        check_rsm_size(gpu, self.rsm_size)
+        check_rsm_size(gpu, self.rsm.size)
     }
 
     fn record(&self, ctx: &mut FrameContext<'_>) -> Result<()> {
         let (sample, shading) = (ctx.passes.get::<VplSamplePass>()?, ctx.passes.get::<VplShadingPass>()?);
-        let n = self.rsm_size;
+        let n = self.rsm.size;
         let texels = n as u64 * n as u64;
         let capacity = texels.min(1 << 20);
         let vpls = ctx.rec.storage("vpl_buffer", capacity * VPL_BYTES);
         let min_distance2 = (self.vpl_clamp as f64 * ctx.extent).powi(2) as f32;
-        let rsm = RsmSettings { size: n, sampling: false, capture: self.capture_rsm, budget: 0, fit: self.rsm_fit };
         // With imperfect shadow maps a batch's maps are held at once: batches of at most
         // REFERENCE_ISM_BYTES of maps.
         let max_batch = self.visibility.lights_within(REFERENCE_ISM_BYTES).map_or(capacity, |n| (n as u64).clamp(64, capacity));
         let vis = VirtualLightVisibility::new(ctx, self.visibility, max_batch as u32)?;
-        let lit = for_each_light(ctx, &rsm, |ctx, light| {
+        let lit = for_each_light(ctx, &self.rsm, |ctx, light| {
             let (gpu, feat) = (ctx.gpu, ctx.features);
             let pixels = ctx.size.0 as u64 * ctx.size.1 as u64;
             let batch_evaluations = if gpu.adapter.device_type == "Cpu" { BATCH_EVALUATIONS_CPU } else { BATCH_EVALUATIONS };
@@ -108,9 +96,5 @@ impl Method for Reference {
             ctx.skip("pdf_mips", "the reference uses every RSM texel, no importance sampling");
         }
         Ok(())
-    }
-
-    fn settings(&self, _gpu: &Gpu) -> Result<Vec<(String, String)>> {
-        Ok(self.options.rows())
     }
 }

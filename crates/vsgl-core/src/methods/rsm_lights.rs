@@ -8,12 +8,14 @@ use super::{CapturedRsm, FrameContext};
 use crate::error::Result;
 use crate::frame::uniforms::{directional_rsm_origin, rsm_views, views_seeing_scene, LightRaw, RsmFit};
 use crate::scene::Light;
+use crate::setting::Setting;
 use crate::frame::{Rsm, VisibilityTargets};
 use crate::gpu::{kept_staging_buffer, read_staging};
 use std::sync::Arc;
 use crate::passes::{material::MaterialPass, pdf_mips::PdfMipsPass, rsm_flux::RsmFluxPass, visibility::VisibilityPass};
 
 /// How the RSMs of a frame are made.
+#[derive(Clone, Copy, Debug, PartialEq)]
 pub struct RsmSettings {
     /// Side in texels.
     pub size: u32,
@@ -70,9 +72,12 @@ pub fn power_budgets(n: u32, powers: &[f64]) -> Vec<u32> {
     shares
 }
 
-/// `rsm_fit=` of the methods that render RSMs.
-pub fn rsm_fit(o: &super::Options) -> Result<RsmFit> {
-    o.choice("rsm_fit")
+impl RsmSettings {
+    /// `rsm_size`, `rsm_fit` and `capture_rsm` (`options::common::RSM_OPTIONS` but the
+    /// method's own `rsm_size`); `sampling` and `budget` are the method's.
+    pub fn from_options(o: &super::Options, sampling: bool, budget: u32) -> Result<Self> {
+        Ok(Self { size: o.u32("rsm_size")?, sampling, capture: o.bool("capture_rsm")?, budget, fit: o.choice("rsm_fit")? })
+    }
 }
 
 /// One light's RSM as a method sees it.
@@ -194,16 +199,18 @@ pub fn for_each_light(ctx: &mut FrameContext<'_>, s: &RsmSettings, mut per_light
     let (anchor, half_size, extent, layer_size) = (ctx.gpu_scene.anchor, ctx.gpu_scene.half_size, ctx.extent, ctx.gpu_scene.texture_layer_size);
     let views: Vec<_> = ctx.scene.lights.iter().map(|l| rsm_views(l, anchor, half_size, extent, s.size, layer_size, s.fit)).collect();
     if ctx.scene.lights.iter().any(|l| matches!(l, Light::Spot(_))) {
-        // Each spot light's RSM frame (`rsm_fit`), for a model of its texels' footprints:
-        // "forward=x,y,z tan=t" (t = tan of the half field of view), "-" for other lights.
-        let rows: Vec<String> = views.iter().zip(&ctx.scene.lights).map(|(v, l)| match l {
+        // Each spot light's RSM frame (`rsm_fit`), for a model of its texels' footprints: per
+        // light {forward: [x, y, z], tan: t} (t = tan of the half field of view), or nothing
+        // for other lights.
+        let rows: Vec<Setting> = views.iter().zip(&ctx.scene.lights).map(|(v, l)| match l {
             Light::Spot(_) => {
                 let (f, u) = (v[0].cam_forward, v[0].cam_up);
-                format!("forward={:e},{:e},{:e} tan={:e}", f[0], f[1], f[2], (u[0] * u[0] + u[1] * u[1] + u[2] * u[2]).sqrt())
+                let tan = (u[0] * u[0] + u[1] * u[1] + u[2] * u[2]).sqrt();
+                Setting::Record(vec![("forward", f[..3].to_vec().into()), ("tan", tan.into())])
             }
-            _ => "-".into(),
+            _ => Setting::Absent,
         }).collect();
-        ctx.settings.push(("rsm_view".into(), rows.join(";")));
+        ctx.settings.push(("rsm_view".into(), Setting::List(rows)));
     }
     let n = s.size;
     let passes = RsmPasses {
@@ -224,10 +231,9 @@ pub fn for_each_light(ctx: &mut FrameContext<'_>, s: &RsmSettings, mut per_light
         seeing.iter().map(|v| v.iter().map(|&sees| if sees { s.budget } else { 0 }).collect()).collect()
     };
     if s.budget > 0 {
-        // What each light's RSMs got, e.g. "256" for a spot light, "43+43+43+43+42+42" for a
-        // point light (`frame.settings["virtual_lights_per_light"]`, lights separated by ";").
-        let rows: Vec<String> = budgets.iter().map(|b| b.iter().map(u32::to_string).collect::<Vec<_>>().join("+")).collect();
-        ctx.settings.push(("virtual_lights_per_light".into(), rows.join(";")));
+        // What each light's RSMs got, per light: [256] for a spot light, [43, 43, 43, 43, 42, 42]
+        // for a point light's cube faces (`frame.settings["virtual_lights_per_light"]`).
+        ctx.settings.push(("virtual_lights_per_light".into(), budgets.clone().into()));
     }
     let mut first_slot = 0;
     for (index, (light_views, light_budgets)) in views.iter().zip(&budgets).enumerate() {
@@ -341,11 +347,10 @@ mod tests {
     }
 }
 
-/// The options with `rsm_size`, when not given, grown with `num_lights`
+/// `rsm_size`, when not given, grown with `num_lights`
 /// ([`common::rsm_size_for`](super::options::common::rsm_size_for)); shared by `vpl` and `vsgl`.
-pub(super) fn with_rsm_size_for_num_lights(given: &super::Options) -> Result<super::Options> {
-    let mut o = given.clone();
+pub(super) fn resolve_rsm_size_for_num_lights(o: &mut super::Options) -> Result<()> {
     let side = super::options::common::rsm_size_for(o.u32("num_lights")?);
     o.resolve_default("rsm_size", super::options::OptionValue::Int(side as i64));
-    Ok(o)
+    Ok(())
 }

@@ -3,7 +3,7 @@
 
 use super::options::{ChoiceEnum, OptionValue, Options};
 use crate::error::{Error, Result};
-use crate::passes::vsgl_shading::{DiffuseMode, LightingMode};
+use crate::passes::vsgl_shading::{DiffuseMode, LambertLobe, LightingMode, VsglShadingForm};
 
 /// Which diffuse form `lighting="blend"` shades by, a property of the method.
 /// `lighting="accurate"` always brings the clamped cosine.
@@ -50,14 +50,38 @@ pub(super) fn diffuse_mode(o: &Options, blend: BlendDiffuse) -> Result<DiffuseMo
 /// `frame.settings` shows the diffuse form the frame used (it had shown "papers" under
 /// `lighting="accurate"`, which shades the clamped cosine), and `plane_fade` to True for the
 /// forms that always fade.
-pub(super) fn with_resolved_diffuse_form(mut o: Options, blend: BlendDiffuse) -> Result<Options> {
-    if brings_clamped_cosine_diffuse(lighting_mode(&o)?, blend) {
+pub(super) fn resolve_diffuse_form(o: &mut Options, blend: BlendDiffuse) -> Result<()> {
+    if brings_clamped_cosine_diffuse(lighting_mode(o)?, blend) {
         o.resolve_default("diffuse", OptionValue::Str("accurate".into()));
     }
-    if diffuse_mode(&o, blend)?.fades_below_tangent_plane() {
+    if diffuse_mode(o, blend)?.fades_below_tangent_plane() {
         o.resolve_default("plane_fade", OptionValue::Bool(true));
     }
-    Ok(o)
+    Ok(())
+}
+
+/// `diffuse`, `lighting`, `lambert_lobe` and `plane_fade` of a VSGL method, resolved
+/// ([`resolve_diffuse_form`]) and checked against each other once.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub(super) struct SgLighting {
+    pub diffuse: DiffuseMode,
+    pub lighting: LightingMode,
+    pub lambert_lobe: LambertLobe,
+    /// Whether the diffuse term fades below each cluster's tangent plane: always for the forms
+    /// that need it, and for the papers' with `plane_fade`.
+    pub plane_fade: bool,
+}
+
+impl SgLighting {
+    pub fn from_options(o: &mut Options, blend: BlendDiffuse) -> Result<Self> {
+        resolve_diffuse_form(o, blend)?;
+        Ok(Self { diffuse: diffuse_mode(o, blend)?, lighting: lighting_mode(o)?, lambert_lobe: o.choice("lambert_lobe")?, plane_fade: plane_fade(o, blend)? })
+    }
+
+    /// The shading pass's form; `exact_texels`: shade one-texel VSGLs as that texel.
+    pub fn shading_form(&self, exact_texels: bool) -> VsglShadingForm {
+        VsglShadingForm { diffuse: self.diffuse, lighting: self.lighting, lambert_lobe: self.lambert_lobe, exact_texels, plane_fade: self.plane_fade }
+    }
 }
 
 /// Whether the diffuse term fades below each VSGL's tangent plane: always for the forms that

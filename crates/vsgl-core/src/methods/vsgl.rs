@@ -5,11 +5,10 @@
 use super::brsm::{Importance, ViewImportance};
 use super::choices::{NearField, ShadowTarget};
 use super::options::ChoiceEnum;
-use super::interleaved::InterleavedShading;
-use super::metropolis::{ChainSpace, MetropolisSampling};
-use super::rsm_lights::{check_rsm_size, for_each_light, rsm_fit, with_rsm_size_for_num_lights, RsmSettings};
-use super::sg_lighting::{diffuse_mode, lighting_mode, plane_fade, with_resolved_diffuse_form, BlendDiffuse};
-use crate::frame::uniforms::RsmFit;
+use super::interleaved::{InterleaveSettings, InterleavedShading};
+use super::metropolis::{MetropolisSampling, TexelSampling};
+use super::rsm_lights::{check_rsm_size, for_each_light, resolve_rsm_size_for_num_lights, RsmSettings};
+use super::sg_lighting::{BlendDiffuse, SgLighting};
 use super::visibility::{VirtualLightVisibility, VisibilityMode, VSGL_RECORD_WORDS};
 use super::{options::common, DirectLight, FrameContext, Method, MethodInfo, OptionKind, OptionSpec, OptionValue, Options};
 use crate::error::{Error, Result};
@@ -21,13 +20,13 @@ use crate::passes::vpl_sample::Sampling;
 use crate::passes::vsgl_gen::{GenSettings, Kernel, KernelFilter, VsglGenPass, SHADOW_CANDIDATE_BYTES, VSGL_BYTES};
 use crate::passes::vsgl_moments::VsglMomentsPass;
 use crate::frame::{ShadingInputs, VirtualLightList};
-use crate::passes::vsgl_shading::{DiffuseMode, LambertLobe, LightingMode, ShadingCandidates, VsglShadingForm, VsglShadingPass};
+use crate::passes::vsgl_shading::{ShadingCandidates, VsglShadingPass};
 use std::borrow::Cow;
 
 pub const INFO: MethodInfo = MethodInfo {
     name: "vsgl",
     summary: "num_lights VSGLs by filtered importance sampling of the mipmapped RSM (2015/2016 papers), interleaved and denoised",
-    options: OPTIONS,
+    option_groups: OPTION_GROUPS,
     direct_light: DirectLight::ShadowMapped,
     indirect: true,
     extra_aovs: &[],
@@ -37,117 +36,97 @@ pub const INFO: MethodInfo = MethodInfo {
 /// `lighting="blend"` brings the clamped-cosine diffuse, faded below each cluster's plane.
 const BLEND_DIFFUSE: BlendDiffuse = BlendDiffuse::ClampedCosine;
 
-const OPTIONS: &[OptionSpec] = &[
-    common::SHADOW_SIZE,
-    common::num_lights(1024),
-    common::RSM_SIZE,
-    common::SAMPLING,
-    common::CHAIN_SPACE,
-    common::SEED,
-    OptionSpec {
-        name: "kernel",
-        kind: OptionKind::Choice(Kernel::NAMES),
-        default: OptionValue::Str(Cow::Borrowed("integral")),
-        help: "kernel size rule: \"integral\" (2016, bisection to mass K/N), \"density\" (2015) or \"node\" (quadtree nodes of mass <= K/N read exactly: unbiased cluster totals, VPL-like as N reaches the texel count)",
-        note: "",
-    },
-    // "nodes" (docs/rendering.md, "The defaults this chose"): FlightHelmet's indirect diffuse
-    // 0.67 -> 0.98 of the every-texel reference at N = 1024, whatever K.
-    common::choice(
-        "kernel_filter",
-        KernelFilter::NAMES,
-        "how kernel=\"integral\" and \"density\" read the moment mips at a kernel's level: \"nodes\" (the quadtree nodes that hold its centre at the two levels either side, blended by the fraction, so a kernel of about a texel is that texel: a bilinear blend spreads it over 2x2 texels and moves its mean, across a depth jump into the gap, and the light it sends a texel or two away is lost) or \"trilinear\" (the papers' trilinear mip read, bilinear within a level; before 2026-12-02)",
-    ),
-    OptionSpec {
-        name: "K",
-        kind: OptionKind::Float { min: 0.0, min_exclusive: true },
-        default: OptionValue::Float(1.0),
-        help: "probability mass K/N of each kernel (2016 paper); larger K is smoother and more biased",
-        note: "",
-    },
-    OptionSpec {
-        name: "coherence",
-        kind: OptionKind::Float { min: 0.0, min_exclusive: false },
-        // 0.9 (docs/rendering.md, "The real-scene corpus"): out of the box it lifts
-        // CornellBoxOriginal's indirect diffuse from 0.87 to 0.94 of the reference and
-        // FlightHelmet's from 0.25 to 0.40, and no built-in's block error rises by 1%.
-        default: OptionValue::Float(0.9),
-        help: "smallest mean-normal length |Σw·n|/Σw of a cluster, in 0..1: each kernel shrinks until its texels' normals agree that well, so clusters do not straddle creases and depth discontinuities of the RSM (0: the papers' kernels, which grow by mass alone)",
-        note: "",
-    },
-    OptionSpec {
-        name: "bisection_steps",
-        kind: OptionKind::Int { min: 1, max: 32, power_of_two: false },
-        default: OptionValue::Int(12),
-        help: "bisection iterations of the integral kernel",
-        note: "",
-    },
-    common::interleave(8),
-    common::DENOISE,
-    common::DENOISE_FORM,
-    common::DIFFUSE,
-    // "blend" by default (docs/rendering.md, "The real-scene corpus"): against the path tracer it
-    // is closer than the papers' form on every corpus scene and built-in measured.
-    common::lighting("blend", BLEND_DIFFUSE),
-    common::LAMBERT_LOBE,
-    // On by default (docs/rendering.md, "The cluster's tangent plane"): without it the papers'
-    // form lights the back of a lit plane with about half its front's direct light.
-    common::plane_fade(true),
-    common::VISIBILITY,
-    // "resampled" (docs/rendering.md, "Which texel the shadow ray aims at"): in a float64 model
-    // on FlightHelmet the centre texel kept 0.69 of the every-texel reference's shadowed light
-    // from 4-texel clusters, 8 resampled candidates 0.95-0.97.
-    common::choice(
-        "shadow_target",
-        ShadowTarget::NAMES,
-        "with visibility=\"raytrace\", where each VSGL's shadow ray aims: \"resampled\" (at one of 8 texels of its cluster, drawn by power and kept per receiver by its geometric term there, so the ray goes where the cluster's light at that receiver comes from) or \"centre\" (at the cluster's sampled centre texel, the same for every receiver; before 2026-12-02)",
-    ),
-    // "texels" (docs/rendering.md, "The defaults this chose"): lower block error against the
-    // every-texel reference on 9 of 13 corpus scenes and built-ins, none higher by over 0.1%.
-    common::choice(
-        "near_field",
-        NearField::NAMES,
-        "diffuse light at receivers inside a VSGL's positional Gaussian or behind its mean tangent plane: \"texels\" (also from 8 of its texels shaded one by one as patches, weighted in where the Gaussian's form does not hold) or \"sg\" (the Gaussian's SG alone, before 2026-12-02)",
-    ),
-    common::ISM_SIZE,
-    common::ISM_POINTS,
-    common::ISM_POINTS_PER_MAP,
-    common::ISM_BIAS,
-    common::ISM_PCF,
-    common::IMPORTANCE,
-    common::IMPORTANCE_LIGHTS,
-    common::IMPORTANCE_INTERLEAVE,
-    common::RSM_FIT,
-    common::CAPTURE_RSM,
+const OPTION_GROUPS: &[&[OptionSpec]] = &[
+    &[common::SHADOW_SIZE, common::num_lights(1024), common::RSM_SIZE],
+    common::SAMPLING_OPTIONS,
+    &[
+        OptionSpec {
+            name: "kernel",
+            kind: OptionKind::Choice(Kernel::NAMES),
+            default: OptionValue::Str(Cow::Borrowed("integral")),
+            help: "kernel size rule: \"integral\" (2016, bisection to mass K/N), \"density\" (2015) or \"node\" (quadtree nodes of mass <= K/N read exactly: unbiased cluster totals, VPL-like as N reaches the texel count)",
+            note: "",
+        },
+        // "nodes" (docs/rendering.md, "The defaults this chose"): FlightHelmet's indirect diffuse
+        // 0.67 -> 0.98 of the every-texel reference at N = 1024, whatever K.
+        common::choice(
+            "kernel_filter",
+            KernelFilter::NAMES,
+            "how kernel=\"integral\" and \"density\" read the moment mips at a kernel's level: \"nodes\" (the quadtree nodes that hold its centre at the two levels either side, blended by the fraction, so a kernel of about a texel is that texel: a bilinear blend spreads it over 2x2 texels and moves its mean, across a depth jump into the gap, and the light it sends a texel or two away is lost) or \"trilinear\" (the papers' trilinear mip read, bilinear within a level; before 2026-12-02)",
+        ),
+        OptionSpec {
+            name: "K",
+            kind: OptionKind::Float { min: 0.0, min_exclusive: true },
+            default: OptionValue::Float(1.0),
+            help: "probability mass K/N of each kernel (2016 paper); larger K is smoother and more biased",
+            note: "",
+        },
+        OptionSpec {
+            name: "coherence",
+            kind: OptionKind::Float { min: 0.0, min_exclusive: false },
+            // 0.9 (docs/rendering.md, "The real-scene corpus"): out of the box it lifts
+            // CornellBoxOriginal's indirect diffuse from 0.87 to 0.94 of the reference and
+            // FlightHelmet's from 0.25 to 0.40, and no built-in's block error rises by 1%.
+            default: OptionValue::Float(0.9),
+            help: "smallest mean-normal length |Σw·n|/Σw of a cluster, in 0..1: each kernel shrinks until its texels' normals agree that well, so clusters do not straddle creases and depth discontinuities of the RSM (0: the papers' kernels, which grow by mass alone)",
+            note: "",
+        },
+        OptionSpec {
+            name: "bisection_steps",
+            kind: OptionKind::Int { min: 1, max: 32, power_of_two: false },
+            default: OptionValue::Int(12),
+            help: "bisection iterations of the integral kernel",
+            note: "",
+        },
+        common::interleave(8),
+    ],
+    common::DENOISE_OPTIONS,
+    &[
+        common::DIFFUSE,
+        // "blend" by default (docs/rendering.md, "The real-scene corpus"): against the path tracer it
+        // is closer than the papers' form on every corpus scene and built-in measured.
+        common::lighting("blend", BLEND_DIFFUSE),
+        common::LAMBERT_LOBE,
+        // On by default (docs/rendering.md, "The cluster's tangent plane"): without it the papers'
+        // form lights the back of a lit plane with about half its front's direct light.
+        common::plane_fade(true),
+    ],
+    common::VISIBILITY_OPTIONS,
+    &[
+        // "resampled" (docs/rendering.md, "Which texel the shadow ray aims at"): in a float64 model
+        // on FlightHelmet the centre texel kept 0.69 of the every-texel reference's shadowed light
+        // from 4-texel clusters, 8 resampled candidates 0.95-0.97.
+        common::choice(
+            "shadow_target",
+            ShadowTarget::NAMES,
+            "with visibility=\"raytrace\", where each VSGL's shadow ray aims: \"resampled\" (at one of 8 texels of its cluster, drawn by power and kept per receiver by its geometric term there, so the ray goes where the cluster's light at that receiver comes from) or \"centre\" (at the cluster's sampled centre texel, the same for every receiver; before 2026-12-02)",
+        ),
+        // "texels" (docs/rendering.md, "The defaults this chose"): lower block error against the
+        // every-texel reference on 9 of 13 corpus scenes and built-ins, none higher by over 0.1%.
+        common::choice(
+            "near_field",
+            NearField::NAMES,
+            "diffuse light at receivers inside a VSGL's positional Gaussian or behind its mean tangent plane: \"texels\" (also from 8 of its texels shaded one by one as patches, weighted in where the Gaussian's form does not hold) or \"sg\" (the Gaussian's SG alone, before 2026-12-02)",
+        ),
+    ],
+    common::IMPORTANCE_OPTIONS,
+    common::RSM_OPTIONS,
 ];
 
 struct Vsgl {
-    options: Options,
     visibility: VisibilityMode,
     num_lights: u32,
-    rsm_size: u32,
-    sampling: Sampling,
-    chain_space: ChainSpace,
-    seed: u32,
+    rsm: RsmSettings,
+    sampling: TexelSampling,
     kernel: Kernel,
     kernel_filter: KernelFilter,
     k: f32,
     /// Smallest mean-normal length of a cluster (`coherence=`, 0: off).
     coherence: f32,
     bisection_steps: u32,
-    interleave: u32,
-    denoise: bool,
-    /// `denoise_form="exchange"`.
-    denoise_keeps_light: bool,
-    diffuse: DiffuseMode,
-    lighting: LightingMode,
-    lambert_lobe: LambertLobe,
-    /// Whether the diffuse term fades below each cluster's tangent plane: always for the forms
-    /// that need it, and for the papers' with `plane_fade`.
-    plane_fade: bool,
+    interleave: InterleaveSettings,
+    lighting: SgLighting,
     importance: Importance,
-    capture_rsm: bool,
-    rsm_fit: RsmFit,
     /// `shadow_target="resampled"`: candidate shadow targets with `visibility="raytrace"`.
     resampled_shadow_target: bool,
     /// `near_field="texels"`.
@@ -174,57 +153,47 @@ fn coherence(o: &Options) -> Result<f32> {
 }
 
 impl Vsgl {
-    fn new(given: &Options) -> Result<Self> {
-        let o = &with_resolved_diffuse_form(with_rsm_size_for_num_lights(given)?, BLEND_DIFFUSE)?;
+    fn new(o: &mut Options) -> Result<Self> {
+        resolve_rsm_size_for_num_lights(o)?;
+        let num_lights = o.u32("num_lights")?;
         Ok(Self {
-            options: o.clone(),
+            lighting: SgLighting::from_options(o, BLEND_DIFFUSE)?,
             visibility: VisibilityMode::from_options(o)?,
-            num_lights: o.u32("num_lights")?,
-            rsm_size: o.u32("rsm_size")?,
-            sampling: o.choice("sampling")?,
-            chain_space: ChainSpace::from_options(o)?,
-            seed: o.u32("seed")?,
+            num_lights,
+            rsm: RsmSettings::from_options(o, true, num_lights)?,
+            sampling: TexelSampling::from_options(o)?,
             kernel: o.choice("kernel")?,
             kernel_filter: kernel_filter(o)?,
             k: o.f32("K")?,
             coherence: coherence(o)?,
             bisection_steps: o.u32("bisection_steps")?,
-            interleave: o.u32("interleave")?,
-            denoise: o.bool("denoise")?,
-            denoise_keeps_light: super::interleaved::keeps_light(o)?,
-            diffuse: diffuse_mode(o, BLEND_DIFFUSE)?,
-            lighting: lighting_mode(o)?,
-            lambert_lobe: o.choice("lambert_lobe")?,
-            plane_fade: plane_fade(o, BLEND_DIFFUSE)?,
+            interleave: InterleaveSettings::from_options(o)?,
             importance: Importance::from_options(o)?,
-            capture_rsm: o.bool("capture_rsm")?,
-            rsm_fit: rsm_fit(o)?,
             resampled_shadow_target: o.choice::<ShadowTarget>("shadow_target")? == ShadowTarget::Resampled,
             near_field_texels: o.choice::<NearField>("near_field")? == NearField::Texels,
         })
     }
-
 }
 
 impl Vsgl {
     /// Chain F (each texel's w·n, w·(y·n)) serves the tangent-plane fade and the kernels'
     /// normal coherence.
     fn needs_planes(&self) -> bool {
-        self.plane_fade || self.coherence > 0.0
+        self.lighting.plane_fade || self.coherence > 0.0
     }
 
     fn metropolis(&self) -> MetropolisSampling {
-        MetropolisSampling { method: INFO.name, num_lights: self.num_lights, rsm_size: self.rsm_size, seed: self.seed, space: self.chain_space, importance: self.importance }
+        MetropolisSampling { method: INFO.name, num_lights: self.num_lights, rsm_size: self.rsm.size, seed: self.sampling.seed, space: self.sampling.chain_space, importance: self.importance }
     }
 }
 
 impl Method for Vsgl {
     fn check(&self, gpu: &Gpu) -> Result<()> {
-        check_rsm_size(gpu, self.rsm_size)?;
+        check_rsm_size(gpu, self.rsm.size)?;
         let limit = gpu.limits.max_storage_buffer_binding_size as u64;
-        let bytes = MomentChains::bytes(self.rsm_size, self.needs_planes());
+        let bytes = MomentChains::bytes(self.rsm.size, self.needs_planes());
         if bytes > limit {
-            let n = self.rsm_size;
+            let n = self.rsm.size;
             return Err(Error::invalid("rsm_size", format!("the VSGL moment mips of a {n}² RSM ({bytes} bytes) exceed this adapter's storage binding limit of {limit} bytes")));
         }
         Ok(())
@@ -234,19 +203,18 @@ impl Method for Vsgl {
         let passes = ctx.passes;
         let (pdf_mips, moments, moment_mips) = (passes.get::<PdfMipsPass>()?, passes.get::<VsglMomentsPass>()?, passes.get::<MomentMipsPass>()?);
         let (gen, shading) = (passes.get::<VsglGenPass>()?, passes.get::<VsglShadingPass>()?);
-        let shading_out = InterleavedShading::new(ctx, self.interleave, self.denoise, self.denoise_keeps_light);
+        let shading_out = InterleavedShading::new(ctx, self.interleave);
         let mut chains: Option<MomentChains> = None;
-        let rsm = RsmSettings { size: self.rsm_size, sampling: true, capture: self.capture_rsm, budget: self.num_lights, fit: self.rsm_fit };
         let vis = VirtualLightVisibility::new(ctx, self.visibility, self.num_lights)?;
         // Metropolis chains keep one view seed while they live (`target_seed` says why).
-        let view_seed = if self.sampling == Sampling::Metropolis { self.metropolis().target_seed(ctx) } else { self.seed };
+        let view_seed = if self.sampling.sampling == Sampling::Metropolis { self.metropolis().target_seed(ctx) } else { self.sampling.seed };
         let view = match self.importance {
             Importance::Brsm { view_lights, interleave } => Some(ViewImportance::new(ctx, view_lights, interleave, view_seed)?),
             Importance::Rsm => None,
         };
-        let lit = for_each_light(ctx, &rsm, |ctx, light| {
+        let lit = for_each_light(ctx, &self.rsm, |ctx, light| {
             let feat = ctx.features;
-            let chains = chains.get_or_insert_with(|| MomentChains::new(&mut ctx.rec, self.rsm_size, self.needs_planes()));
+            let chains = chains.get_or_insert_with(|| MomentChains::new(&mut ctx.rec, self.rsm.size, self.needs_planes()));
             pdf_mips.record(&mut ctx.rec, light.rsm);
             // Sampled by the RSM's weights, or by its importance to the view (brsm).
             let reweighted = match &view {
@@ -254,12 +222,12 @@ impl Method for Vsgl {
                 None => None,
             };
             moments.record(&mut ctx.rec, light.rsm, chains, light.raw.rsm_light_dir(), light.texel_footprint(), feat);
-            moment_mips.record(&mut ctx.rec, self.rsm_size, chains);
+            moment_mips.record(&mut ctx.rec, self.rsm.size, chains);
             // This RSM's share of num_lights (split over lights and cube faces by reflected
             // power, `power_budgets`).
             // The chains target the density the VSGLs' estimators then divide by (`pdf`).
             let pdf = reweighted.as_ref().unwrap_or(&light.rsm.pyramid);
-            let samples = match self.sampling {
+            let samples = match self.sampling.sampling {
                 Sampling::Metropolis => Some(self.metropolis().step(ctx, light, pdf)?),
                 _ => None,
             };
@@ -269,9 +237,9 @@ impl Method for Vsgl {
                 .then(|| ctx.rec.storage("vsgl_shadow_candidate_buffer", light.budget as u64 * SHADOW_CANDIDATE_BYTES));
             let settings = GenSettings {
                 count: light.budget,
-                sampling: self.sampling,
+                sampling: self.sampling.sampling,
                 samples: samples.as_ref(),
-                seed: self.seed,
+                seed: self.sampling.seed,
                 kernel: self.kernel,
                 k: self.k,
                 bisection_steps: self.bisection_steps,
@@ -285,8 +253,10 @@ impl Method for Vsgl {
             vis.build_maps(ctx, &buf, light.budget, VSGL_RECORD_WORDS)?;
             let target = shading_out.target(ctx.indirect);
             let io = ShadingInputs { frame_uniforms: ctx.frame_uniforms, gbuffer: ctx.gbuffer, out: target, features: feat, size: ctx.size, visibility: &vis };
-            let form = VsglShadingForm { diffuse: self.diffuse, lighting: self.lighting, lambert_lobe: self.lambert_lobe, exact_texels: self.kernel == Kernel::Node, plane_fade: self.plane_fade };
-            shading.record(&mut ctx.rec, &io, VirtualLightList { records: &buf, count: light.budget, interleave: self.interleave }, form, candidates.as_ref().map(|buffer| ShadingCandidates { buffer, seed: self.seed, resample_target, near_field: self.near_field_texels }).as_ref());
+            let form = self.lighting.shading_form(self.kernel == Kernel::Node);
+            let lights = VirtualLightList { records: &buf, count: light.budget, interleave: self.interleave.interleave };
+            let candidates = candidates.as_ref().map(|buffer| ShadingCandidates { buffer, seed: self.sampling.seed, resample_target, near_field: self.near_field_texels });
+            shading.record(&mut ctx.rec, &io, lights, form, candidates.as_ref());
             if ctx.vsgls.is_none() {
                 ctx.vsgls = Some(buf);
             }
@@ -296,9 +266,5 @@ impl Method for Vsgl {
             return Ok(());
         }
         shading_out.resolve(ctx)
-    }
-
-    fn settings(&self, _gpu: &Gpu) -> Result<Vec<(String, String)>> {
-        Ok(self.options.rows())
     }
 }

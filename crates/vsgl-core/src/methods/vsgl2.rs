@@ -1,10 +1,10 @@
 //! `method="vsgl2"`: two VSGLs per light (one diffuse, one specular) from a parallel sum over
 //! the whole RSM (Tokuyoshi 2015 poster): no pyramid, no sampling, no interleaving.
 
-use super::sg_lighting::BlendDiffuse;
-use super::rsm_lights::{check_rsm_size, for_each_light, rsm_fit, RsmSettings};
+use super::sg_lighting::{BlendDiffuse, SgLighting};
+use super::rsm_lights::{check_rsm_size, for_each_light, RsmSettings};
 use super::options::ChoiceEnum;
-use crate::frame::uniforms::RsmFit;
+use crate::setting::Setting;
 use super::{options::common, DirectLight, FrameContext, Method, MethodInfo, OptionKind, OptionSpec, OptionValue, Options};
 use super::visibility::{VirtualLightVisibility, VisibilityMode, VSGL_RECORD_WORDS};
 use crate::error::Result;
@@ -12,13 +12,13 @@ use crate::gpu::Gpu;
 use crate::passes::vsgl2_reduce::{Vsgl2Reduce, Vsgl2Reduction, VSGL2_COUNT};
 use crate::passes::vsgl_gen::VSGL_BYTES;
 use crate::frame::{ShadingInputs, VirtualLightList};
-use crate::passes::vsgl_shading::{DiffuseMode, LambertLobe, LightingMode, VsglShadingForm, VsglShadingPass};
+use crate::passes::vsgl_shading::VsglShadingPass;
 use std::borrow::Cow;
 
 pub const INFO: MethodInfo = MethodInfo {
     name: "vsgl2",
     summary: "two VSGLs per light (diffuse + specular) by a parallel sum over the whole RSM (2015 poster)",
-    options: OPTIONS,
+    option_groups: OPTION_GROUPS,
     direct_light: DirectLight::ShadowMapped,
     indirect: true,
     extra_aovs: &[],
@@ -28,6 +28,8 @@ pub const INFO: MethodInfo = MethodInfo {
 /// `lighting="blend"` (the default) takes only its specular form and shades diffuse as
 /// `diffuse=` says: one plane for the whole RSM would fade most of the light out.
 const BLEND_DIFFUSE: BlendDiffuse = BlendDiffuse::AsDiffuseSays;
+
+const OPTION_GROUPS: &[&[OptionSpec]] = &[OPTIONS, common::VISIBILITY_OPTIONS, common::RSM_OPTIONS];
 
 const OPTIONS: &[OptionSpec] = &[
     common::SHADOW_SIZE,
@@ -49,56 +51,45 @@ const OPTIONS: &[OptionSpec] = &[
         help: "how workgroups add: subgroup arithmetic where the adapter has it (auto), or a shared-memory tree",
         note: "",
     },
-    common::VISIBILITY,
-    common::ISM_SIZE,
-    common::ISM_POINTS,
-    common::ISM_POINTS_PER_MAP,
-    common::ISM_BIAS,
-    common::ISM_PCF,
-    common::RSM_FIT,
-    common::CAPTURE_RSM,
 ];
 
 struct Vsgl2 {
-    options: Options,
     visibility: VisibilityMode,
-    rsm_size: u32,
-    diffuse: DiffuseMode,
-    lighting: LightingMode,
-    lambert_lobe: LambertLobe,
-    plane_fade: bool,
+    rsm: RsmSettings,
+    lighting: SgLighting,
     reduction: Vsgl2Reduction,
-    capture_rsm: bool,
-    rsm_fit: RsmFit,
 }
 
 impl Vsgl2 {
-    fn new(given: &Options) -> Result<Self> {
-        let o = &super::sg_lighting::with_resolved_diffuse_form(given.clone(), BLEND_DIFFUSE)?;
-        let reduction = o.choice("vsgl2_reduction")?;
-        Ok(Self { options: o.clone(), visibility: VisibilityMode::from_options(o)?, rsm_size: o.u32("rsm_size")?, diffuse: super::sg_lighting::diffuse_mode(o, BLEND_DIFFUSE)?, lighting: super::sg_lighting::lighting_mode(o)?, lambert_lobe: o.choice("lambert_lobe")?, plane_fade: super::sg_lighting::plane_fade(o, BLEND_DIFFUSE)?, reduction, capture_rsm: o.bool("capture_rsm")?, rsm_fit: rsm_fit(o)? })
+    fn new(o: &mut Options) -> Result<Self> {
+        Ok(Self {
+            lighting: SgLighting::from_options(o, BLEND_DIFFUSE)?,
+            visibility: VisibilityMode::from_options(o)?,
+            // No sampling, no budget: every texel goes into the two sums.
+            rsm: RsmSettings::from_options(o, false, 0)?,
+            reduction: o.choice("vsgl2_reduction")?,
+        })
     }
 }
 
 impl Method for Vsgl2 {
     fn check(&self, gpu: &Gpu) -> Result<()> {
         Vsgl2Reduce::resolve(gpu, self.reduction)?;
-        check_rsm_size(gpu, self.rsm_size)
+        check_rsm_size(gpu, self.rsm.size)
     }
 
     fn record(&self, ctx: &mut FrameContext<'_>) -> Result<()> {
         let (reduce, shading) = (ctx.passes.get::<Vsgl2Reduce>()?, ctx.passes.get::<VsglShadingPass>()?);
         let reduction = Vsgl2Reduce::resolve(ctx.gpu, self.reduction)?;
-        let rsm = RsmSettings { size: self.rsm_size, sampling: false, capture: self.capture_rsm, budget: 0, fit: self.rsm_fit };
         let vis = VirtualLightVisibility::new(ctx, self.visibility, VSGL2_COUNT)?;
-        let lit = for_each_light(ctx, &rsm, |ctx, light| {
+        let lit = for_each_light(ctx, &self.rsm, |ctx, light| {
             let feat = ctx.features;
             let buf = ctx.rec.storage("vsgl2_buffer", VSGL2_COUNT as u64 * VSGL_BYTES);
             reduce.record(&mut ctx.rec, light.rsm, light.raw.position, light.raw.rsm_light_dir(), light.texel_footprint(), &buf, feat, reduction)?;
             vis.build_maps(ctx, &buf, VSGL2_COUNT, VSGL_RECORD_WORDS)?;
             let io = ShadingInputs { frame_uniforms: ctx.frame_uniforms, gbuffer: ctx.gbuffer, out: ctx.indirect, features: feat, size: ctx.size, visibility: &vis };
             // One record per lobe, never a single texel: nothing to shade exactly.
-            let form = VsglShadingForm { diffuse: self.diffuse, lighting: self.lighting, lambert_lobe: self.lambert_lobe, exact_texels: false, plane_fade: self.plane_fade };
+            let form = self.lighting.shading_form(false);
             shading.record(&mut ctx.rec, &io, VirtualLightList { records: &buf, count: VSGL2_COUNT, interleave: 1 }, form, None);
             if ctx.vsgls.is_none() {
                 ctx.vsgls = Some(buf);
@@ -115,16 +106,9 @@ impl Method for Vsgl2 {
         Ok(())
     }
 
-    fn settings(&self, gpu: &Gpu) -> Result<Vec<(String, String)>> {
+    fn settings(&self, gpu: &Gpu) -> Result<Vec<(String, Setting)>> {
+        // What ran, not what was asked ("auto" resolves per adapter).
         let resolved = Vsgl2Reduce::resolve(gpu, self.reduction)?;
-        let mut rows = self.options.rows();
-        for (name, value) in rows.iter_mut() {
-            if name == "vsgl2_reduction" {
-                // What ran, not what was asked ("auto" resolves per adapter).
-                *value = resolved.name().into();
-            }
-        }
-        rows.push(("vsgl2_temporary_bytes".into(), Vsgl2Reduce::temporary_bytes(self.rsm_size).to_string()));
-        Ok(rows)
+        Ok(vec![("vsgl2_reduction".into(), resolved.name().into()), ("vsgl2_temporary_bytes".into(), Vsgl2Reduce::temporary_bytes(self.rsm.size).into())])
     }
 }

@@ -16,7 +16,7 @@ pub struct Frame {
     /// The passes that ran, in order, as the passes logged themselves (variants in brackets).
     pub passes: Vec<String>,
     pub skipped: Vec<(String, String)>,
-    pub settings: Vec<(String, String)>,
+    pub settings: Vec<(String, crate::setting::Setting)>,
     /// Why the image may not be what the caller expects (a black image and its cause), in words.
     pub warnings: Vec<String>,
     /// The first light's RSM when `capture_rsm` was set: side and (name, channels, data).

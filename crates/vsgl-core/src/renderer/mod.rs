@@ -20,6 +20,7 @@ use crate::methods::{options::common, DirectLight, FrameContext, Method, MethodI
 use crate::passes::{direct::DirectPass, material::MaterialPass, shadow_map::ShadowMapPass, visibility::VisibilityPass};
 use crate::plan::{Plan, ShaderFeatures};
 use crate::scene::{Camera, Scene};
+use crate::setting::Setting;
 use crate::upload::GpuScene;
 use crate::passes::aov_pack::{AovPackPass, PackSources};
 use readback::{record_aovs, PendingAovs};
@@ -156,8 +157,9 @@ impl Renderer {
     /// Records and submits a frame without waiting for it. Nothing of `scene` is read after
     /// this returns, so the caller may edit it for the next frame.
     pub fn submit(&self, scene: &Scene, camera: Option<&Camera>, opts: &RenderOptions) -> Result<SubmittedFrame> {
-        let (info, options) = opts.resolve()?;
-        let method = (info.configure)(&options)?;
+        let (info, mut options) = opts.resolve()?;
+        // The method parses its options and resolves the defaults that depend on others.
+        let method = (info.configure)(&mut options)?;
         method.check(&self.gpu)?;
         let camera = match camera.or(scene.cameras.first()) {
             Some(c) => *c,
@@ -226,11 +228,11 @@ impl Renderer {
         let passes = log.passes.iter().map(|p| features.pass_name(p)).collect();
         let mut settings = frame.settings;
         // What this frame created; 0 when it reused every target of an earlier frame.
-        settings.push(("allocated_bytes".into(), log.allocations.iter().map(|(_, b)| b).sum::<u64>().to_string()));
+        settings.push(("allocated_bytes".into(), log.allocations.iter().map(|(_, b)| b).sum::<u64>().into()));
         // Bind groups made now (0 when every pass bound what an earlier frame bound).
-        settings.push(("bind_groups_created".into(), log.bind_groups_created.to_string()));
-        settings.push(("frames_in_flight".into(), frames_in_flight.to_string()));
-        settings.push(("readback_ms".into(), format!("{readback_ms:.3}")));
+        settings.push(("bind_groups_created".into(), log.bind_groups_created.into()));
+        settings.push(("frames_in_flight".into(), frames_in_flight.into()));
+        settings.push(("readback_ms".into(), readback_ms.into()));
         Ok(Frame {
             aovs: aovs.float,
             ldr: aovs.ldr,
@@ -431,15 +433,22 @@ impl Renderer {
         timer.resolve(&mut enc);
         let submission = gpu.queue.submit([enc.finish()]);
         resources.end_frame();
-        let mut settings = vec![
-            ("method".into(), info.name.to_string()),
-            ("width".into(), w.to_string()),
-            ("height".into(), h.to_string()),
-            ("plan".into(), job.opts.plan.clone()),
-            ("adapter".into(), gpu.adapter.name.clone()),
+        let mut settings: Vec<(String, Setting)> = vec![
+            ("method".into(), info.name.into()),
+            ("width".into(), w.into()),
+            ("height".into(), h.into()),
+            ("plan".into(), job.opts.plan.clone().into()),
+            ("adapter".into(), gpu.adapter.name.clone().into()),
             ("scene_upload".into(), if scene_reused { "reused" } else { "uploaded" }.into()),
         ];
-        settings.extend(job.method.settings(gpu)?);
+        // Every option as the method resolved it, then what it adds or what ran instead.
+        settings.extend(job.options.rows());
+        for (name, value) in job.method.settings(gpu)? {
+            match settings.iter_mut().find(|(n, _)| *n == name) {
+                Some(row) => row.1 = value,
+                None => settings.push((name, value)),
+            }
+        }
         settings.extend(method_settings);
         let frame = Frame {
             width: w,
