@@ -470,3 +470,16 @@ def test_check_method_options_catches_options_that_contradict_each_other():
         vsgl.check_method_options("vsgl", lighting="accurate", diffuse="papers")
     with pytest.raises(vsgl.ArgumentError, match="kernel_filter"):
         vsgl.check_method_options("vsgl", kernel="node", kernel_filter="trilinear")
+
+
+def test_method_info_says_what_each_method_is():
+    """The registry's facts, which the bench and the CLI read instead of listing methods."""
+    info = {m: vsgl.method_info(m) for m in vsgl.METHODS}
+    assert [m for m in vsgl.METHODS if info[m]["ground_truth"]] == ["reference", "pathtrace"]
+    assert {m for m in vsgl.METHODS if info[m]["stochastic"]} == {"vpl", "vsgl", "pathtrace"}
+    assert "indirect" not in info["direct"]["aovs"] and "stderr" in info["pathtrace"]["aovs"]
+    assert all(("stderr" in i["aovs"]) == (m == "pathtrace") for m, i in info.items())
+    assert info["pathtrace"]["direct_light"] == "by_method" and info["vsgl"]["direct_light"] == "shadow_mapped"
+    assert info["vsgl"]["summary"] in vsgl.describe_method("vsgl")
+    with pytest.raises(vsgl.ArgumentError, match="unknown method"):
+        vsgl.method_info("kmeans")

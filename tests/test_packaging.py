@@ -46,3 +46,25 @@ def test_no_source_comment_cites_a_tracker_number():
                 if pattern.search(line) and "docs/" not in line:
                     cited.append(f"{path.relative_to(ROOT)}:{number}: {line.strip()}")
     assert not cited, "\n".join(cited)
+
+
+def test_no_code_outside_the_registry_classifies_methods_by_name():
+    """What a method is (stochastic, a ground truth, what it makes, which options it takes) comes
+    from the registry (`vsgl.method_info`, `vsgl.method_options`), so a new method needs no edit
+    elsewhere. A membership test against method names (`method in ("vpl", "vsgl")`) or a
+    constant that collects them is a second list that falls behind; rendering a method by name
+    and default selections (`--methods vpl,vsgl`) are not lists of what methods are."""
+    import vsgl
+
+    names = "|".join(vsgl.METHODS)
+    quoted = rf'"(?:{names})"'
+    collection = rf"[(\[{{]\s*{quoted}(?:\s*,\s*{quoted})*\s*,?\s*[)\]}}]"
+    patterns = [re.compile(rf"\bin\s*{collection}"), re.compile(rf"^\s*[A-Z][A-Z0-9_]*\s*(?::[^=]*)?=\s*{collection}")]
+    found = []
+    for path in sorted((ROOT / "python").rglob("*.py")):
+        for number, line in enumerate(path.read_text().splitlines(), 1):
+            if any(p.search(line) for p in patterns):
+                found.append(f"{path.relative_to(ROOT)}:{number}: {line.strip()}")
+    assert not found, "\n".join(found)
+    # The check can fail: the sweep's old list of random methods, planted, is found.
+    assert patterns[1].search('STOCHASTIC = {"vpl", "vsgl"}') and patterns[0].search('if m in ("vpl", "vsgl"):')

@@ -49,6 +49,7 @@ from vsgl._vsgl import (
     adapters,
     check_method_options,
     describe_method,
+    method_info,
     method_options,
 )
 from vsgl import scenes
@@ -75,6 +76,7 @@ __all__ = [
     "adapters",
     "check_method_options",
     "describe_method",
+    "method_info",
     "method_options",
     "scenes",
 ]

@@ -80,7 +80,11 @@ def _render(args: argparse.Namespace) -> int:
     print(f"wall      device+pipelines {1e3 * (t1 - t0):.1f} ms, render+readback {1e3 * (t2 - t1):.1f} ms")
     finite = bool(np.isfinite(image).all())
     print(f"image     mean radiance {float(image.mean()):.6g}, max {float(image.max()):.6g}, finite: {finite}")
-    if args.method in ("vpl", "vsgl", "vsgl2") and not args.no_error:
+    # An estimate from the RSM (it takes rsm_size, is no ground truth, makes indirect light) is
+    # compared with the every-texel reference of the same light.
+    info = vsgl.method_info(args.method)
+    estimates_rsm = "rsm_size" in vsgl.method_options(args.method) and not info["ground_truth"] and "indirect" in info["aovs"]
+    if estimates_rsm and not args.no_error:
         t3 = time.perf_counter()
         # The reference can take a minute on a CPU adapter: show how far it is (on a terminal).
         ref_progress = _progress_line("reference (for the error; --no-error skips it)")

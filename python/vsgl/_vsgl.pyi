@@ -1,7 +1,7 @@
 """Type stubs of the native extension (checked against the built module by mypy.stubtest)."""
 
 import os
-from typing import Any, Callable, Iterable, Literal, Sequence
+from typing import Any, Callable, Iterable, Literal, Sequence, TypedDict
 
 import numpy as np
 import numpy.typing as npt
@@ -31,6 +31,7 @@ __all__ = [
     "builtin_scene_names",
     "check_method_options",
     "describe_method",
+    "method_info",
     "method_options",
     "stability_suite",
 ]
@@ -225,6 +226,17 @@ class Renderer:
 
 def adapters() -> list[dict[str, Any]]: ...
 def describe_method(name: str) -> str: ...
+# What `method_info` returns (a plain dict at run time; the name is private so stubtest does not
+# look for a class in the extension).
+class _MethodInfo(TypedDict):
+    name: str
+    summary: str
+    aovs: list[str]
+    direct_light: Literal["shadow_mapped", "by_method"]
+    ground_truth: bool
+    stochastic: bool
+
+def method_info(name: str) -> _MethodInfo: ...
 def method_options(name: str) -> dict[str, int | float | bool | str]: ...
 def check_method_options(name: str, **options: int | float | bool | str | None) -> None: ...
 def builtin_scene_names() -> list[str]: ...

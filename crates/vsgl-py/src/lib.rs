@@ -15,7 +15,7 @@ mod stability;
 use camera::PyCamera;
 use frame::PyFrame;
 use lights::{PyDirectionalLight, PyPointLight, PySpotLight};
-use options::{check_method_options, describe_method, method_names, method_options};
+use options::{check_method_options, describe_method, method_info, method_names, method_options};
 use pyo3::prelude::*;
 use renderer::{adapters, PyRenderer};
 use scene::{builtin_scene, builtin_scene_names, PyScene};
@@ -50,6 +50,7 @@ fn _vsgl(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(adapters, m)?)?;
     m.add_function(wrap_pyfunction!(describe_method, m)?)?;
     m.add_function(wrap_pyfunction!(method_options, m)?)?;
+    m.add_function(wrap_pyfunction!(method_info, m)?)?;
     m.add_function(wrap_pyfunction!(check_method_options, m)?)?;
     m.add_function(wrap_pyfunction!(builtin_scene_names, m)?)?;
     m.add_function(wrap_pyfunction!(builtin_scene, m)?)?;

@@ -66,6 +66,26 @@ pub(crate) fn describe_method(name: &str) -> PyResult<String> {
     Ok(methods::info(name).map_err(to_py)?.describe())
 }
 
+/// What the registry says of method `name`, so callers need not list methods by hand: its
+/// summary, the AOVs its frames make, how it gets direct light, whether it is a ground truth
+/// that other methods are measured against, and whether its frames depend on `seed`.
+#[pyfunction]
+pub(crate) fn method_info<'py>(py: Python<'py>, name: &str) -> PyResult<Bound<'py, PyDict>> {
+    let info = methods::info(name).map_err(to_py)?;
+    let d = PyDict::new(py);
+    d.set_item("name", info.name)?;
+    d.set_item("summary", info.summary)?;
+    let aovs: Vec<&str> = vsgl_core::renderer::AOV_NAMES.iter().copied().filter(|a| info.makes_aov(a)).collect();
+    d.set_item("aovs", aovs)?;
+    d.set_item("direct_light", match info.direct_light {
+        methods::DirectLight::ShadowMapped => "shadow_mapped",
+        methods::DirectLight::ByMethod => "by_method",
+    })?;
+    d.set_item("ground_truth", info.ground_truth)?;
+    d.set_item("stochastic", info.takes("seed"))?;
+    Ok(d)
+}
+
 /// The keyword options of method `name` mapped to their defaults.
 #[pyfunction]
 pub(crate) fn method_options<'py>(py: Python<'py>, name: &str) -> PyResult<Bound<'py, PyDict>> {

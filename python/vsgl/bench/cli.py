@@ -6,6 +6,8 @@ import argparse
 import os
 from typing import Any
 
+import vsgl
+
 # The package's docstring: main() gives it to argparse as the description (--help).
 from . import __doc__
 from .report import table
@@ -63,7 +65,8 @@ def main(argv: list[str] | None = None) -> int:
     p.add_argument("--frames", type=int, default=None, help="timed frames per configuration and seed (default: 5; 2 on a CPU adapter)")
     p.add_argument("--warmup", type=int, default=None, help="untimed frames first (default: 1)")
     p.add_argument("--warmup-seconds", type=float, default=1.0, help="then this long of back-to-back rendering before timing, so the GPU leaves its idle clock (default: 1)")
-    p.add_argument("--reference", default="reference", choices=["reference", "pathtrace"], help="what errors are measured against (default: reference)")
+    p.add_argument("--reference", default="reference", choices=[m for m in vsgl.METHODS if vsgl.method_info(m)["ground_truth"]],
+                   help="the ground-truth method errors are measured against (default: reference)")
     p.add_argument("--reference-rsm", type=int, default=None,
                    help="RSM side of the reference (default: 1024; 256 on a CPU adapter); its own error comes from one at half the side")
     p.add_argument("--reference-spp", type=int, default=None, help="samples per pixel of a pathtrace reference (default: 256); its own error comes from its stderr")

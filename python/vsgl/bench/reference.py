@@ -60,7 +60,9 @@ def _reference(renderer, scene, size, method, settings, cache_dir, progress=None
     """Renders (or loads from the cache) one reference image with what its error needs."""
     key = _reference_key(scene, size, method, settings)
     path = None if cache_dir is None else pathlib.Path(cache_dir) / f"reference-{key}.npz"
-    fields = ("image", "indirect", "timings", "wall_ms", "batches") + (("stderr",) if method == "pathtrace" else ())
+    # A reference that estimates its own error per pixel (a path tracer's stderr AOV) keeps it.
+    with_stderr = "stderr" in vsgl.method_info(method)["aovs"]
+    fields = ("image", "indirect", "timings", "wall_ms", "batches") + (("stderr",) if with_stderr else ())
     if path is not None and path.exists():
         data = np.load(path)
         if all(f in data for f in fields):  # older caches lack the cost and the stderr
@@ -68,7 +70,7 @@ def _reference(renderer, scene, size, method, settings, cache_dir, progress=None
                 data["image"], data["indirect"], data["stderr"].astype(np.float64) ** 2 if "stderr" in fields else None,
                 float(json.loads(str(data["timings"])).get("total", 0.0)), float(data["wall_ms"]), int(data["batches"]),
             )
-    aovs = ["image", "indirect"] + (["stderr"] if method == "pathtrace" else [])
+    aovs = ["image", "indirect"] + (["stderr"] if with_stderr else [])
     batches = [1]
 
     def each_batch(done: int, total: int, unit: str) -> None:
@@ -80,7 +82,7 @@ def _reference(renderer, scene, size, method, settings, cache_dir, progress=None
     frame = renderer.render(scene, method=method, aovs=aovs, progress=each_batch, **settings)
     wall_ms = 1e3 * (time.perf_counter() - t)
     timings = dict(frame.timings_ms)
-    stderr = frame.aov("stderr") if method == "pathtrace" else None
+    stderr = frame.aov("stderr") if with_stderr else None
     if path is not None:
         path.parent.mkdir(parents=True, exist_ok=True)
         extra = {"stderr": stderr} if stderr is not None else {}

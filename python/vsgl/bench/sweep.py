@@ -20,7 +20,19 @@ from .report import TRUST_FACTOR, Report, Row, _equal_time, _plan_ratios
 from .timing import CLOCK_WARM_MAX_EXTRA_S, _clock_for, _quartiles
 
 
-STOCHASTIC = {"vpl", "vsgl"}
+def _stochastic(method: str) -> bool:
+    """Whether the method's frames depend on ``seed`` (the registry says), so a row averages seeds."""
+    return bool(vsgl.method_info(method)["stochastic"])
+
+
+def _takes(method: str, option: str) -> bool:
+    return option in vsgl.method_options(method)
+
+
+def _makes_indirect(method: str) -> bool:
+    return "indirect" in vsgl.method_info(method)["aovs"]
+
+
 # The `sampling=` values of vpl and vsgl (--sampling sweeps them).
 SAMPLINGS = ("stratified", "random", "metropolis")
 # sampling="metropolis": each seed's error frame comes from fresh chains stepped this many
@@ -136,8 +148,9 @@ def run(
         raise ValueError(f"frames: must be >= 1, got {frames}")
     if not (warmup_seconds >= 0 and np.isfinite(warmup_seconds)):
         raise ValueError(f"warmup_seconds: must be finite and >= 0, got {warmup_seconds}")
-    if reference not in ("reference", "pathtrace"):
-        raise ValueError(f"reference: must be \"reference\" or \"pathtrace\", got {reference!r}")
+    truths = [m for m in vsgl.METHODS if vsgl.method_info(m)["ground_truth"]]
+    if reference not in truths:
+        raise ValueError(f"reference: must be one of {', '.join(map(repr, truths))} (the ground-truth methods), got {reference!r}")
     if reference_strategy not in ("camera", "bidirectional", "light"):
         raise ValueError(f"reference_strategy: must be \"camera\", \"bidirectional\" or \"light\", got {reference_strategy!r}")
     unknown = [m for m in methods if m not in vsgl.METHODS]
@@ -231,20 +244,25 @@ def run(
         ),
     )
     configs = []
+    # Each axis for the methods that take its option (the registry's option lists).
+    def axis(m: str, option: str, values):
+        return values if _takes(m, option) else (None,)
+
     for m in methods:
-        if m in ("vpl", "vsgl"):
+        if _takes(m, "num_lights"):
             for n in lights:
                 for r in rsm_sizes:
-                    for k in (kernels if m == "vsgl" else (None,)):
-                        for K in (Ks if m == "vsgl" else (None,)):
-                            for li in (lightings if m == "vsgl" else (None,)):
-                                for imp in importances:
-                                    for s in samplings:
+                    for k in axis(m, "kernel", kernels):
+                        for K in axis(m, "K", Ks):
+                            for li in axis(m, "lighting", lightings):
+                                for imp in axis(m, "importance", importances):
+                                    for s in axis(m, "sampling", samplings):
                                         configs.append((m, n, r, k, K, li, imp, s))
-        elif m in ("reference", "vsgl2"):
-            # Deterministic and without a light count: one configuration per RSM size.
+        elif _takes(m, "rsm_size"):
+            # Without a light count (every texel, or two sums over them): one configuration
+            # per RSM size.
             for r in rsm_sizes:
-                for li in (lightings if m == "vsgl2" else (None,)):
+                for li in axis(m, "lighting", lightings):
                     configs.append((m, None, r, None, None, li, None, None))
         else:
             configs.append((m, None, None, None, None, None, None, None))
@@ -290,15 +308,15 @@ def run(
                 settings["importance"] = importance
                 if importance_interleave is not None:
                     settings["importance_interleave"] = importance_interleave
-            if method == "vpl":
-                # 1: every VPL at every pixel (the baseline); 8: the papers' equal-footing
-                # comparison, interleaved and denoised like the VSGLs.
+            if kernel is None and _takes(method, "interleave"):
+                # VPLs: 1: every VPL at every pixel (the baseline); 8: the papers'
+                # equal-footing comparison, interleaved and denoised like the VSGLs.
                 settings["interleave"] = vpl_interleave
-            if method in ("vpl", "vsgl", "vsgl2", "reference") and visibility != "none":
+            if _takes(method, "visibility") and visibility != "none":
                 settings["visibility"] = visibility
-            run_seeds = seeds if method in STOCHASTIC else (0,)
+            run_seeds = seeds if _stochastic(method) else (0,)
             # Read back only what the errors need (readback is most of the wall time).
-            settings["aovs"] = ["image"] if method == "direct" else ["image", "indirect"]
+            settings["aovs"] = ["image", "indirect"] if _makes_indirect(method) else ["image"]
             totals: list[float] = []
             per_pass: dict[str, list[float]] = {}
             errs: dict[str, list[float]] = {"rmse_indirect": [], "rmse_image": [], "relmse_indirect": [], "relmse_image": [], "flip": [], "ssim": []}
@@ -319,7 +337,7 @@ def run(
             clocks: list[int] = []
             seed_frames: list[Any] = []
             for seed in run_seeds:
-                if method in STOCHASTIC:
+                if _stochastic(method):
                     settings["seed"] = seed
                 if sampling == "metropolis":
                     renderer.reset_chains()
@@ -385,7 +403,7 @@ def run(
                 # Its times are not comparable with warm rows: said in the row, not hidden.
                 row.notes.append(f"clock cold ({min(clocks)}-{max(clocks)} of {sm_clock.max_mhz} MHz)")
             if ref_has_light:
-                _trust(row, indirects, ref, method in STOCHASTIC, seed_stats, len(report.rows))
+                _trust(row, indirects, ref, _stochastic(method), seed_stats, len(report.rows))
             if sequence:
                 seq = _sequence_frames(renderer, scene_name, scene_lights, add_lights, sequence, method, settings)
                 row.flicker_indirect = metrics.flicker(seq, truth_frames) if np.any(truth_frames != 0) else None
@@ -464,9 +482,10 @@ def _sequence_frames(renderer, scene_name, scene_lights, add_lights, frames, met
             scene.set_time(change["time"])
         else:
             scene.lights = change["lights"]
-        seed = {"seed": k} if method in STOCHASTIC else {}
-        frame = renderer.render(scene, method=method, aovs=["indirect"] if method != "direct" else ["image"], **quiet, **seed)
-        out.append(frame.aov("indirect") if method != "direct" else np.zeros_like(frame.image))
+        seed = {"seed": k} if _stochastic(method) else {}
+        indirect = _makes_indirect(method)
+        frame = renderer.render(scene, method=method, aovs=["indirect"] if indirect else ["image"], **quiet, **seed)
+        out.append(frame.aov("indirect") if indirect else np.zeros_like(frame.image))
     return np.stack(out)
 
 

@@ -10,6 +10,7 @@ pub const INFO: MethodInfo = MethodInfo {
     direct_light: DirectLight::ShadowMapped,
     indirect: false,
     extra_aovs: &[],
+    ground_truth: false,
     configure: |_| Ok(Box::new(Direct)),
 };
 

@@ -58,6 +58,9 @@ pub struct MethodInfo {
     pub indirect: bool,
     /// AOVs only some methods make (e.g. `stderr`).
     pub extra_aovs: &'static [&'static str],
+    /// A converged answer that other methods' error is measured against (`bench --reference`,
+    /// the CLI's error line), not an estimate to be judged itself.
+    pub ground_truth: bool,
     /// Parses validated options into the method's typed settings, once. It may resolve a
     /// default that depends on other options in place ([`Options::resolve_default`]), so
     /// `frame.settings`, which the frame script makes from these options, shows what ran.

@@ -17,6 +17,7 @@ pub const INFO: MethodInfo = MethodInfo {
     direct_light: DirectLight::ShadowMapped,
     indirect: true,
     extra_aovs: &[],
+    ground_truth: true,
     configure: |o| Ok(Box::new(Reference::new(o)?)),
 };
 

@@ -30,6 +30,7 @@ pub const INFO: MethodInfo = MethodInfo {
     direct_light: DirectLight::ShadowMapped,
     indirect: true,
     extra_aovs: &[],
+    ground_truth: false,
     configure: |o| Ok(Box::new(Vsgl::new(o)?)),
 };
 
