@@ -5,7 +5,7 @@
 use super::FrameContext;
 use crate::error::Result;
 use crate::frame::IndirectTargets;
-use crate::passes::denoise::DenoisePass;
+use crate::passes::denoise::{DenoisePass, DenoiseScreen};
 
 /// `interleave`, `denoise` and `denoise_form` (`options::common::DENOISE_OPTIONS` and the
 /// method's own `interleave`), parsed once.
@@ -65,7 +65,8 @@ impl InterleavedShading {
     pub fn resolve(&self, ctx: &mut FrameContext<'_>) -> Result<()> {
         if self.filtered() {
             let denoise = ctx.passes.get::<DenoisePass>()?;
-            denoise.record(&mut ctx.rec, ctx.frame_uniforms, self.interleave, self.keep_light, ctx.gbuffer, &self.noisy, ctx.indirect, ctx.features, ctx.size);
+            let screen = DenoiseScreen { frame: ctx.frame_uniforms, gbuffer: ctx.gbuffer, features: ctx.features, size: ctx.size };
+            denoise.record(&mut ctx.rec, &screen, self.interleave, self.keep_light, &self.noisy, ctx.indirect);
         } else if self.interleave == 1 {
             ctx.skip("denoise", "interleave=1: every pixel evaluates every virtual light");
         } else {

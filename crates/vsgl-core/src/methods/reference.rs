@@ -6,7 +6,7 @@ use super::{options::common, DirectLight, FrameContext, Method, MethodInfo, Opti
 use super::visibility::{VirtualLightVisibility, VisibilityMode, VPL_RECORD_WORDS};
 use crate::error::Result;
 use crate::gpu::Gpu;
-use crate::passes::vpl_sample::{VplSamplePass, VPL_BYTES};
+use crate::passes::vpl_sample::{VplSamplePass, VplSource, VPL_BYTES};
 use crate::frame::{ShadingInputs, VirtualLightList};
 use crate::passes::vpl_shading::VplShadingPass;
 
@@ -77,7 +77,7 @@ impl Method for Reference {
             let mut first = 0u64;
             while first < texels {
                 let count = per_batch.min(texels - first);
-                sample.record_every_texel(&mut ctx.rec, light.light.as_entire_binding(), light.rsm, first as u32, count as u32, &vpls, feat);
+                sample.record_every_texel(&mut ctx.rec, &VplSource { light: light.light, rsm: light.rsm, out: &vpls, features: feat }, first as u32, count as u32);
                 vis.build_maps(ctx, &vpls, count as u32, VPL_RECORD_WORDS)?;
                 let io = ShadingInputs { frame_uniforms: ctx.frame_uniforms, gbuffer: ctx.gbuffer, out: ctx.indirect, features: feat, size: ctx.size, visibility: &vis };
                 shading.record(&mut ctx.rec, &io, VirtualLightList { records: &vpls, count: count as u32, interleave: 1 }, min_distance2);

@@ -11,7 +11,7 @@ use super::visibility::{VirtualLightVisibility, VisibilityMode, VPL_RECORD_WORDS
 use crate::error::Result;
 use crate::gpu::Gpu;
 use crate::passes::pdf_mips::PdfMipsPass;
-use crate::passes::vpl_sample::{Sampling, VplSamplePass, VPL_BYTES};
+use crate::passes::vpl_sample::{ImportanceDraw, Sampling, VplSamplePass, VplSource, VPL_BYTES};
 use crate::frame::{ShadingInputs, VirtualLightList};
 use crate::passes::vpl_shading::VplShadingPass;
 
@@ -95,7 +95,9 @@ impl Method for Vpl {
                 Sampling::Metropolis => Some(metropolis.step(ctx, light, pdf)?),
                 _ => None,
             };
-            sample.record_importance(&mut ctx.rec, light.light.as_entire_binding(), light.rsm, pdf, light.budget, self.sampling.sampling, self.sampling.seed, &vpls, feat, samples.as_ref());
+            let source = VplSource { light: light.light, rsm: light.rsm, out: &vpls, features: feat };
+            let draw = ImportanceDraw { count: light.budget, pdf, sampling: self.sampling.sampling, seed: self.sampling.seed, samples: samples.as_ref() };
+            sample.record_importance(&mut ctx.rec, &source, &draw);
             vis.build_maps(ctx, &vpls, light.budget, VPL_RECORD_WORDS)?;
             let target = shading_out.target(ctx.indirect);
             let io = ShadingInputs { frame_uniforms: ctx.frame_uniforms, gbuffer: ctx.gbuffer, out: target, features: feat, size: ctx.size, visibility: &vis };

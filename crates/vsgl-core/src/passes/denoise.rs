@@ -28,6 +28,16 @@ pub struct DenoisePass {
     pipelines: PipelineVariants,
 }
 
+/// The frame the filter reads its edge-stopping weights from.
+#[derive(Clone, Copy)]
+pub struct DenoiseScreen<'a> {
+    /// The frame's uniforms (camera).
+    pub frame: &'a wgpu::Buffer,
+    pub gbuffer: &'a GBuffer,
+    pub features: ShaderFeatures,
+    pub size: (u32, u32),
+}
+
 impl DenoisePass {
     pub fn new(gpu: &Gpu) -> Result<Self> {
         Ok(Self { pipelines: PipelineVariants::new(gpu, "passes/denoise.wgsl", "main")? })
@@ -36,8 +46,8 @@ impl DenoisePass {
     /// Filters `noisy` into `out` through an intermediate (demodulated, x-filtered) pair;
     /// `keep_light`: by exchanges that keep the total light (`denoise_form="exchange"`), else as
     /// a normalised gather.
-    #[allow(clippy::too_many_arguments)]
-    pub fn record(&self, rec: &mut Recorder<'_>, frame: &wgpu::Buffer, radius: u32, keep_light: bool, gbuffer: &GBuffer, noisy: &IndirectTargets, out: &IndirectTargets, features: ShaderFeatures, size: (u32, u32)) {
+    pub fn record(&self, rec: &mut Recorder<'_>, screen: &DenoiseScreen<'_>, radius: u32, keep_light: bool, noisy: &IndirectTargets, out: &IndirectTargets) {
+        let DenoiseScreen { frame, gbuffer, features, size } = *screen;
         debug_assert!(radius <= MAX_RADIUS, "denoise radius {radius} > {MAX_RADIUS}: the interleave option's bound");
         let gpu = rec.gpu;
         let pipeline = self.pipelines.get(gpu, &features.specular_flags());

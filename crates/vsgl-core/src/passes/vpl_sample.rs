@@ -68,15 +68,15 @@ impl VplSamplePass {
         })
     }
 
-    #[allow(clippy::too_many_arguments)]
-    fn dispatch(&self, rec: &mut Recorder<'_>, label: &str, pipeline: &wgpu::ComputePipeline, params: SampleParamsRaw, light: wgpu::BindingResource<'_>, rsm: &Rsm, pdf: &wgpu::Buffer, out: &wgpu::Buffer, samples: Option<&wgpu::Buffer>) {
+    fn dispatch(&self, rec: &mut Recorder<'_>, label: &str, pipeline: &wgpu::ComputePipeline, params: SampleParamsRaw, source: &VplSource<'_>, (pdf, samples): (&wgpu::Buffer, Option<&wgpu::Buffer>)) {
+        let (rsm, out) = (source.rsm, source.out);
         let uniform = rec.uniform("vpl_sample_params_uniform_buffer", &params);
         rec.compute(
             label,
             pipeline,
             &[&[
                 uniform.as_entire_binding(),
-                light,
+                source.light.as_entire_binding(),
                 pdf.as_entire_binding(),
                 rsm.level_offsets.as_entire_binding(),
                 rsm.gbuffer.position.as_entire_binding(),
@@ -91,31 +91,55 @@ impl VplSamplePass {
         );
     }
 
-    /// `count` VPLs with p ∝ `pdf` (level 0 of a pyramid in the layout of `rsm.pyramid`: that
-    /// pyramid itself, Φ·(R_d + R_s), or the bidirectional importance of `brsm_mix`),
-    /// estimator weights 1/(N p); `samples` (the Metropolis chains' positions) is read for
-    /// [`Sampling::Metropolis`] only.
-    #[allow(clippy::too_many_arguments)]
-    pub fn record_importance(&self, rec: &mut Recorder<'_>, light: wgpu::BindingResource<'_>, rsm: &Rsm, pdf: &wgpu::Buffer, count: u32, sampling: Sampling, seed: u32, out: &wgpu::Buffer, features: ShaderFeatures, samples: Option<&wgpu::Buffer>) {
+    /// `draw.count` VPLs with p ∝ `draw.pdf` (level 0 of a pyramid in the layout of
+    /// `rsm.pyramid`: that pyramid itself, Φ·(R_d + R_s), or the bidirectional importance of
+    /// `brsm_mix`), estimator weights 1/(N p).
+    pub fn record_importance(&self, rec: &mut Recorder<'_>, source: &VplSource<'_>, draw: &ImportanceDraw<'_>) {
         let gpu = rec.gpu;
+        let rsm = source.rsm;
         let params = SampleParamsRaw {
-            count,
+            count: draw.count,
             levels: rsm.levels,
             rsm_size: rsm.size,
-            mode: match sampling { Sampling::Stratified => 0, Sampling::Random => 1, Sampling::Metropolis => 2 },
-            seed,
+            mode: match draw.sampling { Sampling::Stratified => 0, Sampling::Random => 1, Sampling::Metropolis => 2 },
+            seed: draw.seed,
             first: 0,
             _pad: [0; 2],
         };
-        self.dispatch(rec, "vpl_sample", &self.importance.get(gpu, &features.specular_flags()), params, light, rsm, pdf, out, samples);
+        let pipeline = self.importance.get(gpu, &source.features.specular_flags());
+        self.dispatch(rec, "vpl_sample", &pipeline, params, source, (draw.pdf, draw.samples));
     }
 
     /// Texels `first .. first + count` as VPLs of weight Φ·R.
-    #[allow(clippy::too_many_arguments)]
-    pub fn record_every_texel(&self, rec: &mut Recorder<'_>, light: wgpu::BindingResource<'_>, rsm: &Rsm, first: u32, count: u32, out: &wgpu::Buffer, features: ShaderFeatures) {
+    pub fn record_every_texel(&self, rec: &mut Recorder<'_>, source: &VplSource<'_>, first: u32, count: u32) {
         let gpu = rec.gpu;
+        let rsm = source.rsm;
         let params = SampleParamsRaw { count, levels: rsm.levels, rsm_size: rsm.size, mode: 0, seed: 0, first, _pad: [0; 2] };
         // Reported as its own variant in `frame.passes`, timed as `vpl_sample`.
-        self.dispatch(rec, "vpl_sample[every_texel]", &self.every_texel.get(gpu, &features.specular_flags()), params, light, rsm, &rsm.pyramid, out, None);
+        let pipeline = self.every_texel.get(gpu, &source.features.specular_flags());
+        self.dispatch(rec, "vpl_sample[every_texel]", &pipeline, params, source, (&rsm.pyramid, None));
     }
 }
+
+/// What VPLs are made from and into: one light's RSM, the light's record, the VPL buffer.
+pub struct VplSource<'a> {
+    /// The light's `LightRaw` record.
+    pub light: &'a wgpu::Buffer,
+    pub rsm: &'a Rsm,
+    /// The VPL records written.
+    pub out: &'a wgpu::Buffer,
+    pub features: ShaderFeatures,
+}
+
+/// How [`VplSamplePass::record_importance`] draws its texels.
+pub struct ImportanceDraw<'a> {
+    /// VPLs to draw.
+    pub count: u32,
+    /// The density, level 0 of a pyramid laid out as `rsm.pyramid`.
+    pub pdf: &'a wgpu::Buffer,
+    pub sampling: Sampling,
+    pub seed: u32,
+    /// The Metropolis chains' positions, read for [`Sampling::Metropolis`] only.
+    pub samples: Option<&'a wgpu::Buffer>,
+}
+
