@@ -3,6 +3,8 @@
 //! GPU tests (`plan.rs`, `stability.rs`).
 #![allow(dead_code)]
 
+pub mod gltf_fixtures;
+
 use std::path::PathBuf;
 use std::sync::Arc;
 use vsgl_core::gpu::Gpu;
