@@ -483,3 +483,27 @@ def test_method_info_says_what_each_method_is():
     assert info["vsgl"]["summary"] in vsgl.describe_method("vsgl")
     with pytest.raises(vsgl.ArgumentError, match="unknown method"):
         vsgl.method_info("kmeans")
+
+
+def test_stub_option_types_are_generated_from_the_registry(tmp_path):
+    """Each method's options are a TypedDict in the stub with one overload of render and
+    render_sequence per method, written by scripts/option_stubs.py from `method_info`; the
+    committed stub must equal what the registry generates now, and a stale stub is caught."""
+    root = pathlib.Path(__file__).resolve().parents[1]
+    script = root / "scripts" / "option_stubs.py"
+    check = subprocess.run([sys.executable, str(script), "--check"], capture_output=True, text=True)
+    assert check.returncode == 0, check.stderr
+    stub = (root / "python" / "vsgl" / "_vsgl.pyi").read_text()
+    for name in vsgl.METHODS:
+        for option, spec in vsgl.method_info(name)["options"].items():
+            assert f"    {option}: " in stub, (name, option)
+            if spec["type"] == "choice":
+                assert all(f'"{c}"' in stub for c in spec["choices"]), (name, option)
+    # A stale stub (an option the registry does not have) fails the check.
+    import importlib.util
+
+    spec = importlib.util.spec_from_file_location("option_stubs", script)
+    option_stubs = importlib.util.module_from_spec(spec)
+    spec.loader.exec_module(option_stubs)
+    stale = stub.replace("    kernel_filter: ", "    kernel_filtre: ", 1)
+    assert option_stubs.regenerate(stale) != stale and option_stubs.regenerate(stub) == stub

@@ -83,7 +83,49 @@ pub(crate) fn method_info<'py>(py: Python<'py>, name: &str) -> PyResult<Bound<'p
     })?;
     d.set_item("ground_truth", info.ground_truth)?;
     d.set_item("stochastic", info.takes("seed"))?;
+    let options = PyDict::new(py);
+    for o in info.options() {
+        options.set_item(o.name, option_spec(py, o)?)?;
+    }
+    d.set_item("options", options)?;
     Ok(d)
+}
+
+/// One option as `method_info(name)["options"][option]`: its type ("int", "float", "bool" or
+/// "choice"), what it allows (min/max/power_of_two, min/min_exclusive, choices), its default and
+/// its help line, so a notebook can build a control for it and the stubs' TypedDicts are checked.
+fn option_spec<'py>(py: Python<'py>, o: &methods::OptionSpec) -> PyResult<Bound<'py, PyDict>> {
+    let d = PyDict::new(py);
+    match o.kind {
+        methods::OptionKind::Int { min, max, power_of_two } => {
+            d.set_item("type", "int")?;
+            d.set_item("min", min)?;
+            d.set_item("max", max)?;
+            d.set_item("power_of_two", power_of_two)?;
+        }
+        methods::OptionKind::Float { min, min_exclusive } => {
+            d.set_item("type", "float")?;
+            d.set_item("min", min)?;
+            d.set_item("min_exclusive", min_exclusive)?;
+        }
+        methods::OptionKind::Bool => d.set_item("type", "bool")?,
+        methods::OptionKind::Choice(choices) => {
+            d.set_item("type", "choice")?;
+            d.set_item("choices", choices.to_vec())?;
+        }
+    }
+    set_default(&d, "default", &o.default)?;
+    d.set_item("help", o.help)?;
+    Ok(d)
+}
+
+fn set_default(d: &Bound<'_, PyDict>, key: &str, value: &OptionValue) -> PyResult<()> {
+    match value {
+        OptionValue::Int(v) => d.set_item(key, v),
+        OptionValue::Float(v) => d.set_item(key, v),
+        OptionValue::Bool(v) => d.set_item(key, v),
+        OptionValue::Str(v) => d.set_item(key, v.as_ref()),
+    }
 }
 
 /// The keyword options of method `name` mapped to their defaults.
@@ -92,12 +134,7 @@ pub(crate) fn method_options<'py>(py: Python<'py>, name: &str) -> PyResult<Bound
     let info = methods::info(name).map_err(to_py)?;
     let d = PyDict::new(py);
     for o in info.options() {
-        match &o.default {
-            OptionValue::Int(v) => d.set_item(o.name, v)?,
-            OptionValue::Float(v) => d.set_item(o.name, v)?,
-            OptionValue::Bool(v) => d.set_item(o.name, v)?,
-            OptionValue::Str(v) => d.set_item(o.name, v.as_ref())?,
-        }
+        set_default(&d, o.name, &o.default)?;
     }
     Ok(d)
 }
