@@ -70,7 +70,7 @@ def main(argv: list[str] | None = None) -> int:
     p.add_argument("--reference-rsm", type=int, default=None,
                    help="RSM side of the reference (default: 1024; 256 on a CPU adapter); its own error comes from one at half the side")
     p.add_argument("--reference-spp", type=int, default=None, help="samples per pixel of a pathtrace reference (default: 256); its own error comes from its stderr")
-    p.add_argument("--reference-strategy", default="bidirectional", choices=["camera", "bidirectional", "light"],
+    p.add_argument("--reference-strategy", default="bidirectional", choices=vsgl.method_info("pathtrace")["options"]["strategy"]["choices"],
                    help="paths of a pathtrace reference: bidirectional (light tracing + camera paths by MIS, per pixel area; default), camera (pixel centres) or light")
     p.add_argument("--light", action="append", default=[], metavar="SPEC",
                    help='add a light to every scene (repeatable), e.g. "point position=0,1.5,0 intensity=10"; `python -m vsgl render --help` lists the forms')

@@ -151,8 +151,9 @@ def run(
     truths = [m for m in vsgl.METHODS if vsgl.method_info(m)["ground_truth"]]
     if reference not in truths:
         raise ValueError(f"reference: must be one of {', '.join(map(repr, truths))} (the ground-truth methods), got {reference!r}")
-    if reference_strategy not in ("camera", "bidirectional", "light"):
-        raise ValueError(f"reference_strategy: must be \"camera\", \"bidirectional\" or \"light\", got {reference_strategy!r}")
+    strategies = vsgl.method_info("pathtrace")["options"]["strategy"]["choices"]
+    if reference_strategy not in strategies:
+        raise ValueError(f"reference_strategy: must be one of {', '.join(map(repr, strategies))} (pathtrace's strategy=), got {reference_strategy!r}")
     unknown = [m for m in methods if m not in vsgl.METHODS]
     if unknown:
         raise ValueError(f"methods: unknown {unknown}; valid: {', '.join(vsgl.METHODS)}")

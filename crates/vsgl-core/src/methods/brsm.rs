@@ -26,7 +26,7 @@ use crate::passes::brsm_view_gbuffer::{view_grid, view_grid_side, BrsmViewPass};
 use crate::passes::moment_mips::MomentMipsPass;
 use crate::passes::pdf_mips::PdfMipsPass;
 use crate::passes::vpl_sample::Sampling;
-use crate::passes::vsgl_gen::{GenSettings, Kernel, KernelFilter, VsglGenPass, VSGL_BYTES};
+use crate::passes::vsgl_gen::{GenSettings, GenSource, Kernel, KernelFilter, VsglGenPass, VSGL_BYTES};
 use crate::passes::vsgl_moments::VsglMomentsPass;
 
 /// `importance=`: where the RSM's sampling density comes from.
@@ -80,7 +80,7 @@ impl ViewImportance {
         // The 2016 paper's generation (integral kernel, K = 1, 12 bisection steps, Fibonacci
         // centres); positions relative to the frame origin, the eye.
         let settings = GenSettings { count, sampling: Sampling::Stratified, samples: None, seed, kernel: Kernel::Integral, k: 1.0, bisection_steps: 12, light_offset: [0.0; 3], importance: false, coherence: 0.0, shadow_candidates: None, filter: KernelFilter::Trilinear };
-        gen.record_with_pdf(rec, "brsm_view_vsgl_gen", &grid, &grid.pyramid, &chains, &settings, &vsgls);
+        gen.record_with_pdf(rec, "brsm_view_vsgl_gen", &GenSource { rsm: &grid, pdf: &grid.pyramid, chains: &chains }, &settings, &vsgls);
         Ok(Self { vsgls, count, interleave })
     }
 

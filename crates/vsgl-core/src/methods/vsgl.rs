@@ -17,7 +17,7 @@ use crate::gpu::Gpu;
 use crate::passes::moment_mips::MomentMipsPass;
 use crate::passes::pdf_mips::PdfMipsPass;
 use crate::passes::vpl_sample::Sampling;
-use crate::passes::vsgl_gen::{GenSettings, Kernel, KernelFilter, VsglGenPass, SHADOW_CANDIDATE_BYTES, VSGL_BYTES};
+use crate::passes::vsgl_gen::{GenSettings, GenSource, Kernel, KernelFilter, VsglGenPass, SHADOW_CANDIDATE_BYTES, VSGL_BYTES};
 use crate::passes::vsgl_moments::VsglMomentsPass;
 use crate::frame::{ShadingInputs, VirtualLightList};
 use crate::passes::vsgl_shading::{ShadingCandidates, VsglShadingPass};
@@ -250,7 +250,7 @@ impl Method for Vsgl {
                 shadow_candidates: candidates.as_ref(),
                 filter: self.kernel_filter,
             };
-            gen.record_with_pdf(&mut ctx.rec, "vsgl_gen", light.rsm, pdf, chains, &settings, &buf);
+            gen.record_with_pdf(&mut ctx.rec, "vsgl_gen", &GenSource { rsm: light.rsm, pdf, chains }, &settings, &buf);
             vis.build_maps(ctx, &buf, light.budget, VSGL_RECORD_WORDS)?;
             let target = shading_out.target(ctx.indirect);
             let io = ShadingInputs { frame_uniforms: ctx.frame_uniforms, gbuffer: ctx.gbuffer, out: target, features: feat, size: ctx.size, visibility: &vis };

@@ -133,21 +133,30 @@ pub struct VsglGenPass {
     pipeline: wgpu::ComputePipeline,
 }
 
+/// What VSGLs are generated from: the RSM, the density their texels are drawn by (level 0 of a
+/// pyramid laid out as `rsm.pyramid`) and the RSM's mipmapped moments.
+#[derive(Clone, Copy)]
+pub struct GenSource<'a> {
+    pub rsm: &'a Rsm,
+    pub pdf: &'a wgpu::Buffer,
+    pub chains: &'a MomentChains,
+}
+
 impl VsglGenPass {
     pub fn new(gpu: &Gpu) -> Result<Self> {
         let module = gpu.shader("passes/vsgl_gen.wgsl")?;
         Ok(Self { pipeline: gpu.compute_pipeline("vsgl_gen_pipeline", &module, "main") })
     }
 
-    /// VSGLs sampled by the RSM's own weight pyramid.
+    /// VSGLs sampled by the RSM's own weight pyramid (its `GenSource` with `pdf: &rsm.pyramid`).
     pub fn record(&self, rec: &mut Recorder<'_>, rsm: &Rsm, chains: &MomentChains, s: &GenSettings<'_>, out: &wgpu::Buffer) {
-        self.record_with_pdf(rec, "vsgl_gen", rsm, &rsm.pyramid, chains, s, out);
+        self.record_with_pdf(rec, "vsgl_gen", &GenSource { rsm, pdf: &rsm.pyramid, chains }, s, out);
     }
 
-    /// VSGLs sampled by `pdf`, a pyramid in the layout of `rsm.pyramid` (`s.importance` says
-    /// whether it differs from the moments' weight), timed as `label`.
-    #[allow(clippy::too_many_arguments)]
-    pub fn record_with_pdf(&self, rec: &mut Recorder<'_>, label: &str, rsm: &Rsm, pdf: &wgpu::Buffer, chains: &MomentChains, s: &GenSettings<'_>, out: &wgpu::Buffer) {
+    /// VSGLs sampled by `source.pdf`, a pyramid in the layout of `rsm.pyramid` (`s.importance`
+    /// says whether it differs from the moments' weight), timed as `label`.
+    pub fn record_with_pdf(&self, rec: &mut Recorder<'_>, label: &str, source: &GenSource<'_>, s: &GenSettings<'_>, out: &wgpu::Buffer) {
+        let GenSource { rsm, pdf, chains } = *source;
         let params = GenParamsRaw {
             count: s.count,
             levels: rsm.levels,
