@@ -53,7 +53,7 @@ def test_the_back_of_a_lit_plane_gets_no_indirect_light(tmp_path, make_renderer,
     diffuse form multiplies the texel's Lambert SG, whose axis comes from behind the receiver,
     with the positional SG seen from the receiver; near the plane the product's axis tips over
     the back's horizon. Without the tangent-plane fade the back received about half of the
-    front's direct light (0.51-0.54 here; scripts/plane_fade_error.py for other distances), and
+    front's direct light (0.51-0.54 here; experiments/plane_fade_error.py for other distances), and
     shadow rays to the texels, which lie on the plane, do not stop it.
     `plane_fade` is vsgl's default with lighting="asg" (its default lighting, "blend", shades the
     clamped-cosine diffuse, which always fades); vsgl2 takes it as an option."""
