@@ -1,4 +1,4 @@
-"""Wall-clock cost of bidirectional RSM importance by `importance_interleave` (docs/rendering.md,
+"""Wall-clock cost of bidirectional RSM importance by `importance_interleave` (experiments/brsm_cost_and_error.md,
 "Bidirectional RSM importance", "Passes and cost"). Lavapipe's GPU timestamps do not cover its
 compute work, so whole frames are timed with the wall clock, every configuration once per round
 in turn (so all see the same machine state), and the median over rounds is reported with its

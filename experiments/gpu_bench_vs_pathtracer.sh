@@ -47,11 +47,11 @@ timeout 420 python3 -m vsgl bench --scene caustics_ring,glossy_cornell,cornell_b
   --size 960x540 --rsm-sizes 512 --seeds 3 --frames 5 --warmup-seconds 2 --visibility raytrace \
   --reference pathtrace --reference-strategy bidirectional --reference-spp 4096 \
   --no-progress --out "$OUT/bench_kernels_lighting_importance" 2>&1 | tail -60
-# Issue 18's acceptance script at a GPU size (the same tables as docs/rendering.md's lavapipe
+# Issue 18's acceptance script at a GPU size (the same tables as experiments/vsgl_vs_pathtracer.md's lavapipe
 # ones, 4×4-pixel blocks against the bidirectional path tracer, with and without shadow rays).
 timeout 300 python3 experiments/vsgl_vs_pathtracer.py --size 256 --lights 256,1024,4096,16384,65536 --brsm \
   --cache "$OUT/issue18_truth" --out "$OUT/vsgl_vs_pathtracer_none.json" 2>&1 | tail -60
 timeout 300 python3 experiments/vsgl_vs_pathtracer.py --size 256 --lights 256,1024,4096,16384 --visibility raytrace \
   --cache "$OUT/issue18_truth" --time-rounds 5 --out "$OUT/vsgl_vs_pathtracer_raytrace.json" 2>&1 | tail -60
-echo "== lambert_lobe cost (docs/rendering.md, Lambert lobes)"
+echo "== lambert_lobe cost (experiments/lambert_lobe.md, Lambert lobes)"
 timeout 120 python3 experiments/lambert_lobe_timing.py --size 512 --lights 1024,4096 --rounds 9 2>&1 | tail -12

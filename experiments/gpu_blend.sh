@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# lighting="blend" on a GPU (docs/rendering.md, "lighting=\"blend\""), in ONE device call: steps
+# lighting="blend" on a GPU (docs/methods/vsgl.md, "lighting=\"blend\""), in ONE device call: steps
 # in order of importance, each capped by what is left of $BUDGET seconds (default 480), results
 # packed into $OUT/results.tgz after every step.
 #

@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# The real-scene corpus on a GPU (docs/rendering.md, "The real-scene corpus"), in ONE device call:
+# The real-scene corpus on a GPU (docs/scenes.md, "The real-scene corpus"), in ONE device call:
 # steps in order of importance, each capped by what is left of $BUDGET seconds (default 480),
 # results packed into $OUT/results.tgz after every step.
 #

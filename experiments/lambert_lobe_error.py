@@ -1,4 +1,4 @@
-"""Error of `lambert_lobe=` (docs/rendering.md, "VSGLs": Lambert lobes), the three tables of the
+"""Error of `lambert_lobe=` (docs/methods/vsgl.md, "VSGLs": Lambert lobes), the three tables of the
 section, for `vsgl` at interleave 1 without the denoiser:
 
 1. cornell_box 64², RSM 128, against the every-texel `reference` of the same RSM (exact

@@ -1,4 +1,4 @@
-"""Cost of `lambert_lobe=` (docs/rendering.md, "VSGLs": Lambert lobes): wall-clock seconds per
+"""Cost of `lambert_lobe=` (docs/methods/vsgl.md, "VSGLs": Lambert lobes): wall-clock seconds per
 frame and the `vsgl_shading` pass time of `vsgl` with each form, in round-robin rounds so that a
 change of the machine's load falls on every form alike (on a CPU adapter only the ratios
 within one run mean anything).

@@ -1,4 +1,4 @@
-"""VSGL light split by the receiver's lobe against the path tracer's own split (docs/rendering.md,
+"""VSGL light split by the receiver's lobe against the path tracer's own split (experiments/sg_lighting_forms.md,
 "SG lighting" and "Open: shadow rays take too much of the VSGLs' specular light").
 
     .venv/bin/python experiments/lobe_split_error.py [--scene glossy_cornell] [--size 64] [--spp 2048]

@@ -1,7 +1,7 @@
 #!/usr/bin/env python3
 """How far is vsgl's path-traced ground truth (`method="pathtrace"`, default strategy "bidirectional") from Mitsuba 3's light tracer (`ptracer`) with the same materials, lights and camera?
 
-An outside check of the truth the benchmark measures every method against (docs/rendering.md,
+An outside check of the truth the benchmark measures every method against (experiments/pathtracer_vs_mitsuba.md,
 "Against Mitsuba 3's light tracer (`experiments/mitsuba_truth.py`)"). Not run in CI and
 imported by no test: it needs Mitsuba 3 (``pip install mitsuba drjit``), which vsgl does not
 depend on.

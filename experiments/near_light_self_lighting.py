@@ -1,7 +1,7 @@
 """A plane lighting itself near a light: CornellBoxOriginal (../shared/scenes) with a point light
 0.19 m below its ceiling, seen by the default camera from above the box's open front, so the top
 of the thin ceiling quad fills the top third of the image. `vsgl` (unshadowed, the papers' setting)
-against the every-texel `reference` of the same RSM (docs/rendering.md, "The cluster's tangent
+against the every-texel `reference` of the same RSM (docs/methods/vsgl.md, "The cluster's tangent
 plane"). The reference puts no indirect light on the ceiling (every texel that could light it is
 coplanar with it or below it); the papers' diffuse form without the tangent-plane fade
 (`plane_fade=False`, the default before 2026-11-29) put about half of the image's indirect light

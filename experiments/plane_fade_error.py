@@ -1,6 +1,6 @@
 """What `plane_fade` (the tangent-plane fade under the papers' diffuse form) changes, against the
 every-texel `reference` of the same RSM (unshadowed: exact Lambertian texels, each reflecting into
-its own hemisphere; the sum the VSGLs estimate). docs/rendering.md, "The cluster's tangent plane".
+its own hemisphere; the sum the VSGLs estimate). docs/methods/vsgl.md, "The cluster's tangent plane".
 
 1. The back of a lit plane: a lone quad lit from its front by a point light at several distances,
    seen from behind; its indirect light over the front's direct light (the reference's is 0).

@@ -9,7 +9,7 @@ accuracy measurements: unshadowed, interleave 1, no denoiser, the reference of t
         [--out-of-the-box] [--seeds K]
 
 Each variant is a vsgl (or vpl/vsgl2, with method=...) option set; the defaults print the
-table of docs/rendering.md, "The real-scene corpus"."""
+table of docs/scenes.md, "The real-scene corpus"."""
 
 from __future__ import annotations
 

@@ -3,7 +3,7 @@ light (diffuse / specular means) from the bidirectional path tracer (exact geome
 visibility, converging on caustics: the independent truth, with its own standard error), from the
 every-texel `reference` of an RSM (shadowed by ray tracing, as the path tracer is), and from
 `vpl` and `vsgl` at N = 1024 with ray-traced virtual-light visibility, all over the path
-tracer's. docs/rendering.md, "The real-scene corpus", has the table this prints.
+tracer's. docs/scenes.md, "The real-scene corpus", has the table this prints.
 
     .venv/bin/python experiments/real_scene_truth.py [--size 128] [--rsm 128] [--spp 256]
         [--scene NAME ...] [--variant LABEL=method=...,opt=value ...]"""

@@ -46,7 +46,7 @@ from vsgl.metrics import block_means, block_rmse
 
 SPP = {"cornell_box": 1024, "glossy_cornell": 2048, "caustics_ring": 8192, "mirror_panel": 4096}
 # `--variants` names: the default three, and the exact Lambertian point emitter for compact clusters
-# (`lambert_lobe="exact_compact"`, docs/rendering.md "VSGLs") with either kernel, for the diffuse box;
+# (`lambert_lobe="exact_compact"`, docs/methods/vsgl.md "VSGLs") with either kernel, for the diffuse box;
 # the papers' diffuse form without the tangent-plane fade (`plane_fade=False`, the default before
 # 2026-11-29) with either kernel.
 VARIANTS = {"vpl": ("vpl", {}), "vsgl": ("vsgl", {}), "vsgl node": ("vsgl", dict(kernel="node")),

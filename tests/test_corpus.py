@@ -1,6 +1,6 @@
 """The real-scene corpus (vsgl.scenes.corpus): its committed light specs, loading and lighting
 the shared glTF files by them, and the accuracy figures the docs report on it
-(docs/rendering.md, "The real-scene corpus"). Tests that need the files skip with a message when
+(docs/scenes.md, "The real-scene corpus"). Tests that need the files skip with a message when
 the shared scene folder is absent; the spec tests always run."""
 
 from __future__ import annotations
@@ -110,7 +110,7 @@ def test_bench_and_cli_take_corpus_names():
         _load_scene("no_such_scene")
 
 
-# --- Accuracy on the corpus: the setting of docs/rendering.md's corpus table ------------------
+# --- Accuracy on the corpus: the setting of experiments/corpus_bias_vs_reference.md's corpus table ------------------
 # 128², RSM 128², N = 1024, unshadowed, interleave 1, no denoiser, against the every-texel
 # reference of the same RSM.
 
@@ -138,7 +138,7 @@ def test_vpls_are_near_the_reference_on_the_measured_scenes(name, make_renderer)
 
 # The acceptance bound, per corpus scene: default vsgl at N = 1024 within ±10% of the same-RSM
 # reference in diffuse and in specular. Where it does not hold yet the test is a strict xfail
-# naming what was measured (docs/rendering.md, "The real-scene corpus"), so a fix shows as an
+# naming what was measured (docs/scenes.md, "The real-scene corpus"), so a fix shows as an
 # unexpected pass. lights_spot has no indirect light (its own test below).
 _WITHIN_10_OPEN = {
     "boom_box": "1.49 / 1.87 against a reference that has 0.58 / 0.39 of the path tracer's light (vsgl 0.89 / 0.70 of it)",
@@ -188,7 +188,7 @@ def test_default_vsgl_within_5_percent_at_one_texel_per_vsgl(name, make_renderer
 
 
 def test_vsgls_default_budget_is_the_papers_and_vpls_is_unchanged(renderer):
-    # Chosen on the corpus out of the box (docs/rendering.md, "The defaults this chose",
+    # Chosen on the corpus out of the box (experiments/vsgl_defaults_on_the_corpus.md,
     # experiments/lavapipe/corpus/default_num_lights.txt): 1024 VSGLs, the papers' own setting
     # with 8x8 interleaving (16 per pixel), had a lower block error than 256 on 7 of 9 scenes;
     # vpl keeps the 256 it was measured with everywhere. A default render builds that many.

@@ -200,7 +200,7 @@ def test_the_default_rsm_grows_with_num_lights(renderer):
         assert f.settings["rsm_size"] == "64"
 
 
-# --- Normal coherence of the kernels (coherence=, docs/rendering.md "The real-scene corpus") -----
+# --- Normal coherence of the kernels (coherence=, docs/scenes.md "The real-scene corpus") -----
 
 @pytest.mark.parametrize("kernel", ["integral", "density", "node"])
 def test_kernels_do_not_straddle_a_crease(make_renderer, kernel):
@@ -249,7 +249,7 @@ def test_coherence_is_checked(renderer):
     assert np.isfinite(f.image).all() and f.settings["coherence"] == "1"
 
 
-# --- How the filtered kernels read the mips (kernel_filter=, docs/rendering.md "Kernels read at
+# --- How the filtered kernels read the mips (kernel_filter=, experiments/vsgl_defaults_on_the_corpus.md "Kernels read at
 # their node") ------------------------------------------------------------------------------------
 
 _SHELF_EYE = (0.0, 2.0, 2.5)

@@ -263,7 +263,7 @@ const VSGL_FILTERED_INV_HALF_LENGTH_MAX: f32 = 5.0e8;
 // unwidened G2 a broad light at grazing view came out up to 10× too bright (n·ω_o = 0.05, λ ≤ 30,
 // measured by the oracle test). So G2' uses Smith Λ with α(ω)² = ω̂₂ᵀΣ'ω̂₂; as λ → ∞ it is G2.
 // Accuracy against the exact GGX integral (oracle test vsgl_specular_accurate_vs_quadrature, α
-// 0.05…0.5, view angles 0…1.52 rad): see docs/rendering.md "SG lighting" for the table.
+// 0.05…0.5, view angles 0…1.52 rad): see docs/methods/vsgl.md "SG lighting" for the table.
 // Zero when the light axis or the view is below the surface (as vsgl_specular).
 fn vsgl_specular_accurate(radiance: Sg, normal: vec3f, w_o: vec3f, alpha: f32) -> f32 {
     return vsgl_specular_filtered(radiance, normal, w_o, alpha).x;
@@ -346,7 +346,7 @@ fn vsgl_specular_filtered(radiance: Sg, normal: vec3f, w_o: vec3f, alpha: f32) -
 // small-angle warp of the NDF, loses 27–63% of a rough lobe's light from the hemisphere
 // (α ≥ 0.5, even for point lights). w is a measured choice, not a derivation: over light axes on
 // the whole hemisphere (oracle test specular_forms_over_the_hemisphere) its summed L1 error is
-// 0.68× the better single form's (4.85 against 7.10); docs/rendering.md, "SG lighting", has the
+// 0.68× the better single form's (4.85 against 7.10); docs/methods/vsgl.md, "SG lighting", has the
 // table.
 fn vsgl_specular_blend(radiance: Sg, normal: vec3f, w_o: vec3f, alpha: f32) -> f32 {
     if (dot(normal, radiance.axis) <= 0.0 || dot(normal, w_o) <= 0.0) {

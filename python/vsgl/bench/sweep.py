@@ -42,7 +42,7 @@ CPU_DEFAULTS: dict[str, Any] = {
 
 
 #: The corpus scenes a bench run without --scene adds to cornell_box: real files whose
-#: every-texel reference is the path tracer's truth within 2% (docs/rendering.md, "The real-scene
+#: every-texel reference is the path tracer's truth within 2% (docs/scenes.md, "The real-scene
 #: corpus": on BoomBox and FlightHelmet it is not, so they are left to an explicit --scene).
 CORPUS_DEFAULT_SCENES = ("cornell_box_original", "cornell_box_mm")
 
