@@ -29,7 +29,7 @@ fi
 require_gpu
 
 common=(--size "$BIG" --frames "$FR" --scenes cornell_box --aovs image --warm-seconds "$WARM")
-# Targets (DESIGN.md): vpl/vsgl with 1024 lights per pixel at interleave 1 <= 6 ms; 8x8 vsgl_shading
+# Targets (the frame-loop targets, experiments/gpu_targets_and_acceptance.md): vpl/vsgl with 1024 lights per pixel at interleave 1 <= 6 ms; 8x8 vsgl_shading
 # and denoise <= 0.15 ms each; VSGL generation <= 0.05 ms; the whole vsgl frame <= 1.2 ms.
 step timings_k8 80 python3 experiments/gpu_timings.py "${common[@]}" --methods direct,vsgl,vsgl2,vpl --tag _k8 --vpl-interleave 8
 step timings_k1 60 python3 experiments/gpu_timings.py "${common[@]}" --methods vsgl,vpl --interleave 1 --vpl-interleave 1 --tag _k1

@@ -5,7 +5,7 @@ JSON to $OUT (or out/).
     python experiments/gpu_timings.py --size 1920x1088 --frames 20 --warm-seconds 10
 
 `--warm-seconds` renders the configuration back to back for that long before timing it, so the
-GPU leaves its idle clock (DESIGN.md, "Clocks": an H200 idles at 345 MHz between short frames);
+GPU leaves its idle clock (docs/error.md, cold clocks: an H200 idles at 345 MHz between short frames);
 where `nvidia-smi` exists its SM clock is read before and after the timed frames.
 """
 

@@ -2,7 +2,7 @@
 tests/test_visibility.py: the unlit room's indirect light against `pathtrace` (512 spp) for
 visibility="none" | "raytrace" | "ism", the unoccluded corner's light kept by "ism", and the
 wall time per render() of "ism" against "raytrace" at two image sizes. Ratios measured in one
-run are what to compare on a CPU adapter (DESIGN.md); docs/methods/visibility.md quotes a lavapipe run.
+run are what to compare on a CPU adapter (experiments/README.md); docs/methods/visibility.md quotes a lavapipe run.
 
     XDG_RUNTIME_DIR=/tmp .venv/bin/python experiments/visibility_lavapipe.py
 """

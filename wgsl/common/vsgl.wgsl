@@ -5,7 +5,7 @@
 //   (diffuse, specular) and one isotropic positional Gaussian N(μ_v, σ_v²) [Tok16s §3].
 // Positions: every position here is relative to a caller-chosen local origin (e.g. the light
 // position), never absolute world coordinates: σ² = E[‖y‖²] − ‖μ‖² cancels catastrophically
-// 1e5 m from the origin in f32 (DESIGN.md "Numerics").
+// 1e5 m from the origin in f32 (docs/numerics.md, "VSGL variance").
 // Every function is pure; the f64 twins are in crates/vsgl-core/src/verify/oracle/vsgl.rs.
 #include "common/constants.wgsl"
 #include "common/math.wgsl"
@@ -91,7 +91,7 @@ fn vsgl_position_seen_from(position: VsglPosition, shading_position: vec3f) -> V
 //   λ_in = ‖λσ ξ_μ − λ_v ξ_v‖, ξ_in = (λσ ξ_μ − λ_v ξ_v)/λ_in, c_in = c_v/(2πσ²)·exp(λ_in − λ_v − λσ).
 // The lobe comes as (ξ_v, λ_v, c_v/(2π)): the 1/(2π) depends on the VSGL alone (the shading
 // loop folds it in once per VSGL and workgroup), so the coefficient is one product with 1/σ².
-// Stable form (DESIGN.md; the product of sg_product, inlined): the exponent is the log-amplitude
+// Stable form (docs/numerics.md, "Product log-amplitude"; the product of sg_product, inlined): the exponent is the log-amplitude
 // −λ_v λσ ‖ξ_v + ξ_μ‖²/(λ_in + λ_v + λσ), never the difference λ_in − λ_v − λσ. ξ_in is
 // v·‖v‖⁻¹ with the ‖v‖² that λ_in = ‖v‖ needs; ‖v‖² < FLT_MIN means λ_in ≈ 0, where the axis is
 // sg_product's fallback: the sharper input's axis.

@@ -95,7 +95,7 @@ impl UvTransform {
     }
 }
 
-/// glTF metallic-roughness material (DESIGN.md "Conventions").
+/// glTF metallic-roughness material (docs/scenes.md, "Materials").
 #[derive(Clone, Debug)]
 pub struct Material {
     pub name: String,

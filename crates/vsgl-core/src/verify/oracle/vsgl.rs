@@ -362,7 +362,7 @@ mod tests {
 
     #[test]
     fn vsgl_position_needs_a_local_origin_in_f32() {
-        // VPLs spread by σ = 1 cm around a point 1e5 m from the world origin (DESIGN.md grid).
+        // VPLs spread by σ = 1 cm around a point 1e5 m from the world origin (the oracle's grid, docs/numerics.md).
         // Summed in f32 as a GPU would, the raw moments give a variance that is pure rounding noise
         // (here: ≥ 100% wrong); relative to a local origin (the first VPL, standing in for the
         // light position) the same f32 sums give σ² to 1e-3. The oracle then agrees with the
@@ -833,7 +833,7 @@ mod tests {
 
     #[test]
     fn extreme_inputs_stay_finite() {
-        // DESIGN.md grid: sharpness 1e-6…1e8, roughness 1e-4…1, grazing cosines down to 1e-6,
+        // The oracle's grid (docs/numerics.md): sharpness 1e-6…1e8, roughness 1e-4…1, grazing cosines down to 1e-6,
         // σ² down to 1e-12 of d², intensities 1e-8…1e8. Every output finite and ≥ 0.
         let n = DVec3::Z;
         for sharpness in [1e-6, 1.0, 1e8] {
