@@ -1,4 +1,4 @@
-"""Bidirectional RSM importance, issue 18 item 6, acceptance 2: where the view sees little of the
+"""Bidirectional RSM importance against the RSM density: where the view sees little of the
 lit area, does N = 1024 with importance="brsm" beat N = 4096 without? relRMSE of the indirect
 AOV against the every-texel `reference` of the same RSM (whose own error against that target is
 0: it is the sum both estimate), mean ± standard error over seeds.

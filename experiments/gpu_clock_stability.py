@@ -1,4 +1,4 @@
-"""Does the warm-up make per-pass timings hold still? (issue 14, item 4). One configuration is
+"""Does the warm-up make per-pass timings hold still? One configuration is
 timed with the standard procedure (`gpu_timings.time_config`: warm-up frames, then
 `--warm-seconds` back to back, then timed frames) three times:
 

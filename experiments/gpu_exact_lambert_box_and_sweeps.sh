@@ -11,11 +11,11 @@
 #   1 the diffuse cornell_box, the one scene where the default VSGLs are not below VPLs: the exact
 #     Lambertian point emitter for compact clusters (lambert_lobe="exact_compact") with either
 #     kernel, N up to 65536, with and without shadow rays, against the converged path tracer;
-#   2 issue 18's bench sweep at 960x540: kernels x lighting x importance on the glossy and caustic
+#   2 the bench sweep at 960x540: kernels x lighting x importance on the glossy and caustic
 #     built-ins, with per-pass GPU times (brsm's passes next to the papers' Table 1);
-#   3 issue 19's error / flicker / time under the animated flashlight (the reference of each
+#   3 the temporal benchmark's error / flicker / time under the animated flashlight (the reference of each
 #     sequence frame at RSM 512: at the bench's default 1024 the previous call ran out of time);
-#   4 issue 20's scene-level stability suite on a GPU.
+#   4 the scene-level stability suite on a GPU.
 set -uo pipefail
 source "$(dirname "$0")/gpu_common.sh"  # $FINAL_OUT, $RES, pack, step, require_gpu; cd to the repository root
 BUDGET=${BUDGET:-430}

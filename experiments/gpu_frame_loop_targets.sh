@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# Issue 14's GPU figures, in two device calls (each fits one 600 s call; results under $OUT):
+# The frame-loop targets on a GPU, in two device calls (each fits one 600 s call; results under $OUT):
 #   bash experiments/gpu_frame_loop_targets.sh timings    # ~2 min: warm per-pass timings at 1920x1080 of every
 #                                          # shading configuration the targets name, and the wall
 #                                          # time of a render() loop vs render_sequence per AOV set

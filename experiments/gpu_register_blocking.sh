@@ -7,8 +7,8 @@
 #     0.15 ms targets of vsgl_shading and denoise);
 #   2 the scene-level stability suite with the surface-flip rule (143 of 162 rows passed on the
 #     first call, before it);
-#   3 issue 19's sequence benchmark, now that bench warms until the SM clock is up;
-#   4 issue 18's sweep on caustics_ring re-timed warm (the first call had rows at 360-900 MHz).
+#   3 the temporal (sequence) benchmark, now that bench warms until the SM clock is up;
+#   4 the kernels x lighting x importance sweep on caustics_ring re-timed warm (the first call had rows at 360-900 MHz).
 #   prepare .gl/ and .whl/ (experiments/README.md, "Running a device script"); .whl-old/ and .whl-var/P1.whl, P4.whl as gpu_shading_compare.sh says
 #   device (carry .gl .whl .whl-old .whl-var): <device preamble> bash experiments/gpu_register_blocking.sh
 #   locally: SMOKE=1 bash experiments/gpu_register_blocking.sh

@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# Two builds' shading passes back to back on one warm GPU, then issue 18's acceptance with the
+# Two builds' shading passes back to back on one warm GPU, then VSGLs against the path tracer with the
 # new one (one device call, ~3 min; results under $OUT):
 #   - the previous build's wheel in .whl-old/, this build's in .whl/ (installed to /tmp/site by
 #     the device preamble);
@@ -10,7 +10,7 @@
 #   - vsgl_vs_pathtracer.py at 256² (GPU clock for the equal-time tables), with and without
 #     shadow rays;
 #   - vsgl2's subgroup against shared-memory reduction by RSM side;
-#   - issue 19's sequence benchmark on cave_flashlight, cut to fit (K = 1, 4; 20 frames; 512-spp truth).
+#   - the temporal (sequence) benchmark on cave_flashlight, cut to fit (K = 1, 4; 20 frames; 512-spp truth).
 #   prepare .gl/ and .whl/ (experiments/README.md, "Running a device script"); mkdir -p .whl-old && cp <previous wheel> .whl-old/
 #   optional diagnostic builds in .whl-var/NAME.whl (timed once each, vsgl at interleave 1)
 #   SHADING_ONLY=1: stop after the builds' timings; FULL_METHODS=vsgl: leave vpl out of them
@@ -41,18 +41,18 @@ time_build new_1 /tmp/site 1
 for v in /tmp/var_*; do [ -d "$v" ] && time_build "${v#/tmp/var_}" "$v" 0; done
 time_build new_2 /tmp/site 0  # the same build again: the drift over the comparison
 if [ "${SHADING_ONLY:-0}" = 1 ]; then pack; exit 0; fi  # the builds' timings only (a caller's step)
-echo "== issue 18, 256², no shadows"
+echo "== VSGLs against the path tracer, 256², no shadows"
 timeout 100 python3 experiments/vsgl_vs_pathtracer.py --size "$ACC_SIZE" --lights "$ACC_LIGHTS" --brsm \
   --cache "$RES/truth" --out "$RES/vsgl_vs_pathtracer_none.json" > "$RES/vsgl_vs_pathtracer_none.log" 2>&1
 grep -v '^<!--' "$RES/vsgl_vs_pathtracer_none.log" | grep -E '^\| `?(vpl|vsgl)|^###' | cut -c1-200; pack
-echo "== issue 18, 256², shadow rays"
+echo "== VSGLs against the path tracer, 256², shadow rays"
 timeout 120 python3 experiments/vsgl_vs_pathtracer.py --size "$ACC_SIZE" --lights "${ACC_LIGHTS%,65536}" --visibility raytrace \
   --cache "$RES/truth" --time-rounds 3 --out "$RES/vsgl_vs_pathtracer_raytrace.json" > "$RES/vsgl_vs_pathtracer_raytrace.log" 2>&1
 grep -v '^<!--' "$RES/vsgl_vs_pathtracer_raytrace.log" | grep -E '^\| `?(vpl|vsgl)|^###|^\| [0-9]' | cut -c1-200
 rm -rf "$RES/truth"; pack
 echo "== vsgl2's reductions"
 timeout 45 python3 experiments/gpu_vsgl2_reduction.py --size "$SIZE" --rsm 256,1024,4096 2>&1 | tail -4; pack
-echo "== issue 19 on a GPU: error, flicker and time under the animated flashlight"
+echo "== temporal benchmark on a GPU: error, flicker and time under the animated flashlight"
 timeout 50 python3 -m vsgl bench --scene cave_flashlight --methods vpl,vsgl --K 1,4 --sequence 20 --sampling stratified,metropolis \
   --size 960x540 --lights 1024 --rsm-sizes 256 --seeds 1 --frames 3 --reference pathtrace --reference-spp 512 \
   --no-progress --out "$RES/bench_temporal" 2>&1 | tail -25 | cut -c1-230

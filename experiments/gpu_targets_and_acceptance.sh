@@ -9,12 +9,12 @@
 #   locally, as a smoke test of every step at toy sizes on lavapipe: SMOKE=1 bash experiments/gpu_targets_and_acceptance.sh
 #
 # Order (why): 1 the adapter must be a GPU, else stop at once (a rerun is cheaper than a useless
-# lease); 2 issue 14's per-pass timings against the performance targets (the wave's first
-# complaint: numbers that depend on the clock state); 3–4 issue 18's acceptance at a GPU size,
+# lease); 2 the per-pass timings against the performance targets (the wave's first
+# complaint: numbers that depend on the clock state); 3–4 VSGLs against the path tracer at a GPU size,
 # with and without shadow rays, and its equal-time table on GPU wall time; 5–6 the cost of
-# `lambert_lobe` and of bidirectional importance by pass; 7 the frame loop's wall time; 8 issue
-# 17's visibility timings; 9 issue 15's benchmark at 960x540 on the glossy and caustic
-# built-ins; 10 issue 14's clock stability, shortened to what is left.
+# `lambert_lobe` and of bidirectional importance by pass; 7 the frame loop's wall time; 8 the
+# 17's visibility timings; 9 the benchmark at 960x540 on the glossy and caustic
+# built-ins; 10 the clock stability, shortened to what is left.
 set -uo pipefail
 source "$(dirname "$0")/gpu_common.sh"  # $FINAL_OUT, $RES, pack, step, require_gpu; cd to the repository root
 BUDGET=${BUDGET:-520}

@@ -1,4 +1,4 @@
-"""GPU figures of issues 17 and 19 in one device call (results as JSON under $OUT):
+"""Virtual-light visibility and temporal flicker on a GPU, in one device call (results as JSON under $OUT):
 
 - visibility: per-pass GPU time (median, IQR over frames rendered back to back after a warm-up)
   at 1920×1080 of vsgl (1024 VSGLs, 8×8 interleaving), vpl (1024) and reference with

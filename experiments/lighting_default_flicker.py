@@ -1,5 +1,5 @@
 """Do vsgl's candidate defaults keep VSGLs' temporal coherence? Flicker (vsgl.metrics.flicker,
-issue 19's definition) of the indirect light on the animated built-ins over their animations, a
+the temporal benchmark's definition) of the indirect light on the animated built-ins over their animations, a
 new seed each frame, against the every-texel reference of each frame, all at N = 1024 with their
 other defaults: by default for vpl, vsgl as it was before 2026-12-01 (lighting="asg",
 coherence=0), with lighting="blend" alone and with both (all with lambert_lobe="hemisphere", as

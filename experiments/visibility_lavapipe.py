@@ -1,4 +1,4 @@
-"""Same-run error and wall time of the virtual-light visibility modes (issue 17) on the scenes of
+"""Same-run error and wall time of the virtual-light visibility modes on the scenes of
 tests/test_visibility.py: the unlit room's indirect light against `pathtrace` (512 spp) for
 visibility="none" | "raytrace" | "ism", the unoccluded corner's light kept by "ism", and the
 wall time per render() of "ism" against "raytrace" at two image sizes. Ratios measured in one

@@ -1,4 +1,4 @@
-"""Issue 18's acceptance against the converged path tracer: does VSGL error fall with N and stay
+"""VSGLs against the converged path tracer: does VSGL error fall with N and stay
 below VPL's, at equal N and at equal time, on the four caustic and glossy scenes?
 
     .venv/bin/python experiments/vsgl_vs_pathtracer.py [--scenes ...] [--lights 256,...,65536]
