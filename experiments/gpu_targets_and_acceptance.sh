@@ -13,7 +13,7 @@
 # complaint: numbers that depend on the clock state); 3–4 VSGLs against the path tracer at a GPU size,
 # with and without shadow rays, and its equal-time table on GPU wall time; 5–6 the cost of
 # `lambert_lobe` and of bidirectional importance by pass; 7 the frame loop's wall time; 8 the
-# 17's visibility timings; 9 the benchmark at 960x540 on the glossy and caustic
+# visibility timings; 9 the benchmark at 960x540 on the glossy and caustic
 # built-ins; 10 the clock stability, shortened to what is left.
 set -uo pipefail
 source "$(dirname "$0")/gpu_common.sh"  # $FINAL_OUT, $RES, pack, step, require_gpu; cd to the repository root
