@@ -105,7 +105,7 @@ def test_frame_aovs_and_metadata(renderer):
 def test_aovs_reads_back_only_what_is_asked_and_the_same_values(renderer, method):
     scene = vsgl.scenes.cornell_box()
     # Camera paths for pathtrace: they are bit-deterministic, while the default bidirectional
-    # strategy adds its light splats with float atomics in a varying order (docs/rendering.md).
+    # strategy adds its light splats with float atomics in a varying order (docs/methods/pathtrace.md).
     small = dict(num_lights=16, rsm_size=32, spp=2, strategy="camera")
     kw = dict(method=method, **{k: v for k, v in small.items() if k in vsgl.method_options(method)})
     full = renderer.render(scene, **kw)

@@ -358,7 +358,7 @@ def test_bench_runs_brsm_with_metropolis_and_an_importance_interleave():
 @pytest.mark.gpu
 def test_sampling_sweep_reports_error_flicker_and_time_for_warp_and_metropolis(tmp_path):
     """`--sampling stratified,metropolis`: a row per sampling with its own time, error and flicker
-    (the cornell box's slid spot; docs/rendering.md, "Metropolis–Hastings sampling", has the
+    (the cornell box's slid spot; docs/methods/metropolis.md, "Metropolis–Hastings sampling", has the
     table). Metropolis rows take each seed's frame from fresh chains stepped
     METROPOLIS_BURN_IN frames first."""
     with pytest.raises(ValueError, match="samplings: expected values from stratified, random, metropolis"):

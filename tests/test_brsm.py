@@ -1,4 +1,4 @@
-"""Bidirectional RSM importance (`importance="brsm"`, issue 18 item 6; docs/rendering.md,
+"""Bidirectional RSM importance (`importance="brsm"`, issue 18 item 6; docs/methods/brsm.md,
 "Bidirectional RSM importance"): VSGLs of the camera's view re-weight the RSM's sampling
 density. VPLs drawn from it stay unbiased against the every-texel `reference` of the same RSM,
 and where the view sees little of the lit area they need far fewer samples."""
@@ -71,7 +71,7 @@ def test_brsm_needs_fewer_virtual_lights_where_the_view_sees_little_of_the_lit_a
     RSM-sampled ones (measured at 32², RSM 64², seeds 0–2, the default importance_interleave 4:
     0.0072 ± 0.0007 vs 0.051 ± 0.004; every view VSGL at every texel: 0.0055 ± 0.0011), and so
     do unbiased node VSGLs (0.1919 ± 0.0001 vs 0.1999 ± 0.0027; k = 1: 0.1909). Filtered VSGLs (integral, density) are
-    bias-limited here (≈0.23 at either N) and are measured in docs/rendering.md, not asserted.
+    bias-limited here (≈0.23 at either N) and are measured in experiments/brsm_cost_and_error.md, not asserted.
     The node VSGLs keep the SG Lambert lobe these figures were taken with (lambert_lobe=
     "hemisphere"): the default point-emitter blend is biased at this grazing floor-to-wall
     transfer (0.193 against 0.184 here), which would hide what importance sampling gains."""
@@ -144,7 +144,7 @@ def test_brsm_vsgl_powers_estimate_the_rsm_power(tmp_path, make_renderer):
     the kernel; without brsm q = w makes it exact for the total, with brsm the importance
     varies between neighbouring texels and the total comes out low (measured on this scene,
     32² RSM, the default importance_interleave 4: −8.1% at N = 256, −2.0% at 1024, −1.1% at
-    4096; with k = 1: −10.7%, −3.0%, −1.7%; docs/rendering.md): asserted
+    4096; with k = 1: −10.7%, −3.0%, −1.7%; experiments/brsm_cost_and_error.md): asserted
     within 5% at 1024 and shrinking with N. Scene: the lit floor beside a wall seen up close,
     where brsm's density is far from the RSM's."""
     scene, cam = lit_floor_corner(tmp_path)
@@ -167,7 +167,7 @@ def test_brsm_vsgl_powers_estimate_the_rsm_power(tmp_path, make_renderer):
 
 @pytest.mark.parametrize("method", ["vpl", "vsgl"])
 def test_brsm_diffuse_only_variants_leave_the_image_unchanged(renderer, method):
-    """The pass plan's rule for diffuse-only scenes (docs/rendering.md, "Pass plan") covers the
+    """The pass plan's rule for diffuse-only scenes (docs/frames.md, "Pass plan") covers the
     brsm passes too: their [diffuse_only] variants drop only terms that are 0 there."""
     scene = vsgl.scenes.diffuse_cornell()
     opts = dict(method=method, num_lights=64, rsm_size=32, importance="brsm", importance_lights=64)

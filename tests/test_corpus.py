@@ -1,6 +1,6 @@
 """The real-scene corpus (vsgl.scenes.corpus): its committed light specs, loading and lighting
 the shared glTF files by them, and the accuracy figures the docs report on it
-(docs/rendering.md, "The real-scene corpus"). Tests that need the files skip with a message when
+(docs/scenes.md, "The real-scene corpus"). Tests that need the files skip with a message when
 the shared scene folder is absent; the spec tests always run."""
 
 from __future__ import annotations
@@ -110,7 +110,7 @@ def test_bench_and_cli_take_corpus_names():
         _load_scene("no_such_scene")
 
 
-# --- Accuracy on the corpus: the setting of docs/rendering.md's corpus table ------------------
+# --- Accuracy on the corpus: the setting of experiments/corpus_bias_vs_reference.md's corpus table ------------------
 # 128², RSM 128², N = 1024, unshadowed, interleave 1, no denoiser, against the every-texel
 # reference of the same RSM.
 
@@ -138,7 +138,7 @@ def test_vpls_are_near_the_reference_on_the_measured_scenes(name, make_renderer)
 
 # The acceptance bound, per corpus scene: default vsgl at N = 1024 within ±10% of the same-RSM
 # reference in diffuse and in specular. Where it does not hold yet the test is a strict xfail
-# naming what was measured (docs/rendering.md, "The real-scene corpus"), so a fix shows as an
+# naming what was measured (docs/scenes.md, "The real-scene corpus"), so a fix shows as an
 # unexpected pass. lights_spot has no indirect light (its own test below).
 _WITHIN_10_OPEN = {
     "boom_box": "1.49 / 1.87 against a reference that has 0.58 / 0.39 of the path tracer's light (vsgl 0.89 / 0.70 of it)",
@@ -165,7 +165,7 @@ def test_default_vsgl_within_10_percent_on_the_corpus(name, make_renderer):
 
 # The acceptance's second bound: at N = the lit texels of the RSM, where each VSGL can be one
 # texel, default vsgl within ±5% of the same-RSM reference in diffuse and in specular (VPLs are
-# within 2% there). Measured (docs/bench/lavapipe/corpus/kernel_filter_lit_texels.txt):
+# within 2% there). Measured (experiments/lavapipe/corpus/kernel_filter_lit_texels.txt):
 # cornell_box_original 0.998 / 1.043, cornell_box_mm 0.997 / 0.960, furnished_room 1.019 / 1.015
 # (1.056 while a kernel read at its nodes still drew its near-field texels from its parent
 # node), atrium 0.983 / 1.010.
@@ -188,8 +188,8 @@ def test_default_vsgl_within_5_percent_at_one_texel_per_vsgl(name, make_renderer
 
 
 def test_vsgls_default_budget_is_the_papers_and_vpls_is_unchanged(renderer):
-    # Chosen on the corpus out of the box (docs/rendering.md, "The defaults this chose",
-    # docs/bench/lavapipe/corpus/default_num_lights.txt): 1024 VSGLs, the papers' own setting
+    # Chosen on the corpus out of the box (experiments/vsgl_defaults_on_the_corpus.md,
+    # experiments/lavapipe/corpus/default_num_lights.txt): 1024 VSGLs, the papers' own setting
     # with 8x8 interleaving (16 per pixel), had a lower block error than 256 on 7 of 9 scenes;
     # vpl keeps the 256 it was measured with everywhere. A default render builds that many.
     assert vsgl.method_options("vsgl")["num_lights"] == 1024
@@ -233,7 +233,7 @@ def _over_path_tracer(renderer, scene, runs, spp=256):
 def test_the_default_lighting_is_nearer_the_path_tracer_than_the_papers(make_renderer):
     # CornellBoxOriginal (roughness 1: rough lobes, where the papers' SG-ASG product loses half
     # of the light) against the path tracer (its own error 0.07% of the mean at 256 spp):
-    # measured asg 0.854 / 0.388, blend 0.892 / 0.907 (scripts/real_scene_truth.py).
+    # measured asg 0.854 / 0.388, blend 0.892 / 0.907 (experiments/real_scene_truth.py).
     _needs_files("cornell_box_original")
     vs = dict(num_lights=1024, interleave=1, denoise=False)
     got = _over_path_tracer(make_renderer(128, 128), vsgl.scenes.corpus_scene("cornell_box_original").scene,

@@ -37,7 +37,7 @@ def test_diffuse_plane_under_spot_light_matches_closed_form(tmp_path, make_rende
     cam = vsgl.Camera.look_at(eye=(0, 1.5 * d, 0), target=(0, 0, 0), up=(0, 0, -1), fov_y_deg=30)
     frame = make_renderer(SIZE, SIZE).render(scene, camera=cam)
     # L = (ρ/π + Rs·f_ggx) · I/d² · cosθ with l = v = n; Rs = 0.04 for a glTF dielectric
-    # (DESIGN.md conventions), roughness 1 → α = 1.
+    # (docs/scenes.md, "Materials"), roughness 1 → α = 1.
     expected = (rho / math.pi + 0.04 * ggx_over_rs(1.0, 1.0, 1.0, 1.0)) * intensity / d**2
     got = centre(frame)
     np.testing.assert_allclose(got, expected, rtol=0.01)

@@ -1,7 +1,7 @@
 """Emissive materials (issue 20, item 7): glTF emissiveFactor × KHR_materials_emissive_strength ×
 emissiveTexture is the emitted radiance L_e, and every method shows it where the camera sees the
 surface: in `image` and `direct`, never in `indirect`. Emissive surfaces light nothing else
-(docs/rendering.md, "Emission")."""
+(docs/scenes.md, "Emission")."""
 
 from __future__ import annotations
 

@@ -138,7 +138,7 @@ def _denoise_twin(noisy_d, noisy_s, position, depth, normal, albedo, k, keep_lig
 
 @pytest.mark.parametrize("form", ["exchange", "gather"])
 def test_denoiser_equals_a_float64_twin_of_its_two_passes(renderer, form):
-    """The denoised interleaved light is the separable cross-bilateral filter of docs/rendering.md,
+    """The denoised interleaved light is the separable cross-bilateral filter of docs/methods/vsgl.md,
     recomputed in NumPy from the frame's own noisy light and G-buffer AOVs, at a size whose rows
     and columns are not multiples of the pass's 64-pixel workgroup line."""
     from camera_model import camera_rays
@@ -168,7 +168,7 @@ def test_denoiser_equals_a_float64_twin_of_its_two_passes(renderer, form):
 def test_the_denoiser_keeps_the_light(renderer, scene_name, k):
     """With denoise_form="exchange" (the default) each of the denoiser's passes exchanges light
     between pairs of pixels by symmetric weights, so every channel's total light is the noisy
-    frame's (docs/rendering.md, "A denoiser that keeps the light"). The normalised gather
+    frame's (docs/methods/vsgl.md, "A denoiser that keeps the light"). The normalised gather
     ("gather") moves light away from the creases and silhouettes its taps stop at: FlightHelmet
     lost 17% of its diffuse light out of the box; here it measured up to 2.3% (diffuse) and 1.9%
     (specular) per channel on cornell_box, 2.7% and 3.9% on glossy_cornell, 1.6% and 2.4% on

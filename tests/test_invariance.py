@@ -1,6 +1,6 @@
 """End-to-end invariances that catch fixed world-space epsilons and f32 cancellation:
 a scene far from the origin, and a scene scaled down with intensities scaled to match, must
-render the same image (DESIGN.md, Numerics)."""
+render the same image (docs/frames.md, "Precision far from the origin")."""
 
 from __future__ import annotations
 

@@ -1,8 +1,8 @@
 """`lighting=` of the VSGL methods: "asg" (the papers' SG–ASG specular and diffuse=), "accurate"
 (GGX with its NDF widened by the light's spread, and the clamped-cosine diffuse) and "blend" (the
 two specular forms weighted by the receiver's share of the widened lobe; both methods' default
-since they were measured on the real-scene corpus, docs/rendering.md "The real-scene corpus" and
-"Two VSGLs"). Under "blend" `vsgl` shades diffuse by the clamped cosine, `vsgl2` as diffuse=
+since they were measured on the real-scene corpus, docs/scenes.md "The real-scene corpus" and
+docs/methods/vsgl2.md "Two VSGLs"). Under "blend" `vsgl` shades diffuse by the clamped cosine, `vsgl2` as diffuse=
 says (its one plane spans the whole RSM). The formulas are tested against quadrature in the Rust oracle
 (crates/vsgl-core/src/verify/oracle/vsgl.rs) and on the GPU by the stability suite; here: the
 option itself, each method's default, and finite frames on the stability scenes."""
@@ -120,7 +120,7 @@ def test_blend_gives_rough_walls_the_point_lights_specular(renderer):
     # 32² and N = 4·32², every node VSGL is one texel, the same emitter as a VPL, whose specular
     # is the exact GGX at a point: the two must agree there up to the VSGL's footprint. The
     # papers' SG–ASG product, a small-angle warp of the NDF, loses most of that light at any light
-    # size (docs/rendering.md, "SG lighting"); lighting="blend" takes the filtered-NDF form there.
+    # size (docs/methods/vsgl.md, "SG lighting"); lighting="blend" takes the filtered-NDF form there.
     scene = vsgl.scenes.glossy_cornell()
     r = vsgl.Renderer(width=32, height=32)
     single = dict(num_lights=4096, rsm_size=32, interleave=1, denoise=False, aovs=["indirect_specular", "albedo", "normal"])

@@ -1,5 +1,5 @@
 """sampling="metropolis" (issue 19): Metropolis–Hastings chains kept across the frames of a
-Renderer (docs/rendering.md, "Metropolis–Hastings sampling"). Each chain's state must be
+Renderer (docs/methods/metropolis.md, "Metropolis–Hastings sampling"). Each chain's state must be
 distributed like a warped sample (∝ the RSM weight) at equilibrium, so the estimators keep
 their expectations; chains restart from the warp when N, the RSM size, the lights' views or the
 scene change; a seed sequence replays bit for bit from fresh chains.
@@ -224,7 +224,7 @@ def test_chains_restart_when_the_lights_view_set_changes(small):
 
 
 # importance="brsm" with sampling="metropolis": the chains target the re-weighted density the
-# estimators divide by (docs/rendering.md, "Metropolis–Hastings sampling"; the derivation is in
+# estimators divide by (docs/methods/metropolis.md, "Metropolis–Hastings sampling"; the derivation is in
 # wgsl/passes/metropolis_step.wgsl). The scene is one where that density is far from the RSM's
 # own: a wide spot lights an 8 × 8 floor and the camera sees a small patch of wall beside it.
 BRSM = dict(importance="brsm", importance_lights=256)

@@ -68,3 +68,48 @@ def test_no_code_outside_the_registry_classifies_methods_by_name():
     assert not found, "\n".join(found)
     # The check can fail: the sweep's old list of random methods, planted, is found.
     assert patterns[1].search('STOCHASTIC = {"vpl", "vsgl"}') and patterns[0].search('if m in ("vpl", "vsgl"):')
+
+
+# Repository paths as the docs cite them: from the repository root, starting with a top-level
+# folder of the repository (or a root file), e.g. `experiments/lavapipe/corpus/truth.txt`.
+_REPO_PATH = re.compile(
+    r"(?<![\w./-])((?:docs|experiments|scripts|tests|crates|python|wgsl|\.ci)/[\w.{},*/-]*[\w*}/]"
+    r"|(?:README|CHANGELOG)\.md|LICENSE-(?:MIT|APACHE)|pyproject\.toml|Cargo\.toml)"
+)
+_MD_LINK = re.compile(r"\]\(([^)\s#]+)(?:#[^)]*)?\)")
+
+
+def _expand_braces(path: str) -> list[str]:
+    m = re.search(r"\{([^{}]*)\}", path)
+    if not m:
+        return [path]
+    return [p for alt in m.group(1).split(",") for p in _expand_braces(path[: m.start()] + alt + path[m.end() :])]
+
+
+def _cited_paths_missing(text: str, page: pathlib.Path) -> list[str]:
+    missing = []
+    for target in _MD_LINK.findall(text):  # links: relative to the page
+        if re.match(r"^[a-z]+:", target):
+            continue
+        if not (page.parent / target).exists():
+            missing.append(f"link {target}")
+    for match in _REPO_PATH.finditer(text):  # paths in text: from the repository root
+        cited = match.group(1)
+        if text[match.end() : match.end() + 1] == "<" or re.search(r"\b[A-Z]{3,}\b", cited):
+            continue  # a pattern to fill in (`gpu_<name>.sh`, `corpus/NAME.json`), not a file
+        for path in _expand_braces(cited.rstrip("/.")):
+            if "*" in path:
+                if not list(ROOT.glob(path)):
+                    missing.append(path)
+            elif not (ROOT / path).exists():
+                missing.append(path)
+    return missing
+
+
+def test_every_repository_path_the_docs_cite_exists():
+    # A moved or renamed file must take its citations along: the README, the user guide and the
+    # experiment pages name scripts and result files a reader is meant to open or run.
+    pages = [ROOT / "README.md", ROOT / "CHANGELOG.md", *sorted((ROOT / "docs").rglob("*.md")),
+             *sorted((ROOT / "experiments").glob("*.md"))]
+    missing = [f"{page.relative_to(ROOT)}: {m}" for page in pages for m in _cited_paths_missing(page.read_text(), page)]
+    assert not missing, "\n".join(missing)

@@ -306,7 +306,7 @@ def test_bidirectional_silhouette_pixels_whose_centre_misses_keep_their_area_lig
     centre sees the background but whose area covers part of a surface gets that part's light
     (jittered camera rays and light splats), while camera paths, which start at the centre's
     surface, leave it at 0. Leaving those pixels out lost 0.34–0.42% of the Cornell boxes'
-    indirect light at 48² against Mitsuba 3 (docs/rendering.md). helmet_shell: an object against
+    indirect light at 48² against Mitsuba 3 (experiments/pathtracer_vs_mitsuba.md). helmet_shell: an object against
     the background whose lit parts reach its outline (the boxes' outlines are unlit outer walls)."""
     scene = vsgl.scenes.helmet_shell()
     bd = renderer.render(scene, method="pathtrace", spp=64, seed=2, aovs=["indirect", "depth"])

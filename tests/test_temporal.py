@@ -4,7 +4,7 @@ that VSGLs flicker less than VPLs under a moving light, and less with a larger K
 Images are 32×32 with a 64² RSM and 8 frames (lavapipe runs the shaders on the CPU). The
 moving-light sequences draw a new seed every frame (`{"seed": k}` in frame k of
 `render_sequence`), as a real-time renderer would: with a fixed seed the frame-to-frame change of the random numbers is left out, and what
-is measured is only how the sampling reacts to the moving light (docs/rendering.md, "Temporal
+is measured is only how the sampling reacts to the moving light (docs/animation.md, "Temporal
 coherence", has both). The methods run in their real-time configuration (interleave 8 and the
 denoiser for vpl and vsgl), and flicker is taken on the `indirect` AOV, where they differ.
 """
@@ -123,7 +123,7 @@ def test_vsgl_flickers_less_than_vpl_at_equal_n_and_less_with_larger_k(moving_li
 def test_metropolis_sampling_flickers_less_than_warping_under_a_moving_light(small, moving_light, method, options):
     """sampling="metropolis" keeps one Markov chain per virtual light from frame to frame (one
     Metropolis–Hastings step each), so under the moving light with a new seed every frame most
-    virtual lights move a little instead of being drawn afresh (docs/rendering.md,
+    virtual lights move a little instead of being drawn afresh (docs/animation.md,
     "Metropolis–Hastings sampling")."""
     truth, sequence, _, _ = moving_light
     warp = flicker(sequence(method, sampling="stratified", **options), truth)

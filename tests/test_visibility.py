@@ -76,7 +76,7 @@ def test_raytraced_visibility_changes_nothing_where_nothing_occludes(tmp_path, m
     r = make_renderer(24, 24)
     # vsgl with the papers' lighting: under its default "blend" the clamped-cosine diffuse lets
     # floor-to-wall pairs at the seam count, and a few of their shadow rays graze the floor
-    # (3e-5 of the image's indirect light lost, 4e-4 of a pixel at most; docs/rendering.md,
+    # (3e-5 of the image's indirect light lost, 4e-4 of a pixel at most; experiments/corpus_shadow_targets_and_bounds.md,
     # "The real-scene corpus", what was left alone).
     opts = dict(OPTIONS[method], **({"lighting": "asg"} if method == "vsgl" else {}))
     a = r.render(scene, camera=cam, method=method, visibility="none", **opts).aov("indirect").astype(np.float64)
@@ -249,7 +249,7 @@ def test_shadow_rays_of_a_thousand_lights_leave_no_workgroup_dark(make_renderer)
     """lavapipe ends every loop of a shader invocation past 65535 loop iterations in all, and an
     invocation past that cap lost its whole output: with 1024 lights per dispatch, the 8×8-pixel
     workgroups of glossy_cornell's back wall behind the sphere, whose shadow rays pass the
-    sphere's 4096 triangles, came out 0 (docs/rendering.md, "Visibility of virtual lights"). On a
+    sphere's 4096 triangles, came out 0 (docs/methods/visibility.md, "Visibility of virtual lights"). On a
     CPU adapter traced dispatches now take 64 lights (gpu::traced_lights_per_dispatch). Every
     8×8 block lit without shadows must keep some of its light with them (the lowest kept here:
     0.31; the dark workgroups kept 0.000). `vsgl` only: `vpl`, whose loop is lighter, stayed

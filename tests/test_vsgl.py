@@ -262,7 +262,7 @@ def test_interleaving_with_denoising_matches_full_evaluation(renderer):
     geometry-aware filter brings it back towards the full per-pixel evaluation. Measured at
     64×48, 256 VSGLs, k = 8: relative RMSE to interleave=1 is 0.30 filtered, 0.45 unfiltered; at
     this tiny size the 16×16 window also blurs real indirect detail, so the filter helps less
-    for small k (k = 2: 0.13 filtered vs 0.09 unfiltered — documented in docs/rendering.md)."""
+    for small k (k = 2: 0.13 filtered vs 0.09 unfiltered — documented in docs/methods/vsgl.md)."""
     scene = vsgl.scenes.cornell_box()
     full = renderer.render(scene, method="vsgl", num_lights=256, rsm_size=64, interleave=1)
     filtered = renderer.render(scene, method="vsgl", num_lights=256, rsm_size=64, interleave=8)
@@ -298,7 +298,7 @@ def test_shading_equals_a_float64_evaluation_of_the_frames_own_vsgls(renderer, s
     amplitudes formed at tile load) and per-pair reciprocals must reproduce the formulas.
     With plane_fade (the default) each VSGL's diffuse light is scaled by the tangent-plane fade
     of its record (plane_normal N̄, plane_offset): 0 for H = (p − μ)·N̄ + offset ≤ τ, 1 from 2τ,
-    τ = 10⁻³·(‖p − μ‖ + σ) (docs/rendering.md, "The cluster's tangent plane")."""
+    τ = 10⁻³·(‖p − μ‖ + σ) (docs/methods/vsgl.md, "The cluster's tangent plane")."""
     scene = vsgl.scenes.load(scene_name)
     f = renderer.render(scene, method="vsgl", num_lights=64, rsm_size=64, interleave=1, lighting="asg", lambert_lobe=lambert_lobe, plane_fade=plane_fade, near_field="sg")
     assert ("vsgl_shading[diffuse_only]" in f.passes) == (scene_name == "diffuse_cornell")
@@ -372,7 +372,7 @@ def test_hemisphere_normalized_lambert_lobes_deliver_the_diffuse_power(make_rend
     must deliver on average: measured 0.984 / 0.989 of it with the gain and 0.894 / 0.898
     without (32², RSM 64, interleave 1). The tangent-plane fade, vsgl's default, is off here:
     it is a separate factor, which takes away the light the papers' form sends from behind
-    each cluster (with it, 0.948 / 0.954 here; docs/rendering.md, "The cluster's tangent
+    each cluster (with it, 0.948 / 0.954 here; docs/methods/vsgl.md, "The cluster's tangent
     plane")."""
     r = make_renderer(32, 32)
     scene = vsgl.scenes.diffuse_cornell()
@@ -412,7 +412,7 @@ def test_exact_compact_lambert_lobes_go_below_the_sg_floor_on_the_diffuse_box(ma
     its error is below the SG's, whose shape error is a floor that no N removes (32², RSM 64,
     interleave 1, relRMSE measured 0.072 / 0.074 against 0.123 / 0.123 at N = 1024 / 4096,
     means 0.989 / 0.987). It is the default since 2026-12-01 (chosen on the real-scene corpus;
-    at grazing floor-to-wall transfer the point emitter loses, docs/rendering.md)."""
+    at grazing floor-to-wall transfer the point emitter loses, experiments/lambert_lobe.md)."""
     r = make_renderer(32, 32)
     scene = vsgl.scenes.diffuse_cornell()
     ref = r.render(scene, method="reference", rsm_size=64, aovs=["indirect"]).aov("indirect").astype(np.float64)

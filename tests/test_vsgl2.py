@@ -245,7 +245,7 @@ def test_the_default_specular_reaches_the_references_on_a_rough_box():
     # cornell_box's walls are rough dielectrics (R_s 0.04): the papers' SG–ASG product, a
     # small-angle warp of the NDF, delivered 0.13 of the every-texel reference's specular there
     # with vsgl2's one specular VSGL (0.07–0.28 on the real-scene corpus), lighting="blend"
-    # 0.70 at 128² with the same diffuse (docs/rendering.md, "Two VSGLs"). Unshadowed, against
+    # 0.70 at 128² with the same diffuse (docs/methods/vsgl2.md, "Two VSGLs"). Unshadowed, against
     # the reference of the same RSM, which is what the two VSGLs estimate.
     r = vsgl.Renderer(width=48, height=48)
     scene = vsgl.scenes.cornell_box()

@@ -53,7 +53,7 @@ def test_the_back_of_a_lit_plane_gets_no_indirect_light(tmp_path, make_renderer,
     diffuse form multiplies the texel's Lambert SG, whose axis comes from behind the receiver,
     with the positional SG seen from the receiver; near the plane the product's axis tips over
     the back's horizon. Without the tangent-plane fade the back received about half of the
-    front's direct light (0.51-0.54 here; scripts/plane_fade_error.py for other distances), and
+    front's direct light (0.51-0.54 here; experiments/plane_fade_error.py for other distances), and
     shadow rays to the texels, which lie on the plane, do not stop it.
     `plane_fade` is vsgl's default with lighting="asg" (its default lighting, "blend", shades the
     clamped-cosine diffuse, which always fades); vsgl2 takes it as an option."""
@@ -200,7 +200,7 @@ def test_the_default_rsm_grows_with_num_lights(renderer):
         assert f.settings["rsm_size"] == 64
 
 
-# --- Normal coherence of the kernels (coherence=, docs/rendering.md "The real-scene corpus") -----
+# --- Normal coherence of the kernels (coherence=, docs/scenes.md "The real-scene corpus") -----
 
 @pytest.mark.parametrize("kernel", ["integral", "density", "node"])
 def test_kernels_do_not_straddle_a_crease(make_renderer, kernel):
@@ -249,7 +249,7 @@ def test_coherence_is_checked(renderer):
     assert np.isfinite(f.image).all() and f.settings["coherence"] == 1.0
 
 
-# --- How the filtered kernels read the mips (kernel_filter=, docs/rendering.md "Kernels read at
+# --- How the filtered kernels read the mips (kernel_filter=, experiments/vsgl_defaults_on_the_corpus.md "Kernels read at
 # their node") ------------------------------------------------------------------------------------
 
 _SHELF_EYE = (0.0, 2.0, 2.5)

@@ -17,7 +17,7 @@ Per image, against a reference ``ref`` of the same shape:
 - ``flip(x, ref)``: NVIDIA FLIP (LDR, on tone-mapped sRGB) when the ``flip-evaluator`` package is
   installed (``pip install vsgl[metrics]``), else ``None``.
 
-Over a sequence of frames (temporal coherence; docs/rendering.md, "Temporal coherence"):
+Over a sequence of frames (temporal coherence; docs/animation.md, "Temporal coherence"):
 
 - ``flicker(frames, reference_frames)``: RMS over pixels, channels and consecutive frame pairs
   of (Δmethod − Δreference), Δ the difference between consecutive frames, relative to the RMS

@@ -25,7 +25,7 @@ show their rest pose until ``set_time`` is called.
 
 The real-scene corpus (``corpus()``, ``corpus_scene(name)``, ``corpus_names()``): the glTF files
 of the shared scene folder (``$VSGL_SCENES``, or ``shared/scenes`` beside a source checkout), each
-lit by a committed light spec in ``vsgl/corpus/NAME.json``; docs/rendering.md, "The real-scene
+lit by a committed light spec in ``vsgl/corpus/NAME.json``; docs/scenes.md, "The real-scene
 corpus", has what each scene is for and the accuracy of each method on it.
 """
 
@@ -88,7 +88,7 @@ def atrium() -> Scene:
 # --- The real-scene corpus ------------------------------------------------------------------
 #
 # Defaults, bounds and claims are chosen on real files, not only on the boxes above
-# (docs/rendering.md, "The real-scene corpus"). Each corpus scene is a glTF file of the shared
+# (docs/scenes.md, "The real-scene corpus"). Each corpus scene is a glTF file of the shared
 # scene folder with a committed light spec (python/vsgl/corpus/NAME.json): which file, whether
 # the file's own lights are kept, the lights added, in the constructors' keyword names. The
 # camera is the file's own (its first camera node) or, without one, the renderer's default

@@ -1,6 +1,6 @@
 // vsgl:include-only — the including shader declares the two storage arrays
 //   bvh_nodes: array<BvhNode>, bvh_triangles: array<BvhTriangle>
-// that crates/vsgl-core/src/bvh.rs builds (node 0 is the root; triangles in leaf order).
+// that crates/vsgl-core/src/upload/bvh.rs builds (node 0 is the root; triangles in leaf order).
 //
 // Ray queries over the BVH: closest hit and any hit (shadow rays), with a fixed-size stack whose
 // size is the builder's depth bound. Ray–box: slab test with Ize's conservative rounding
@@ -10,7 +10,7 @@
 // for edges hit exactly (both triangles then report the hit, which is harmless here).
 #include "common/constants.wgsl"
 
-// 32 bytes; the twin is `BvhNodeRaw` in crates/vsgl-core/src/bvh.rs.
+// 32 bytes; the twin is `BvhNodeRaw` in crates/vsgl-core/src/upload/bvh.rs.
 struct BvhNode {
     min: vec3f,
     // Inner node: left child. Leaf: first triangle.

@@ -18,7 +18,7 @@ struct FrameUniforms {
     light_count: u32,
     texture_layer_size: u32,
     // Diagonal of the scene bounds: every epsilon is a fraction of it or of a local distance,
-    // never a fixed length in world units (DESIGN.md, Numerics).
+    // never a fixed length in world units (docs/frames.md, "Precision far from the origin").
     scene_extent: f32,
     shadow_size: f32,
     // 1: orthographic view (a directional light's RSM): rays start on the image plane at

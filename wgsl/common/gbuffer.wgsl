@@ -3,7 +3,7 @@
 //   normal:     xyz unit shading normal facing the camera, w = perceptual roughness
 //   geo_normal: xyz unit geometric normal facing the camera, w = metallic
 //   base_color: rgb base colour (linear), w = specular factor (KHR_materials_specular, 0…1)
-// Rd = base·(1 − metallic), Rs = mix(0.04·specular, base, metallic) (DESIGN.md, Conventions;
+// Rd = base·(1 − metallic), Rs = mix(0.04·specular, base, metallic) (docs/scenes.md, "Materials";
 // glTF KHR_materials_specular scales the dielectric F0 by its factor).
 
 const GBUFFER_BACKGROUND: f32 = -1.0;

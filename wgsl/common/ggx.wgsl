@@ -1,6 +1,6 @@
 // GGX (Trowbridge–Reitz) microfacet BRDF with Smith masking-shadowing and Fresnel = 1, and the
 // Lambert BRDF: the point-light evaluation used by the direct pass and the VPL baseline.
-// Conventions (DESIGN.md): α = roughness², Rs = F0, no angular Fresnel, as in the papers.
+// Conventions (docs/scenes.md, "Materials"): α = roughness², Rs = F0, no angular Fresnel, as in the papers.
 #include "common/constants.wgsl"
 
 // Smallest α used anywhere. GGX D ∝ 1/α² at the half vector, so α = 1e-4 (roughness 0.01)

@@ -4,7 +4,7 @@
 //
 // One map per virtual light, map_size² texels over the whole sphere of directions around the
 // light (octahedral mapping, common/octahedral.wgsl: a VSGL's mean is not on a surface and its
-// lobes point anywhere, so a hemisphere would not do; docs/rendering.md). All maps live in one
+// lobes point anywhere, so a hemisphere would not do; docs/methods/visibility.md). All maps live in one
 // storage buffer: map m's words start at m·words_per_map; within a map, level 0 (map_size²
 // texels) is followed by the coarser levels of the pull-push pyramid, each a quarter of the last.
 //

@@ -67,7 +67,7 @@ fn evaluate_material(material: MaterialRaw, uv: vec2f, lod: f32, ns: vec3f, tang
 // Emitted radiance L_e at a surface point (linear RGB): the material's emissiveFactor ×
 // emissiveStrength times the emissive texture (sRGB colour layer, decoded by the sampler).
 // Only what the camera sees reads it (the material pass's emission channel): emissive surfaces
-// light no other surface (docs/rendering.md, "Emission").
+// light no other surface (docs/scenes.md, "Emission").
 fn material_emission(material: MaterialRaw, uv: vec2f, lod: f32) -> vec3f {
     var emitted = material.emissive;
     if (HAS_TEXTURES && material.emissive_layer >= 0) {

@@ -1,5 +1,5 @@
 // Leave-out switches (override constants) that the frame's pass plan sets
-// (crates/vsgl-core/src/plan.rs; docs/rendering.md, "Pass plan"). Each defaults to the full
+// (crates/vsgl-core/src/plan.rs; docs/frames.md, "Pass plan"). Each defaults to the full
 // computation; `false` compiles the work out where the scene provably does not need it, so
 // the image is unchanged beyond float rounding.
 

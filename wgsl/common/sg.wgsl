@@ -4,10 +4,10 @@
 //   ASG: Ĝ(ω) = max(ω·z, 0)·exp(−ηx(ω·x)² − ηy(ω·y)²), orthonormal frame (x, y, z).
 // Sources:
 //   [Tok15]  Tokuyoshi 2015, "Virtual Spherical Gaussian Lights for Real-time Glossy Indirect
-//            Illumination", CGF 34(7)            (seeds/000_f499811a56b8e43b.txt)
-//   [Tok15s] its supplemental material, App. A–B   (seeds/004_5d19d8acdccb17c6.txt)
+//            Illumination", CGF 34(7)            (docs/README.md, "Papers")
+//   [Tok15s] its supplemental material, App. A–B
 //   [Tok16s] supplement of Tokuyoshi 2016, "Modified Filtered Importance Sampling for Virtual
-//            Spherical Gaussian Lights", §2–4      (seeds/003_b58593b681968dfd.txt)
+//            Spherical Gaussian Lights", §2–4
 //   [XSD13]  Xu et al. 2013, "Anisotropic Spherical Gaussians", ACM TOG 32(6)
 // Every function is pure. The f64 twin of each one is in crates/vsgl-core/src/verify/oracle/sg.rs,
 // and docs/numerics.md lists every clamp below with its reason.

@@ -6,7 +6,7 @@
 // G-buffer and the virtual lights; the BVH is relative to the scene upload's anchor, where the
 // eye is at `view_origin`, so a point enters BVH space as p + view_origin. Offsets follow the
 // path tracer's rule (pathtrace.wgsl): 1e-5 of the point's coordinate magnitude in either
-// space, at least 1e-7 of the scene's diagonal — no fixed world length (DESIGN.md, Numerics).
+// space, at least 1e-7 of the scene's diagonal — no fixed world length (docs/frames.md, "Precision far from the origin").
 #include "common/constants.wgsl"
 
 const SHADOW_RAY_OFFSET_RELATIVE: f32 = 1.0e-5;

@@ -6,7 +6,7 @@
 #include "common/ggx.wgsl"
 #include "common/plan.wgsl"
 
-// 80 bytes; the twin is `VplRaw` in crates/vsgl-core/src/passes/vpl.rs.
+// 80 bytes; the twin is `VplRaw` in crates/vsgl-core/src/passes/vpl_sample.rs.
 struct Vpl {
     // Relative to the frame origin (the camera).
     position: vec3f,

@@ -5,7 +5,7 @@
 //   (diffuse, specular) and one isotropic positional Gaussian N(μ_v, σ_v²) [Tok16s §3].
 // Positions: every position here is relative to a caller-chosen local origin (e.g. the light
 // position), never absolute world coordinates: σ² = E[‖y‖²] − ‖μ‖² cancels catastrophically
-// 1e5 m from the origin in f32 (DESIGN.md "Numerics").
+// 1e5 m from the origin in f32 (docs/numerics.md, "VSGL variance").
 // Every function is pure; the f64 twins are in crates/vsgl-core/src/verify/oracle/vsgl.rs.
 #include "common/constants.wgsl"
 #include "common/math.wgsl"
@@ -91,7 +91,7 @@ fn vsgl_position_seen_from(position: VsglPosition, shading_position: vec3f) -> V
 //   λ_in = ‖λσ ξ_μ − λ_v ξ_v‖, ξ_in = (λσ ξ_μ − λ_v ξ_v)/λ_in, c_in = c_v/(2πσ²)·exp(λ_in − λ_v − λσ).
 // The lobe comes as (ξ_v, λ_v, c_v/(2π)): the 1/(2π) depends on the VSGL alone (the shading
 // loop folds it in once per VSGL and workgroup), so the coefficient is one product with 1/σ².
-// Stable form (DESIGN.md; the product of sg_product, inlined): the exponent is the log-amplitude
+// Stable form (docs/numerics.md, "Product log-amplitude"; the product of sg_product, inlined): the exponent is the log-amplitude
 // −λ_v λσ ‖ξ_v + ξ_μ‖²/(λ_in + λ_v + λσ), never the difference λ_in − λ_v − λσ. ξ_in is
 // v·‖v‖⁻¹ with the ‖v‖² that λ_in = ‖v‖ needs; ‖v‖² < FLT_MIN means λ_in ≈ 0, where the axis is
 // sg_product's fallback: the sharper input's axis.
@@ -263,7 +263,7 @@ const VSGL_FILTERED_INV_HALF_LENGTH_MAX: f32 = 5.0e8;
 // unwidened G2 a broad light at grazing view came out up to 10× too bright (n·ω_o = 0.05, λ ≤ 30,
 // measured by the oracle test). So G2' uses Smith Λ with α(ω)² = ω̂₂ᵀΣ'ω̂₂; as λ → ∞ it is G2.
 // Accuracy against the exact GGX integral (oracle test vsgl_specular_accurate_vs_quadrature, α
-// 0.05…0.5, view angles 0…1.52 rad): see docs/rendering.md "SG lighting" for the table.
+// 0.05…0.5, view angles 0…1.52 rad): see docs/methods/vsgl.md "SG lighting" for the table.
 // Zero when the light axis or the view is below the surface (as vsgl_specular).
 fn vsgl_specular_accurate(radiance: Sg, normal: vec3f, w_o: vec3f, alpha: f32) -> f32 {
     return vsgl_specular_filtered(radiance, normal, w_o, alpha).x;
@@ -346,7 +346,7 @@ fn vsgl_specular_filtered(radiance: Sg, normal: vec3f, w_o: vec3f, alpha: f32) -
 // small-angle warp of the NDF, loses 27–63% of a rough lobe's light from the hemisphere
 // (α ≥ 0.5, even for point lights). w is a measured choice, not a derivation: over light axes on
 // the whole hemisphere (oracle test specular_forms_over_the_hemisphere) its summed L1 error is
-// 0.68× the better single form's (4.85 against 7.10); docs/rendering.md, "SG lighting", has the
+// 0.68× the better single form's (4.85 against 7.10); docs/methods/vsgl.md, "SG lighting", has the
 // table.
 fn vsgl_specular_blend(radiance: Sg, normal: vec3f, w_o: vec3f, alpha: f32) -> f32 {
     if (dot(normal, radiance.axis) <= 0.0 || dot(normal, w_o) <= 0.0) {

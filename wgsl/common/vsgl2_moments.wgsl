@@ -145,7 +145,7 @@ fn lobe_record(power: vec4f, direction: vec4f, position_sum: vec4f, plane_sum: v
     out.plane_normal = plane.normal;
     out.plane_offset = plane.offset;
     out.mean = position.mean + params.light_offset;
-    // Two VSGLs stand for the whole RSM: their shadow rays keep aiming at μ (docs/rendering.md).
+    // Two VSGLs stand for the whole RSM: their shadow rays keep aiming at μ (docs/methods/visibility.md).
     out.shadow_target = out.mean;
     out.variance = position.variance;
     // vsgl_lobe_from_moments: ξ̄ = Σwξ̄/Σw → (axis, λ) by sg_from_toksvig_mean_direction; a lobe

@@ -8,7 +8,7 @@
 // across edges. Diffuse light is demodulated by R_d in the x pass and remodulated in the y pass,
 // so texture detail is kept.
 //
-// With denoise_form="exchange" each pass conserves the light it filters (docs/rendering.md, "A
+// With denoise_form="exchange" each pass conserves the light it filters (docs/methods/vsgl.md, "A
 // denoiser that keeps the light"); the default gather only nearly. A normalised gather,
 // out_p = Σ_q w_pq x_q / Σ_q w_pq, moves light wherever the neighbourhoods differ: a pixel at a
 // crease or a silhouette has few accepted taps, so its value reaches its neighbours with a small

@@ -17,7 +17,7 @@
 // Accumulation is progressive: each dispatch adds `batch_samples` samples per pixel. A thread
 // keeps a running mean and M2 in registers (Welford 1962) and merges them into the stored ones
 // with Chan, Golub & LeVeque 1979 (the pairwise update), so the variance never comes from
-// E[x²] − E[x]², which cancels (DESIGN.md, Numerics).
+// E[x²] − E[x]², which cancels (docs/numerics.md).
 //
 // Bidirectional mode (`strategy="bidirectional"`, STRATEGY_BIDIRECTIONAL) adds a second strategy
 // for the same paths, light tracing: photons leave a light (sampled by power, then uniformly
@@ -55,7 +55,7 @@ const STRATEGY_LIGHT: u32 = 2u;
 // point's coordinate magnitude (relative to the frame origin, where f32 rounding is ~6e-8 of
 // it): about 170 ulps, and never less than RAY_OFFSET_RELATIVE × RAY_OFFSET_EXTENT_FRACTION of
 // the scene's size. The surface's own triangle is also skipped, so the offset only has to
-// clear rounding on neighbouring triangles. No fixed world length (DESIGN.md, Numerics).
+// clear rounding on neighbouring triangles. No fixed world length (docs/frames.md, "Precision far from the origin").
 const RAY_OFFSET_RELATIVE: f32 = 1.0e-5;
 const RAY_OFFSET_EXTENT_FRACTION: f32 = 1.0e-2;
 // Bounce rays end after this many scene diagonals (every scene point lies within one).

@@ -1,6 +1,6 @@
 // Visibility raster: depth and the id of the visible triangle, nothing else. Material
 // evaluation happens in compute (passes/material.wgsl): on the H100 the same per-pixel work ran
-// 32× slower in a fragment shader (DESIGN.md, measured facts).
+// 32× slower in a fragment shader (measured on an H100 while the pass was built; experiments/README.md).
 #include "common/frame.wgsl"
 
 @group(0) @binding(0) var<uniform> frame: FrameUniforms;

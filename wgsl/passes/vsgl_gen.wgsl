@@ -8,7 +8,7 @@
 //     "integral" [Tok16 Eq. 3, Algorithm 1]: solve (4^l/M) p̄(x_i, l) = K/N by bisection;
 //     "node": the coarsest quadtree node on x_i's texel path whose mass
 //     P_v = W_v/W is at most K/N — the 2016 rule applied to whole nodes;
-//     with `coherence` c > 0 (derived for vsgl, not in the papers; docs/rendering.md, "The
+//     with `coherence` c > 0 (derived for vsgl, not in the papers; docs/scenes.md, "The
 //     real-scene corpus"), each kernel also shrinks until its texels' mean normal has length
 //     |Σw n|/Σw ≥ c: a cluster that straddles a crease or a depth discontinuity of the RSM
 //     (a corner, a helmet's brim over its face) is not one Gaussian emitter, and the light its
@@ -102,7 +102,7 @@ fn moment_texel(chain: u32, level: u32, xy: vec2i) -> vec4f {
 // whatever the kernel's size, so a kernel of one texel is spread over about 2×2 of them, its
 // mean moved by up to half a texel (into the gap, where the RSM jumps in depth): the light it
 // sends to receivers a texel or two away, most of FlightHelmet's, is lost at every N
-// (docs/rendering.md, "The defaults this chose").
+// (experiments/vsgl_defaults_on_the_corpus.md).
 fn level_node(level: u32, s: vec2f) -> vec2i {
     return vec2i(vec2u(max(s, vec2f(0.0))) >> vec2u(level));
 }
@@ -218,7 +218,7 @@ fn cluster_moment(chain: u32, level: f32, node: vec2u, s: vec2f) -> vec4f {
     return moment_trilinear(chain, s, level);
 }
 
-// Candidate shadow targets of VSGL i (docs/rendering.md, "Which texel the shadow ray aims
+// Candidate shadow targets of VSGL i (experiments/corpus_shadow_targets_and_bounds.md, "Which texel the shadow ray aims
 // at"): C texels of its cluster's node drawn ∝ the sampling density by warping from the node
 // down (stratified over the candidates), each its surface point y = (w·y)/w and its normal
 // (chain F's w·n where the chains have it, else the diffuse lobe's direction, chain C).

@@ -154,7 +154,7 @@ fn lambert_patch_irradiance(mean: vec3f, axis: vec3f, variance: f32, p: vec3f, n
 // about σ²/d²: equal where σ²/d² = ε, so w = ε·d²/(ε·d² + σ²) trusts the exact form where the
 // cluster is compact as seen from p and the SG where it is extended. The default since
 // 2026-12-01 (closer to the reference on every corpus scene and built-in); it loses to the SG
-// alone where a floor cluster lights a wall at grazing angles (docs/rendering.md, "Lambert
+// alone where a floor cluster lights a wall at grazing angles (docs/methods/vsgl.md, "Lambert
 // lobes").
 fn lambert_exact_weight(mean: vec3f, variance: f32, p: vec3f) -> f32 {
     let to_light = mean - p;
@@ -273,7 +273,7 @@ fn tile_light(t: u32, index: u32) -> TileLight {
     return light;
 }
 
-// shadow_target="resampled" (docs/rendering.md, "Which texel the shadow ray aims at"): one of
+// shadow_target="resampled" (experiments/corpus_shadow_targets_and_bounds.md, "Which texel the shadow ray aims at"): one of
 // VSGL v's candidate texels (drawn ∝ the sampling density, vsgl_gen.wgsl) kept with
 // probability ∝ its geometric term at the receiver, max(−ω·n_y, 0)·max(ω·n, 0)/d² (resampled
 // importance sampling [Talbot et al. 2005]): as the candidates grow the pick follows each
@@ -397,7 +397,7 @@ fn shade_pair(px: ptr<function, BlockPixel>, light: TileLight) {
             // The receiver's specular keeps the texel's SG with its footprint (as
             // "exact_compact" does): a point emitter in a sharp GGX lobe is a spike
             // wherever it sits in the mirror direction. Measured on an H200 at 256²
-            // (docs/rendering.md, "Issue 18's acceptance on a GPU"): node VSGLs at
+            // (experiments/vsgl_vs_pathtracer_h200.md): node VSGLs at
             // N = 16384 gave 22.97 on caustics_ring and 0.97 on mirror_panel against
             // 0.59 and 0.10 at N = 4096, all of it in indirect_specular.
             let in_d = vsgl_incoming_radiance_seen(lobe_d4.xyz, lobe_d4.w, diffuse_power_amplitude.w, seen);

@@ -3,7 +3,7 @@
 //! the shader variants (WGSL `override` constants, `wgsl/common/plan.wgsl` and
 //! `passes/material.wgsl`) with the unneeded work compiled out, and says in words what it
 //! left out (`frame.skipped`). Settings-driven choices (which method's passes run) are made
-//! by `renderer.rs` and reported the same way. Rules and their proofs: docs/rendering.md,
+//! by `renderer.rs` and reported the same way. Rules and their proofs: docs/frames.md,
 //! "Pass plan"; every rule leaves the image unchanged beyond float rounding (tests/test_plan.py).
 
 use crate::scene::Scene;
@@ -114,7 +114,7 @@ mod tests {
             let src = shader_lib::compose(&shader_of(pass)).expect("pass shader composes");
             assert!(src.contains("if (HAS_SPECULAR"), "{pass} is named diffuse_only but its shader never reads HAS_SPECULAR");
         }
-        // pathtrace includes vpl.wgsl but keeps one variant (docs/rendering.md, "Pass plan").
+        // pathtrace includes vpl.wgsl but keeps one variant (docs/frames.md, "Pass plan").
         for path in shader_lib::paths().filter(|p| p.starts_with("passes/") && *p != "passes/pathtrace.wgsl") {
             let src = shader_lib::compose(path).expect("pass shader composes");
             // The subgroup reduction runs under its pass's name (vsgl2_reduce).

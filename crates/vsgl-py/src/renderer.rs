@@ -109,7 +109,7 @@ impl PyRenderer {
     ///   by the receiver's share of the widened lobe, and the clamped-cosine diffuse | "asg":
     ///   the papers' SG–ASG specular and diffuse= | "accurate": GGX with its NDF widened by the
     ///   light's spread, after Tokuyoshi et al. 2024, and the clamped-cosine diffuse;
-    ///   docs/rendering.md "SG lighting" and "The real-scene corpus"),
+    ///   docs/methods/vsgl.md "SG lighting" and "The real-scene corpus"),
     ///   lambert_lobe ("exact_compact", the default: the hemisphere-normalized Lambert SG
     ///   blended with an exact Lambertian point emitter where a cluster is compact as seen
     ///   from the receiver | "hemisphere": each texel's Lambert SG normalized over its

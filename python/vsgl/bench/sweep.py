@@ -54,7 +54,7 @@ CPU_DEFAULTS: dict[str, Any] = {
 
 
 #: The corpus scenes a bench run without --scene adds to cornell_box: real files whose
-#: every-texel reference is the path tracer's truth within 2% (docs/rendering.md, "The real-scene
+#: every-texel reference is the path tracer's truth within 2% (docs/scenes.md, "The real-scene
 #: corpus": on BoomBox and FlightHelmet it is not, so they are left to an explicit --scene).
 CORPUS_DEFAULT_SCENES = ("cornell_box_original", "cornell_box_mm")
 
@@ -323,7 +323,7 @@ def run(
             errs: dict[str, list[float]] = {"rmse_indirect": [], "rmse_image": [], "relmse_indirect": [], "relmse_image": [], "flip": [], "ssim": []}
             indirects: list[np.ndarray] = []
             # Sustained load first: frames back to back (nothing read back) until the GPU has left
-            # its idle clock (DESIGN.md, "Clocks"): `warmup_seconds`, and where NVML reads the SM
+            # its idle clock (docs/error.md, cold clocks): `warmup_seconds`, and where NVML reads the SM
             # clock, on until it is warm (at most CLOCK_WARM_MAX_EXTRA_S more). Then every seed's
             # frames back to back, and the errors only after them: a second of CPU work for the
             # metrics between seeds let an H200 fall back to 360–900 MHz, which made some rows of

@@ -23,7 +23,7 @@ class _SmClock:
 
 
 #: A timed frame counts as warm when the SM clock read at least this fraction of its maximum
-#: before and after it (DESIGN.md, "Clocks": idle 345–360 MHz, boost 1980 on an H200).
+#: before and after it (docs/error.md, cold clocks: idle 345–360 MHz, boost 1980 on an H200).
 CLOCK_WARM_FRACTION = 0.9
 #: How long the warm-up may go on past `warmup_seconds` while the clock is still below that.
 CLOCK_WARM_MAX_EXTRA_S = 5.0

@@ -175,7 +175,7 @@ fn directional_half_width(extent: f64) -> f64 {
 }
 
 /// The directional light's orthographic shadow view, fitted to the scene bounds (documented
-/// in docs/rendering.md): a square box of half-width R (the bounding sphere's radius) around
+/// in docs/scenes.md): a square box of half-width R (the bounding sphere's radius) around
 /// `centre` (the bounds' centre relative to the projected positions' origin), looking along
 /// the light from R before the centre to R past it; reverse-Z (depth 1 at the near end).
 pub fn directional_view_proj(light: &DirectionalLight, centre: DVec3, extent: f64) -> Mat4 {
@@ -188,7 +188,7 @@ pub fn directional_view_proj(light: &DirectionalLight, centre: DVec3, extent: f6
 }
 
 /// Widest shadow frustum: a perspective projection degenerates at 180°, so cones wider than
-/// this (outer half-angle > 85°) are unshadowed outside it (documented in docs/rendering.md).
+/// this (outer half-angle > 85°) are unshadowed outside it (documented in docs/scenes.md).
 pub const SHADOW_FOV_MAX: f64 = 170.0 * std::f64::consts::PI / 180.0;
 
 /// Near plane as a fraction of the scene extent. With reverse-Z and an infinite far plane the
@@ -400,7 +400,7 @@ const RSM_FIT_MARGIN: f64 = 1.01;
 /// corner is not in front of the light (the light within or beside the bounds). Every RSM
 /// texel that sees nothing is wasted: a 40° spot over a helmet half a metre across a metre
 /// away spends 91% of a 128² RSM on empty space, and the helmet's light then comes from 1,402
-/// texels on a 12 mm grid (docs/rendering.md, "Fitting a spot light's RSM to the scene").
+/// texels on a 12 mm grid (docs/methods/rsm.md, "Fitting a spot light's RSM to the scene").
 /// The flux of each texel follows from the view (rsm_flux.wgsl: its solid angle and the
 /// cone's profile in its own direction), so the fit changes the sampling, not the light.
 pub fn fitted_spot_view(light: &SpotLight, anchor: DVec3, half_size: DVec3) -> Option<(DVec3, f64)> {

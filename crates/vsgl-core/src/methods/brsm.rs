@@ -2,7 +2,7 @@
 //! setup and Table 1]: VSGLs generated on the camera's G-buffer estimate what each RSM texel
 //! adds to the view, and the RSM's VPLs or VSGLs are then sampled from that importance instead
 //! of from the reflected power Φ·(R_d + R_s) alone. Shared by `vpl` and `vsgl`; the steps,
-//! each its own timed pass (docs/rendering.md, "Bidirectional RSM importance"):
+//! each its own timed pass (docs/methods/brsm.md, "Bidirectional RSM importance"):
 //!
 //! once per frame (the view's VSGLs): `brsm_view_gbuffer` (the camera G-buffer onto a square
 //! grid, the papers' additional G-buffer), `brsm_view_moments`, `brsm_view_mips` (weight and

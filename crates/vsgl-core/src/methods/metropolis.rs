@@ -3,7 +3,7 @@
 //! of each RSM view is a Markov chain whose state (a world-space surface point) the renderer
 //! keeps from frame to frame; every frame one step (`passes::metropolis_step`, where the
 //! proposal and the acceptance ratio are derived) moves it, and the sampling passes read the
-//! chain's position instead of a warped sample. docs/rendering.md, "Metropolis–Hastings
+//! chain's position instead of a warped sample. docs/methods/metropolis.md, "Metropolis–Hastings
 //! sampling", has the rules and measurements.
 
 use super::brsm::Importance;
@@ -108,7 +108,7 @@ impl MetropolisSampling {
     /// step, so a target that changed with the seed would bias every estimate that divides by
     /// it. With one seed per chain lifetime the importance map of a static view is the same
     /// in every frame; a moving camera or light changes it, as a moving light changes the
-    /// RSM's own weights (docs/rendering.md, "Metropolis–Hastings sampling").
+    /// RSM's own weights (docs/methods/metropolis.md, "Metropolis–Hastings sampling").
     pub fn target_seed(&self, ctx: &FrameContext<'_>) -> u32 {
         let key = self.key(ctx);
         match ctx.chains.as_ref() {

@@ -326,7 +326,7 @@ pub mod common {
     pub const SHADOW_SIZE: OptionSpec = int("shadow_size", 16, 8192, 1024, "side of each light's shadow map in texels");
     /// The virtual-light budget; the default differs by method: 1024 VSGLs, the papers' own
     /// setting (with 8×8 interleaving, 16 per pixel), chosen on the real-scene corpus
-    /// (docs/rendering.md, "The defaults this chose"); 256 VPLs, `vpl`'s default since it
+    /// (experiments/vsgl_defaults_on_the_corpus.md); 256 VPLs, `vpl`'s default since it
     /// was built (each pixel shades all of them).
     pub const fn num_lights(default: i64) -> OptionSpec {
         int("num_lights", 1, 1 << 20, default, "virtual lights in all: one light's whole budget, or with several lights or a point light's cube faces, split by the power each reflects")
@@ -374,7 +374,7 @@ pub mod common {
         help: "visibility of virtual lights: \"none\" (unshadowed, the papers' accuracy setting), \"ism\" (an imperfect shadow map per virtual light, splatted from the scene's point set, as the papers do) or \"raytrace\" (a shadow ray per pixel and virtual light through the scene's BVH; to the mean position of a VSGL)",
         note: "",
     };
-    /// Imperfect shadow maps (`visibility="ism"`; docs/rendering.md, "Visibility of virtual
+    /// Imperfect shadow maps (`visibility="ism"`; docs/methods/visibility.md, "Visibility of virtual
     /// lights"). The papers' 64² maps and 8192 points per map are the defaults.
     pub const ISM_SIZE: OptionSpec = OptionSpec {
         name: "ism_size",
@@ -393,7 +393,7 @@ pub mod common {
         note: "",
     };
     pub const ISM_PCF: OptionSpec = int("ism_pcf", 0, 2, 0, "percentage-closer filter radius of the imperfect shadow map lookup in texels (0: one texel; 1: 3×3, softer and a few % darker where nothing occludes)");
-    /// Bidirectional RSM importance (docs/rendering.md, "Bidirectional RSM
+    /// Bidirectional RSM importance (docs/methods/brsm.md, "Bidirectional RSM
     /// importance"): the RSM's sampling density from the camera's view.
     pub const IMPORTANCE: OptionSpec = OptionSpec {
         name: "importance",
@@ -402,13 +402,13 @@ pub mod common {
         help: "sampling density of RSM texels: \"rsm\" (reflected power Φ·(R_d + R_s), the papers' default) or \"brsm\" (bidirectional: that power times the texel's importance to the view, estimated with importance_lights VSGLs of the camera's G-buffer, mixed with 1/11 of the \"rsm\" density; unbiased for vpl)",
         note: "",
     };
-    /// Interleaved importance map (docs/rendering.md, "Bidirectional RSM importance"): RSM
+    /// Interleaved importance map (docs/methods/brsm.md, "Bidirectional RSM importance"): RSM
     /// texel (x, y) evaluates only the view VSGLs of its class, as `interleave` does for pixels.
     /// Default 4: on lavapipe it cut brsm's extra cost 13× and kept its error gain (measured in
     /// the docs).
-    pub const IMPORTANCE_INTERLEAVE: OptionSpec = int("importance_interleave", 1, 16, 4, "with importance=\"brsm\", the interleave tile side k of the importance map: RSM texel (x, y) evaluates only the view VSGLs j ≡ (y mod k)·k + (x mod k) (mod k²), scaled by k², the classes then recombined by a k×k box filter (k² times cheaper; 1: every view VSGL at every texel; default 4, docs/rendering.md)");
+    pub const IMPORTANCE_INTERLEAVE: OptionSpec = int("importance_interleave", 1, 16, 4, "with importance=\"brsm\", the interleave tile side k of the importance map: RSM texel (x, y) evaluates only the view VSGLs j ≡ (y mod k)·k + (x mod k) (mod k²), scaled by k², the classes then recombined by a k×k box filter (k² times cheaper; 1: every view VSGL at every texel; default 4, docs/methods/brsm.md)");
     pub const IMPORTANCE_LIGHTS: OptionSpec = int("importance_lights", 1, 65536, 2048, "VSGLs of the camera's view that estimate each RSM texel's importance with importance=\"brsm\" (the 2016 paper: 2048, the 2015 paper: 4096)");
-    /// How a spot light's RSM frames the scene (docs/rendering.md, "Fitting a spot light's RSM
+    /// How a spot light's RSM frames the scene (docs/methods/rsm.md, "Fitting a spot light's RSM
     /// to the scene"): "scene" since 2026-12-02, "cone" the frame before it, bit for bit.
     pub const RSM_FIT: OptionSpec = choice(
         "rsm_fit",
@@ -450,7 +450,7 @@ pub mod common {
         help: "run the geometry-aware filter after interleaved shading",
         note: "",
     };
-    // "gather" with symmetric weights (docs/rendering.md, "A denoiser that keeps the light"):
+    // "gather" with symmetric weights (docs/methods/vsgl.md, "A denoiser that keeps the light"):
     // the gather before 2026-12-02, whose weights were the centre's alone, took 27% of
     // FlightHelmet's diffuse light out of the box (seed 0), this one 5%, "exchange" none, at a
     // block error 3-20% higher on the corpus.
@@ -464,14 +464,14 @@ pub mod common {
         DiffuseMode::NAMES,
         "diffuse SG shading: the papers' clamped form, the unclamped SG-cosine product, or an SG product",
     );
-    /// Normalization and shape of the Lambert lobe's SG (docs/rendering.md, "VSGLs": the
+    /// Normalization and shape of the Lambert lobe's SG (docs/methods/vsgl.md, "VSGLs": the
     /// hemisphere gain, and "The real-scene corpus" for the default).
     pub const LAMBERT_LOBE: OptionSpec = choice(
         "lambert_lobe",
         LambertLobe::NAMES,
         "each cluster's Lambert lobe: \"exact_compact\" (the default: the hemisphere-normalized SG blended with an exact Lambertian point emitter where the cluster is compact as seen from the receiver; closer to the reference on every corpus scene and built-in, worse where a wide lit floor lights a wall at grazing angles), \"hemisphere\" (the SG normalized over each texel's hemisphere, so all its diffuse power reaches where a Lambertian texel can light; the default until 2026-12-01) or \"papers\" (normalized over the sphere: 9.2% of it lies below the texel and is lost)",
     );
-    /// The cluster's tangent-plane fade for the papers' diffuse form too (docs/rendering.md,
+    /// The cluster's tangent-plane fade for the papers' diffuse form too (docs/methods/vsgl.md,
     /// "The cluster's tangent plane"); the other diffuse forms always fade. The default differs
     /// by method: a VSGL of `vsgl` is one cluster, `vsgl2`'s plane spans the whole RSM.
     pub const fn plane_fade(default: bool) -> OptionSpec {
@@ -483,10 +483,10 @@ pub mod common {
             note: "",
         }
     }
-    /// SG lighting forms (docs/rendering.md, "SG lighting"): the papers' (ASG specular, `diffuse=`),
+    /// SG lighting forms (docs/methods/vsgl.md, "SG lighting"): the papers' (ASG specular, `diffuse=`),
     /// the accurate ones (filtered-NDF specular and the clamped-cosine diffuse), or the blend of
     /// the two specular forms (with the clamped-cosine diffuse). The default differs by method:
-    /// `vsgl`'s is "blend", chosen on the real-scene corpus and the built-ins (docs/rendering.md,
+    /// `vsgl`'s is "blend", chosen on the real-scene corpus and the built-ins (docs/methods/vsgl.md,
     /// "The real-scene corpus"); `vsgl2` keeps the papers'.
     pub const fn lighting(default: &'static str, blend: BlendDiffuse) -> OptionSpec {
         OptionSpec {

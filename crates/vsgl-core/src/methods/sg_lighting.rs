@@ -14,7 +14,7 @@ pub enum BlendDiffuse {
     ClampedCosine,
     /// The form `diffuse=` names: `vsgl2`, whose one diffuse VSGL spans the whole RSM, so that
     /// fading by its one plane removes most of the light (FlightHelmet's diffuse 0.24 -> 0.01 of
-    /// the reference; docs/rendering.md, "Two VSGLs").
+    /// the reference; docs/methods/vsgl2.md, "Two VSGLs").
     AsDiffuseSays,
 }
 

@@ -33,7 +33,7 @@ pub struct IsmSettings {
 const ISM_PULL_LEVELS: u32 = 3;
 
 /// The receiver's normal offset in texels' angular width at its distance (ism_lookup.wgsl):
-/// measured on the tests' scenes (docs/rendering.md), 1 texel leaves receivers shadowing
+/// measured on the tests' scenes (docs/methods/visibility.md), 1 texel leaves receivers shadowing
 /// themselves at grazing incidence and 2 or more darken receivers seen through a door by
 /// moving their direction off the opening; 1.5 does neither.
 const ISM_NORMAL_OFFSET_TEXELS: f64 = 1.5;

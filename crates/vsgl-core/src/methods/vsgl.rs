@@ -48,7 +48,7 @@ const OPTION_GROUPS: &[&[OptionSpec]] = &[
             help: "kernel size rule: \"integral\" (2016, bisection to mass K/N), \"density\" (2015) or \"node\" (quadtree nodes of mass <= K/N read exactly: unbiased cluster totals, VPL-like as N reaches the texel count)",
             note: "",
         },
-        // "nodes" (docs/rendering.md, "The defaults this chose"): FlightHelmet's indirect diffuse
+        // "nodes" (experiments/vsgl_defaults_on_the_corpus.md): FlightHelmet's indirect diffuse
         // 0.67 -> 0.98 of the every-texel reference at N = 1024, whatever K.
         common::choice(
             "kernel_filter",
@@ -65,7 +65,7 @@ const OPTION_GROUPS: &[&[OptionSpec]] = &[
         OptionSpec {
             name: "coherence",
             kind: OptionKind::Float { min: 0.0, min_exclusive: false },
-            // 0.9 (docs/rendering.md, "The real-scene corpus"): out of the box it lifts
+            // 0.9 (docs/scenes.md, "The real-scene corpus"): out of the box it lifts
             // CornellBoxOriginal's indirect diffuse from 0.87 to 0.94 of the reference and
             // FlightHelmet's from 0.25 to 0.40, and no built-in's block error rises by 1%.
             default: OptionValue::Float(0.9),
@@ -84,17 +84,18 @@ const OPTION_GROUPS: &[&[OptionSpec]] = &[
     common::DENOISE_OPTIONS,
     &[
         common::DIFFUSE,
-        // "blend" by default (docs/rendering.md, "The real-scene corpus"): against the path tracer it
+        // "blend" by default (docs/scenes.md, "The real-scene corpus"): against the path tracer it
         // is closer than the papers' form on every corpus scene and built-in measured.
         common::lighting("blend", BLEND_DIFFUSE),
         common::LAMBERT_LOBE,
-        // On by default (docs/rendering.md, "The cluster's tangent plane"): without it the papers'
+        // On by default (docs/methods/vsgl.md, "The cluster's tangent plane"): without it the papers'
         // form lights the back of a lit plane with about half its front's direct light.
         common::plane_fade(true),
     ],
     common::VISIBILITY_OPTIONS,
     &[
-        // "resampled" (docs/rendering.md, "Which texel the shadow ray aims at"): in a float64 model
+        // "resampled" (experiments/corpus_shadow_targets_and_bounds.md, "Which texel the shadow
+        // ray aims at"): in a float64 model
         // on FlightHelmet the centre texel kept 0.69 of the every-texel reference's shadowed light
         // from 4-texel clusters, 8 resampled candidates 0.95-0.97.
         common::choice(
@@ -102,7 +103,7 @@ const OPTION_GROUPS: &[&[OptionSpec]] = &[
             ShadowTarget::NAMES,
             "with visibility=\"raytrace\", where each VSGL's shadow ray aims: \"resampled\" (at one of 8 texels of its cluster, drawn by power and kept per receiver by its geometric term there, so the ray goes where the cluster's light at that receiver comes from) or \"centre\" (at the cluster's sampled centre texel, the same for every receiver; before 2026-12-02)",
         ),
-        // "texels" (docs/rendering.md, "The defaults this chose"): lower block error against the
+        // "texels" (experiments/vsgl_defaults_on_the_corpus.md): lower block error against the
         // every-texel reference on 9 of 13 corpus scenes and built-ins, none higher by over 0.1%.
         common::choice(
             "near_field",

@@ -39,11 +39,11 @@ const OPTIONS: &[OptionSpec] = &[
     common::DIFFUSE,
     // "blend" since it was measured on the real-scene corpus: the papers' SG–ASG form delivered
     // 0.07–0.28 of the reference's specular there, blend more on every scene at the same
-    // diffuse (docs/rendering.md, "Two VSGLs").
+    // diffuse (docs/methods/vsgl2.md, "Two VSGLs").
     common::lighting("blend", BLEND_DIFFUSE),
     common::LAMBERT_LOBE,
     // Off by default: vsgl2's one plane spans the whole RSM, and on the Cornell boxes fading by
-    // it loses light (docs/rendering.md, "The cluster's tangent plane").
+    // it loses light (docs/methods/vsgl.md, "The cluster's tangent plane").
     common::plane_fade(false),
     OptionSpec {
         name: "vsgl2_reduction",

@@ -81,8 +81,7 @@ pub enum KernelFilter {
     /// [Tok16 §4]: the mips read trilinearly at the kernel's centre, bilinear within a level.
     Trilinear,
     /// The quadtree nodes that hold the centre at the two levels around the kernel's, blended by
-    /// the level's fraction: a kernel of about a texel is that texel (docs/rendering.md, "The
-    /// defaults this chose").
+    /// the level's fraction: a kernel of about a texel is that texel (experiments/vsgl_defaults_on_the_corpus.md).
     Nodes,
 }
 
@@ -123,7 +122,7 @@ pub struct GenSettings<'a> {
 }
 
 /// Candidate shadow targets per VSGL (`shadow_target="resampled"`): in the float64 model of
-/// docs/rendering.md ("Which texel the shadow ray aims at") 4 keep 0.92 and 8 keep 0.95-0.97 of the
+/// experiments/corpus_shadow_targets_and_bounds.md ("Which texel the shadow ray aims at") 4 keep 0.92 and 8 keep 0.95-0.97 of the
 /// every-texel reference's shadowed light from FlightHelmet's 4-texel clusters.
 pub const SHADOW_CANDIDATES: u32 = 8;
 /// Bytes of one VSGL's candidates: per candidate its point and its normal, two vec4f rows.

@@ -10,7 +10,7 @@ use crate::shader_lib::constants::vsgl_shading::WORKGROUP;
 /// 1 … 4): every VSGL read from the workgroup tile serves that many (pixel, VSGL) pairs. The
 /// pixels are neighbours of one interleave class along x, so a workgroup covers
 /// (WORKGROUP·P) × WORKGROUP pixels of its class. Chosen here only, per variant, from an H200
-/// at 1080p and 1024 VSGLs per pixel (docs/rendering.md, "What the shading loop keeps per VSGL"):
+/// at 1080p and 1024 VSGLs per pixel (docs/methods/vsgl.md, "What the shading loop keeps per VSGL"):
 /// diffuse-only scenes 6.87 / 6.38 / 6.48 ms at P = 1 / 2 / 4; with specular lobes P = 2 gains
 /// under 1% at interleave 1, loses 5% at 8×8 (0.383 → 0.403 ms) and P = 4 spills (16.2 → 24.9 ms).
 pub const PIXELS_PER_THREAD_DIFFUSE_ONLY: u32 = 2;
@@ -118,7 +118,7 @@ pub enum LightingMode {
     /// (`vsgl_specular_accurate`, after Tokuyoshi et al. 2024).
     Accurate,
     /// The two weighted by the receiver's share α/α' of the widened lobe
-    /// (`vsgl_specular_blend`; docs/rendering.md, "SG lighting").
+    /// (`vsgl_specular_blend`; docs/methods/vsgl.md, "SG lighting").
     Blend,
 }
 
@@ -139,7 +139,7 @@ pub enum LambertLobe {
     /// [`LambertLobe::Hemisphere`] blended with an exact Lambertian point emitter where the
     /// cluster is compact as seen from the receiver (`lambert_exact_weight` in
     /// vsgl_shading.wgsl). An option: it wins on the closed diffuse box and loses where floor
-    /// clusters light a wall at grazing angles (docs/rendering.md).
+    /// clusters light a wall at grazing angles (docs/methods/vsgl.md).
     ExactCompact,
     /// Over its own hemisphere, so a texel sends its whole diffuse power where a Lambertian
     /// surface can (`LAMBERT_LOBE_HEMISPHERE_GAIN` in sg.wgsl): 1 + e^(−λd) ≈ 1.101 times the

@@ -95,7 +95,7 @@ impl UvTransform {
     }
 }
 
-/// glTF metallic-roughness material (DESIGN.md "Conventions").
+/// glTF metallic-roughness material (docs/scenes.md, "Materials").
 #[derive(Clone, Debug)]
 pub struct Material {
     pub name: String,
@@ -114,7 +114,7 @@ pub struct Material {
     pub specular_factor: f32,
     /// Emitted radiance L_e (linear RGB, the image's radiance units): glTF `emissiveFactor`
     /// × `KHR_materials_emissive_strength`, times the emissive texture where there is one.
-    /// Seen by the camera only: an emissive surface lights no other surface (docs/rendering.md,
+    /// Seen by the camera only: an emissive surface lights no other surface (docs/scenes.md,
     /// "Emission").
     pub emissive: [f32; 3],
     /// sRGB colour texture that multiplies `emissive` (index into [`Scene::textures`]).

@@ -5,7 +5,7 @@
 //! origin, and a moving camera never re-uploads: each frame shifts the anchor-relative
 //! vertices to its camera on the GPU (`FrameUniforms::view_origin` and the translation in
 //! `view_proj`). The renderer reuses an upload while the scene instance and its
-//! `geometry_version` are unchanged (`Renderer::uploaded_scene`, docs/rendering.md
+//! `geometry_version` are unchanged (`Renderer::uploaded_scene`, docs/frames.md
 //! "Scene upload cache").
 
 pub mod bvh;

@@ -4,7 +4,7 @@
 
 use super::*;
 
-/// A helmet-like object at FlightHelmet's size (docs/rendering.md, "The real-scene corpus"): a
+/// A helmet-like object at FlightHelmet's size (docs/scenes.md, "The real-scene corpus"): a
 /// thin leather cap (a 5 mm spherical shell) over a head, a polished metal visor band around the
 /// head at eye level under the cap's rim, a neck and a wooden pedestal, lit like FlightHelmet's
 /// corpus light. What the boxes lack and the helmet has: a curved thin shell, and creases where

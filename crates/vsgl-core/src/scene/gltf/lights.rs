@@ -1,6 +1,6 @@
 //! Lights: every KHR_lights_punctual light on a reachable node becomes a scene light (spot,
 //! point or directional; checked intensity, colour and cone angles). A light's `range` is
-//! ignored with a warning (docs/rendering.md, "Lights": every method uses the physical
+//! ignored with a warning (docs/scenes.md, "Lights": every method uses the physical
 //! inverse-square law, so none of them could honour the window consistently with the others).
 
 use glam::{DMat4, DVec3, Vec3};
@@ -46,7 +46,7 @@ pub(super) fn add_light(
     if let (Some(range), Type::Spot | Type::Point) = (light.range, kind) {
         b.warn(format!(
             "nodes[{node}]: {el}.range = {range} is ignored: lights fall off by the inverse-square \
-             law without a cut-off window (docs/rendering.md, \"Lights\")"
+             law without a cut-off window (docs/scenes.md, \"Lights\")"
         ));
     }
     // KHR_lights_punctual: a light sits at its node's origin and points along the node's −Z.

@@ -40,7 +40,7 @@ fn unit_factor(ctx: &Ctx, v: f32, element: String) -> Result<f32> {
 }
 
 /// The material's emitted radiance L_e = emissiveFactor × emissiveStrength (linear RGB, the
-/// image's radiance units; docs/rendering.md, "Emission"). The factor is clamped to 0…1 like
+/// image's radiance units; docs/scenes.md, "Emission"). The factor is clamped to 0…1 like
 /// the other factors; the strength (KHR_materials_emissive_strength, default 1) must be finite
 /// and >= 0, and the product at most `limits::MAX_EMITTED_RADIANCE`.
 fn emitted_radiance(ctx: &Ctx, m: &json::Material, el: &str) -> Result<[f32; 3]> {

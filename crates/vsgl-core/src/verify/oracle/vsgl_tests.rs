@@ -39,7 +39,7 @@ fn vsgl_lobe_from_moments_conserves_power() {
 
 #[test]
 fn vsgl_position_needs_a_local_origin_in_f32() {
-    // VPLs spread by σ = 1 cm around a point 1e5 m from the world origin (DESIGN.md grid).
+    // VPLs spread by σ = 1 cm around a point 1e5 m from the world origin (the oracle's grid, docs/numerics.md).
     // Summed in f32 as a GPU would, the raw moments give a variance that is pure rounding noise
     // (here: ≥ 100% wrong); relative to a local origin (the first VPL, standing in for the
     // light position) the same f32 sums give σ² to 1e-3. The oracle then agrees with the
@@ -374,7 +374,7 @@ fn vsgl_specular_accurate_vs_quadrature() {
     //     per λ_in over the grid; the filtered form's bound per λ (asserted) is stated below.
     let n = DVec3::Z;
     let c_in = 1.7;
-    // VSGL_ALPHAS=0.7,1.0 prints the same grid at other roughnesses (docs/rendering.md, "SG
+    // VSGL_ALPHAS=0.7,1.0 prints the same grid at other roughnesses (docs/methods/vsgl.md, "SG
     // lighting": rough receivers); the assertions below hold for the default grid only and
     // are skipped then.
     let custom_alphas: Option<Vec<f64>> = std::env::var("VSGL_ALPHAS").ok().map(|s| s.split(',').map(|x| x.trim().parse().expect("VSGL_ALPHAS: comma-separated numbers")).collect());
@@ -433,7 +433,7 @@ fn vsgl_specular_accurate_vs_quadrature() {
     if custom_alphas.is_some() {
         return;
     }
-    // What the option claims (docs/rendering.md, "SG lighting"): for lights from point-like to
+    // What the option claims (docs/methods/vsgl.md, "SG lighting"): for lights from point-like to
     // λ_in = 30 the filtered form's median error is below the ASG form's, and no case of the
     // grid is off by more than 80% (the ASG form's worst is 78%).
     for &(lambda, max_acc, median_acc, _, median_asg, _) in &rows {
@@ -452,7 +452,7 @@ fn specular_forms_over_the_hemisphere() {
     // scored by its L1 error summed over those lights and views over the exact sum
     // (specular_reference): how much of the reflected light it misplaces or loses, as an image
     // lit from all sides would show. Printed per (α, λ_in) with each form's energy (sum over
-    // the exact sum); docs/rendering.md, "SG lighting", has the table.
+    // the exact sum); docs/methods/vsgl.md, "SG lighting", has the table.
     // Asserted (lighting="blend"): (1) over the whole grid its L1 is below 0.75× the better
     // single form's; (2) in no cell is it worse than the worse form (+0.01); (3) at α ≥ 0.5,
     // where the ASG warp loses a rough lobe's light, it is within 0.01 of the filtered form or
@@ -510,7 +510,7 @@ fn specular_forms_over_the_hemisphere() {
 
 #[test]
 fn extreme_inputs_stay_finite() {
-    // DESIGN.md grid: sharpness 1e-6…1e8, roughness 1e-4…1, grazing cosines down to 1e-6,
+    // The oracle's grid (docs/numerics.md): sharpness 1e-6…1e8, roughness 1e-4…1, grazing cosines down to 1e-6,
     // σ² down to 1e-12 of d², intensities 1e-8…1e8. Every output finite and ≥ 0.
     let n = DVec3::Z;
     for sharpness in [1e-6, 1.0, 1e8] {

@@ -47,7 +47,7 @@
 //! - flush-to-zero: an intermediate that underflows may become 0 on a GPU; that costs at most
 //!   `FLT_MIN` times the factor applied after it, which is added where it can occur.
 //!
-//! [`run`] returns the table; `tests/stability.rs` asserts that every row passes, and
+//! [`run`] returns the table; `crates/vsgl-core/tests/stability.rs` asserts that every row passes, and
 //! `python -m vsgl stability` prints it. docs/numerics.md ("Stability suite") lists every bound
 //! with its justification and the measured errors.
 //!
