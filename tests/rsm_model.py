@@ -17,7 +17,7 @@ def spot_rsm_view(frame: vsgl.Frame, light_index: int = 0) -> tuple[np.ndarray, 
 
 
 def spot_texel_footprint_variance(y: np.ndarray, normal: np.ndarray, frame: vsgl.Frame, side: int) -> np.ndarray:
-    """Each texel's own positional variance (issue 18, item 2) for the first light's square RSM
+    """Each texel's own positional variance for the first light's square RSM
     of ``side`` texels in ``frame`` (a spot light): a cross-section a² = Δω·d²,
     Δω = t²(2/N)²cos³α (t = tan of the RSM's half field of view, α the angle to its axis),
     stretched by 1/cos θ on the surface: (a²/12)(1 + 1/max(cos θ, 0.1)²). ``y``: texel

@@ -1,4 +1,4 @@
-"""Node animation (glTF ``animations``, issue 19): sampling against TRS computed by hand at
+"""Node animation (glTF ``animations``): sampling against TRS computed by hand at
 keys and between them, STEP, CUBICSPLINE, clamping to [0, duration], lights that follow their
 node, the geometry version (a moved mesh is uploaded again, a moved light is not), bad samplers
 (in test_gltf.py through ``gltf_fixtures.HOSTILE``), and the animated built-ins."""

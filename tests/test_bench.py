@@ -84,7 +84,7 @@ def test_bad_arguments_are_rejected(tmp_path):
 
 
 def test_pruned_and_full_plans_are_timed_side_by_side_with_equal_error(tmp_path, renderer):
-    """The leave-out benchmark (issue 8): on the diffuse-only box the pruned plan's image error
+    """The leave-out benchmark: on the diffuse-only box the pruned plan's image error
     equals the full plan's (pruning is output-neutral), and the ratio of their times is reported."""
     report = bench.run(
         scenes=["diffuse_cornell"], methods=["vsgl", "vpl"], lights=[32], size=(32, 24), rsm_sizes=[32],
@@ -122,7 +122,7 @@ def test_timings_report_quartiles_and_the_warm_up(tmp_path, renderer):
 
 
 def test_rows_carry_the_references_own_error_and_flag_a_too_noisy_reference(tmp_path, renderer):
-    """Issue 15, item 2: a 1-spp path-traced reference (its stderr is as large as its image)
+    """A 1-spp path-traced reference (its stderr is as large as its image)
     flags every row "reference too noisy"; a 256-spp one does not flag the rows whose error is
     far above its own (direct light only, which misses all indirect light: relative error 1)."""
     common = dict(scenes=["cornell_box"], methods=["direct", "vpl"], lights=[8], size=(48, 32), rsm_sizes=[32],
@@ -153,7 +153,7 @@ def test_rows_carry_the_references_own_error_and_flag_a_too_noisy_reference(tmp_
 
 
 def test_equal_time_names_a_winner_per_scene_and_the_rsm_reference_reports_its_error(tmp_path, renderer):
-    """Issue 15, items 2 and 5: every scene gets equal-time entries (the best row within each
+    """Every scene gets equal-time entries (the best row within each
     budget, and its margin over another method with an interval); the every-texel reference's
     own error comes from one at another RSM size, and the reference's cost counts every batch."""
     report = bench.run(
@@ -192,7 +192,7 @@ def test_cpu_defaults_scale_down_only_what_is_not_given():
 
 
 def test_the_reference_shows_its_progress_and_counts_every_batch(make_renderer):
-    """Issue 15, item 7: on a CPU adapter the reference submits small batches, reports progress
+    """On a CPU adapter the reference submits small batches, reports progress
     between them, and the bench's cost of it counts them all (wall time over every batch)."""
     renderer = make_renderer(48, 32)
     if renderer.adapter["device_type"] != "Cpu":
@@ -225,7 +225,7 @@ def test_bench_lights_scenes_from_the_shell(tmp_path, capsys):
 
 
 def test_sequence_reports_flicker_next_to_error_and_time(tmp_path, renderer):
-    """Issue 19, item 5: `--sequence N` renders N frames of a moving light per configuration
+    """`--sequence N` renders N frames of a moving light per configuration
     (cave_flashlight: its sweep) and reports metrics.flicker of indirect against the
     reference's frames: 0 for the reference itself, > 0 for the approximations, and vsgl below
     vpl at equal N; `--K` sweeps vsgl's kernel mass (lavapipe, 32×32, 8 frames: vpl 1.76,
@@ -267,7 +267,7 @@ def test_bench_shadows_every_virtual_light_and_the_reference_with_visibility(tmp
 
 
 def test_lighting_sweeps_the_sg_lighting_forms_of_vsgl_and_vsgl2(tmp_path, renderer):
-    """--lighting asg,accurate (issue 18, item 5): one row per form for vsgl and vsgl2 (not for
+    """--lighting asg,accurate: one row per form for vsgl and vsgl2 (not for
     vpl), named in the table and the CSV; the two forms differ on a glossy scene."""
     report = bench.run(
         scenes=["glossy_cornell"], methods=["vpl", "vsgl", "vsgl2"], lights=[32], size=(24, 16), rsm_sizes=[32],

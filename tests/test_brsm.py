@@ -1,4 +1,4 @@
-"""Bidirectional RSM importance (`importance="brsm"`, issue 18 item 6; docs/methods/brsm.md,
+"""Bidirectional RSM importance (`importance="brsm"`; docs/methods/brsm.md,
 "Bidirectional RSM importance"): VSGLs of the camera's view re-weight the RSM's sampling
 density. VPLs drawn from it stay unbiased against the every-texel `reference` of the same RSM,
 and where the view sees little of the lit area they need far fewer samples."""
@@ -66,7 +66,7 @@ def test_brsm_vpls_are_unbiased_against_the_every_texel_reference(tmp_path, make
 
 
 def test_brsm_needs_fewer_virtual_lights_where_the_view_sees_little_of_the_lit_area(tmp_path, make_renderer):
-    """Acceptance (issue 18 item 6): a wide spot light lights an 8 × 8 floor, the camera sees a
+    """What brsm is for: a wide spot light lights an 8 × 8 floor, the camera sees a
     small patch of the wall beside it. Against the same-RSM reference, 1024 brsm VPLs beat 4096
     RSM-sampled ones (measured at 32², RSM 64², seeds 0–2, the default importance_interleave 4:
     0.0072 ± 0.0007 vs 0.051 ± 0.004; every view VSGL at every texel: 0.0055 ± 0.0011), and so

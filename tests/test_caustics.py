@@ -1,4 +1,4 @@
-"""Issue 18's mirror-panel caustic: glossy VSGLs must put a near-mirror's reflected light where it
+"""The mirror-panel caustic: glossy VSGLs must put a near-mirror's reflected light where it
 goes, against the bidirectional path tracer (light tracing + camera paths, an independent
 estimator with its own error), not spread it over the wall as glow.
 

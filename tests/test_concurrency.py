@@ -1,4 +1,4 @@
-"""Editing a Scene while another thread renders it (issue 20, item 4): the render takes a
+"""Editing a Scene while another thread renders it: the render takes a
 snapshot of the scene when it starts and lets go of the Python object, so the edits succeed at
 once (no "Already borrowed"), the frame shows the state the render started with, and the next
 render shows the edits."""

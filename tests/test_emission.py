@@ -1,4 +1,4 @@
-"""Emissive materials (issue 20, item 7): glTF emissiveFactor × KHR_materials_emissive_strength ×
+"""Emissive materials: glTF emissiveFactor × KHR_materials_emissive_strength ×
 emissiveTexture is the emitted radiance L_e, and every method shows it where the camera sees the
 surface: in `image` and `direct`, never in `indirect`. Emissive surfaces light nothing else
 (docs/scenes.md, "Emission")."""

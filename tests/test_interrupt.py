@@ -1,4 +1,4 @@
-"""Long renders are interruptible and bounded (issue 20, item 5): a SIGINT sent from another
+"""Long renders are interruptible and bounded: a SIGINT sent from another
 thread stops a long `pathtrace` render with KeyboardInterrupt within about a batch (the stop
 check runs Python's signal handlers between GPU batches), the renderer stays usable, and
 `time_budget_s` ends the sampling early with the samples taken so far."""

@@ -1,4 +1,4 @@
-"""Point and directional lights (issue 16): the Python classes, the glTF loader, direct light
+"""Point and directional lights: the Python classes, the glTF loader, direct light
 against closed forms (KHR_lights_punctual units), point-light cube shadows on every face,
 additivity of several lights, NaN/Inf safety, point lights in the virtual-light methods (six
 cube-face RSMs: total power, agreement with the path tracer, budget split) and directional
@@ -447,7 +447,7 @@ def test_cube_faces_that_see_nothing_are_left_out_and_lose_no_light(tmp_path, re
         got = np.mean([renderer.render(scene, camera=cam, method="vpl", num_lights=1024, rsm_size=32, seed=s).aov("indirect") for s in range(4)], axis=0)
         assert got.mean() == pytest.approx(ref.mean(), rel=0.01)
     # (VSGLs sit ~35% under the reference here, with a spot light in the point light's place
-    # too: their kernels blur the floor–wall contact; that bias is issue 18's, not the split's.)
+    # too: their kernels blur the floor–wall contact; that bias is the kernels', not the split's.)
 
 
 @pytest.mark.parametrize("method,low", [("vsgl", 0.8), ("vsgl2", 0.55)])
@@ -587,7 +587,7 @@ def test_vsgl_glossy_lobes_of_a_directional_light_face_the_light(tmp_path, make_
 
 
 def test_the_shared_lights_spot_scene_renders_all_three_spots(shared_scenes, renderer):
-    # Issue 16's acceptance: LightsSpot (three coloured spots) renders all three: the frame is
+    # LightsSpot (three coloured spots) renders all three: the frame is
     # the sum of the three one-light frames, each of which lights something.
     path = str(shared_scenes / "LightsSpot" / "LightsSpot.gltf")
     scene = vsgl.Scene.load(path)

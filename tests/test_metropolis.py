@@ -1,4 +1,4 @@
-"""sampling="metropolis" (issue 19): Metropolis–Hastings chains kept across the frames of a
+"""sampling="metropolis": Metropolis–Hastings chains kept across the frames of a
 Renderer (docs/methods/metropolis.md, "Metropolis–Hastings sampling"). Each chain's state must be
 distributed like a warped sample (∝ the RSM weight) at equilibrium, so the estimators keep
 their expectations; chains restart from the warp when N, the RSM size, the lights' views or the

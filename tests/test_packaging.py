@@ -38,7 +38,7 @@ def test_no_source_comment_cites_a_tracker_number():
     # of the code can open. (A docs section title quoted with its page is a citation of the docs.)
     pattern = re.compile(r"\bissues? \d+", re.IGNORECASE)
     cited = []
-    for folder, suffixes in (("crates", {".rs"}), ("wgsl", {".wgsl"}), ("python", {".py", ".pyi"})):
+    for folder, suffixes in (("crates", {".rs"}), ("wgsl", {".wgsl"}), ("python", {".py", ".pyi"}), ("tests", {".py"})):
         for path in sorted((ROOT / folder).rglob("*")):
             if path.suffix not in suffixes or "target" in path.parts:
                 continue

@@ -200,7 +200,7 @@ def test_pathtrace_frame_reports_what_ran(renderer):
 
 
 # ------------------------------------------------------------------------------------------
-# strategy="bidirectional": light tracing + camera paths by MIS (issue 15, item 1)
+# strategy="bidirectional": light tracing + camera paths by MIS
 # ------------------------------------------------------------------------------------------
 
 

@@ -1,4 +1,4 @@
-"""The pass plan (issue 8): each leave-out rule renders the same image as `plan="full"` on a
+"""The pass plan: each leave-out rule renders the same image as `plan="full"` on a
 scene that lacks the feature, names what it left out in `frame.skipped`, does not allocate the
 buffers it does not use, and does not fire on a scene that has the feature."""
 

@@ -1,4 +1,4 @@
-"""Resource limits named up front (issue 20, item 6): a scene whose lights need more of the
+"""Resource limits named up front: a scene whose lights need more of the
 device than the adapter has (shadow-map layers, shadow-map memory) is refused at the start of
 `render` with `vsgl.ResourceLimitError` naming the limit, the numbers and how to stay within
 it, instead of "GPU out of memory" halfway through the frame
@@ -64,7 +64,7 @@ def test_the_shadow_map_memory_limit_scales_with_shadow_size(renderer):
 
 
 def test_the_issue_scene_of_1001_spot_lights_says_how_to_fit(renderer):
-    """Issue 20: 1001 spot lights at the default 1024² failed with "GPU out of memory" on
+    """1001 spot lights at the default 1024² failed with "GPU out of memory" on
     lavapipe (4.2 GB in one texture). The error now says which shadow_size fits them, and
     rendering at that size works."""
     budget = renderer.adapter["max_buffer_size"]

@@ -1,4 +1,4 @@
-"""The scene-level stability suite (`python -m vsgl stability --scenes`; issue 20, item 9):
+"""The scene-level stability suite (`python -m vsgl stability --scenes`):
 every method on three built-ins, the generated corpus scenes (helmet_shell, furnished_room, atrium)
 and a room read from a glTF file (also written with a 1e5 m offset in its nodes) moved 1e5 m, scaled 1e-3, 0.37 and 1e3 (intensities × scale²), with
 intensities × 1e-8 and at 1e30 cd, a light grazing a wall, every material at roughness 1e-4 and

@@ -1,4 +1,4 @@
-"""Temporal coherence (issue 19): the flicker and temporal-noise metrics, and the papers' claim
+"""Temporal coherence: the flicker and temporal-noise metrics, and the papers' claim
 that VSGLs flicker less than VPLs under a moving light, and less with a larger K.
 
 Images are 32×32 with a 64² RSM and 8 frames (lavapipe runs the shaders on the CPU). The

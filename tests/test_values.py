@@ -1,7 +1,7 @@
 """Values that would overflow later are refused where they are given, with the real cause
 (scene/limits.rs: coordinates within ±1e18 m, intensities up to 1e32), vectors normalise without
 overflow, and a frame that still computes NaN or Inf (extreme intensity at an extreme scale) is
-refused by the frame path instead of handed out (issue 20, item 2)."""
+refused by the frame path instead of handed out."""
 
 from __future__ import annotations
 

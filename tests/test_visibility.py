@@ -1,4 +1,4 @@
-"""Visibility for virtual lights (issue 17): `visibility="raytrace"` shadow rays through the
+"""Visibility for virtual lights: `visibility="raytrace"` shadow rays through the
 scene's BVH stop indirect light leaking through walls, agree with the path tracer on an occluded
 scene, change nothing where nothing occludes, and follow a moved occluder on the next frame."""
 
@@ -115,8 +115,8 @@ ISM_PASSES = ("ism_splat", "ism_pull", "ism_push")
 
 @pytest.mark.parametrize("method,tolerance", [("reference", 0.35), ("vpl", 0.35), ("vsgl", 0.35), ("vsgl2", 0.5)])
 def test_imperfect_shadow_maps_stop_the_leak_through_a_wall(tmp_path, make_renderer, truth, method, tolerance):
-    """The same leak as above, stopped by one imperfect shadow map per virtual light (issue 17:
-    within 35% of the path tracer; vsgl2's two all-or-nothing VSGLs get raytrace's looser bound)."""
+    """The same leak as above, stopped by one imperfect shadow map per virtual light (the
+    bound: within 35% of the path tracer; vsgl2's two all-or-nothing VSGLs get raytrace's looser bound)."""
     scene, cam = _two_rooms(tmp_path)
     r = make_renderer(SIZE, SIZE)
     truth_mean, _ = truth
@@ -203,7 +203,7 @@ def test_imperfect_shadow_map_settings_are_checked(make_renderer):
 
 @pytest.mark.parametrize("num_lights,bound", [(256, 0.07), (1024, 0.05)])
 def test_vsgl_shadow_rays_keep_the_share_of_light_that_texel_visibility_keeps(make_renderer, num_lights, bound):
-    """Issue 18: a VSGL's shadow ray aims at its sampled centre texel's surface point, not at μ.
+    """A VSGL's shadow ray aims at its sampled centre texel's surface point, not at μ.
     On the Cornell box μ of a cluster that wraps around a block's edge lies inside the block, and
     one ray to it shadowed the whole cluster: the integral kernel kept 0.662 (N = 256) and 0.742
     (N = 1024) of its unshadowed light where the every-texel reference (exact visibility per

@@ -196,7 +196,7 @@ def test_gpu_vsgls_equal_a_float64_generation_from_the_same_rsm(renderer, kernel
     mean_d = _toksvig_mean(n.reshape(-1, 3), np.full(n.shape[0] * n.shape[1], LAMBERT_LOBE_SG_SHARPNESS)).reshape(n.shape)
     mean_s = _toksvig_mean(refl.reshape(-1, 3), lam_s.reshape(-1)).reshape(n.shape)
     zero = np.where(lit[..., None], 1.0, 0.0)
-    # Each texel's own positional variance (issue 18, item 2).
+    # Each texel's own positional variance.
     footprint = spot_texel_footprint_variance(y, n, f, y.shape[0])
     chains = [
         np.concatenate([fd, w[..., None]], -1) * zero,
@@ -481,7 +481,7 @@ def test_vsgls_only_for_vsgl_frames(renderer):
 
 
 # ------------------------------------------------------------------------------------------
-# kernel="node": quadtree-node clusters, exact single-texel VSGLs (issue 18, items 1 and 3)
+# kernel="node": quadtree-node clusters, exact single-texel VSGLs
 # ------------------------------------------------------------------------------------------
 
 

@@ -34,7 +34,7 @@ def _cpu_vsgl2(frame: vsgl.Frame, light: vsgl.SpotLight) -> dict[str, dict[str, 
     side = frame.rsm("position").shape[1]
     y = frame.rsm("position").astype(np.float64).reshape(-1, 3)
     n = frame.rsm("normal").astype(np.float64).reshape(-1, 3)
-    # Each texel's own positional variance (issue 18, item 2), added to ‖y‖² as the GPU does.
+    # Each texel's own positional variance, added to ‖y‖² as the GPU does.
     footprint = spot_texel_footprint_variance(y, n, frame, side)
     alpha = np.maximum(frame.rsm("roughness").astype(np.float64).reshape(-1) ** 2, GGX_ALPHA_MIN)
     fd = frame.rsm("flux_diffuse").astype(np.float64).reshape(-1, 3)

@@ -1,4 +1,4 @@
-"""Issue 18, items 2 and 4: what a VSGL cluster knows of its texels — their mean tangent plane
+"""What a VSGL cluster knows of its texels — their mean tangent plane
 (light stays above it), their own footprints, and an RSM that grows with N.
 
 Item 4: a VSGL's light stays above its cluster's mean tangent plane.
@@ -152,7 +152,7 @@ def test_two_vsgls_of_a_lone_plane_do_not_light_it(tmp_path, make_renderer, diff
 
 
 def test_a_single_texel_vsgl_is_an_area_light_of_the_texels_footprint(tmp_path, make_renderer):
-    """Issue 18, item 2: each texel adds its own positional variance to Σw‖y‖². With a 32² RSM
+    """Each texel adds its own positional variance to Σw‖y‖². With a 32² RSM
     and N = 4096 quadtree-node VSGLs, every VSGL is one texel, so its σ² must be the texel's
     footprint, (a²/12)(1 + 1/cos²θ) with a² = Δω·d² its cross-section perpendicular to the
     light. Δω is taken from the RSM's own flux (Φ = I·ρ_d·Δω inside the inner cone on a

@@ -1,4 +1,4 @@
-"""Black images say why (issue 20, item 3): `frame.warnings` names the cause when a frame is
+"""Black images say why: `frame.warnings` names the cause when a frame is
 black because the scene has no light, the camera sees no geometry, or no light reaches anything
 visible; an ordinary frame has none. The CLI prints them."""
 
