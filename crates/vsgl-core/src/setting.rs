@@ -27,14 +27,6 @@ impl Setting {
             _ => None,
         }
     }
-
-    /// The value of a [`Setting::Int`], else `None`.
-    pub fn as_int(&self) -> Option<i64> {
-        match self {
-            Setting::Int(v) => Some(*v),
-            _ => None,
-        }
-    }
 }
 
 /// For logs and Rust callers: numbers and names as written, lists in brackets.

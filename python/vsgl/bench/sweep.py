@@ -3,6 +3,7 @@ trusted error."""
 
 from __future__ import annotations
 
+import functools
 import pathlib
 import statistics
 import sys
@@ -20,17 +21,23 @@ from .report import TRUST_FACTOR, Report, Row, _equal_time, _plan_ratios
 from .timing import CLOCK_WARM_MAX_EXTRA_S, _clock_for, _quartiles
 
 
+@functools.lru_cache(maxsize=None)
+def _info(method: str) -> dict:
+    """The registry's entry, read once per method (it is asked per configuration, seed and frame)."""
+    return vsgl.method_info(method)
+
+
 def _stochastic(method: str) -> bool:
     """Whether the method's frames depend on ``seed`` (the registry says), so a row averages seeds."""
-    return bool(vsgl.method_info(method)["stochastic"])
+    return bool(_info(method)["stochastic"])
 
 
 def _takes(method: str, option: str) -> bool:
-    return option in vsgl.method_options(method)
+    return option in _info(method)["options"]
 
 
 def _makes_indirect(method: str) -> bool:
-    return "indirect" in vsgl.method_info(method)["aovs"]
+    return "indirect" in _info(method)["aovs"]
 
 
 # The `sampling=` values of vpl and vsgl (--sampling sweeps them).
