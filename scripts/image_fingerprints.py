@@ -31,6 +31,7 @@ SETTINGS: dict[str, dict] = {
     "reference": {"shadow_size": 256, "rsm_size": 64},
     "vsgl": {"shadow_size": 256, "num_lights": 64, "rsm_size": 64, "interleave": 4},
     "vsgl2": {"shadow_size": 256, "rsm_size": 48},
+    "lpv": {"shadow_size": 256, "rsm_size": 64, "lpv_grid": 16},
     "pathtrace": {"spp": 4, "seed": 1},
 }
 # Rows of frame.settings that name the machine or the run rather than the image.

@@ -51,7 +51,7 @@ class ResourceLimitError(ArgumentError): ...
 
 # The method registry (vsgl.METHODS); tests/test_api.py checks that this Literal lists it
 # (private: a typing alias only, nothing of that name exists at run time).
-_MethodName = Literal["direct", "vpl", "vsgl", "vsgl2", "reference", "pathtrace"]
+_MethodName = Literal["direct", "vpl", "vsgl", "vsgl2", "lpv", "reference", "pathtrace"]
 METHODS: tuple[_MethodName, ...]
 
 @final
@@ -165,6 +165,7 @@ class Frame:
     @property
     def aovs(self) -> list[str]: ...
     def rsm(self, name: str) -> npt.NDArray[np.float32]: ...
+    def lpv(self, name: str) -> npt.NDArray[np.float32]: ...
     def vsgls(self) -> npt.NDArray[np.void]: ...
     @property
     def width(self) -> int: ...
@@ -257,6 +258,18 @@ class Renderer:
         self,
         scene: Scene,
         camera: Camera | None = None,
+        method: Literal["lpv"] = ...,
+        *,
+        plan: Literal["auto", "full"] = "auto",
+        aovs: Sequence[str] | None = None,
+        progress: Callable[[int, int, str], object] | None = None,
+        **options: Unpack[_LpvOptions],
+    ) -> Frame: ...
+    @overload
+    def render(
+        self,
+        scene: Scene,
+        camera: Camera | None = None,
         method: Literal["reference"] = ...,
         *,
         plan: Literal["auto", "full"] = "auto",
@@ -323,6 +336,18 @@ class Renderer:
         plan: Literal["auto", "full"] = "auto",
         aovs: Sequence[str] | None = None,
         **options: Unpack[_Vsgl2Options],
+    ) -> FrameSequence: ...
+    @overload
+    def render_sequence(
+        self,
+        scene: Scene,
+        frames: Iterable[dict[str, Any]],
+        camera: Camera | None = None,
+        method: Literal["lpv"] = ...,
+        *,
+        plan: Literal["auto", "full"] = "auto",
+        aovs: Sequence[str] | None = None,
+        **options: Unpack[_LpvOptions],
     ) -> FrameSequence: ...
     @overload
     def render_sequence(
@@ -442,6 +467,16 @@ class _Vsgl2Options(TypedDict, total=False):
     ism_points_per_map: int
     ism_bias: float
     ism_pcf: int
+    rsm_fit: Literal["scene", "cone"]
+    capture_rsm: bool
+class _LpvOptions(TypedDict, total=False):
+    shadow_size: int
+    rsm_size: int
+    lpv_grid: int
+    lpv_cascades: int
+    lpv_iterations: int
+    lpv_occlusion: bool
+    capture_lpv: bool
     rsm_fit: Literal["scene", "cone"]
     capture_rsm: bool
 class _ReferenceOptions(TypedDict, total=False):

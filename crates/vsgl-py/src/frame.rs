@@ -143,6 +143,24 @@ impl PyFrame {
         let rows = data.len() / (*n as usize * c).max(1);
         Ok(PyArray1::from_slice(py, data).reshape([rows, *n as usize, c])?.into_any())
     }
+    /// One of the light propagation volumes of a `method="lpv"` frame rendered with
+    /// `capture_lpv=True`, float32: "injected" (the light injected from the RSMs) and "total"
+    /// (injected plus every propagation iteration, what the lookup reads), each of shape
+    /// (cascades, side, side, side, 3, 4) — cells z, y, x, then colour r, g, b, then the SH
+    /// coefficients (c₀, c_x, c_y, c_z) of the radiant intensity in W/sr —, and with
+    /// occlusion "geometry", (cascades, side+1, side+1, side+1, 4), the blocking potential
+    /// on the cell corners. `frame.settings["lpv_cascade_grids"]` gives each cascade's world
+    /// min corner and cell side.
+    fn lpv<'py>(&self, py: Python<'py>, name: &str) -> PyResult<Bound<'py, PyAny>> {
+        let Some(volumes) = &self.inner.lpv else {
+            return Err(argument_error("name: this frame kept no light propagation volume; render with method=\"lpv\" and capture_lpv=True"));
+        };
+        let (shape, data) = volumes.iter().find(|(k, _, _)| k == name).map(|(_, s, d)| (s.clone(), d)).ok_or_else(|| {
+            let names: Vec<&str> = volumes.iter().map(|(k, _, _)| k.as_str()).collect();
+            argument_error(format!("name: unknown volume {name:?}; available: {}", names.join(", ")))
+        })?;
+        Ok(PyArray1::from_slice(py, data).reshape(shape)?.into_any())
+    }
     #[getter]
     fn width(&self) -> u32 {
         self.inner.width

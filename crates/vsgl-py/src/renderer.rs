@@ -128,6 +128,9 @@ impl PyRenderer {
     ///   spans the whole RSM), vsgl2_reduction ("auto" | "subgroup" | "shared_memory"),
     ///   visibility, ism_size, ism_points, ism_points_per_map, ism_bias, ism_pcf, rsm_fit,
     ///   capture_rsm.
+    /// - "lpv": light propagation volumes (Kaplanyan & Dachsbacher 2010), diffuse indirect
+    ///   light only. shadow_size, rsm_size (any side 32..4096), lpv_grid (cells per side),
+    ///   lpv_cascades (1..4), lpv_iterations, lpv_occlusion, capture_lpv, rsm_fit, capture_rsm.
     /// - "reference": every texel of an rsm_size² RSM (default 1024²) as a VPL. shadow_size,
     ///   rsm_size, vpl_clamp, visibility, ism_size, ism_points, ism_points_per_map, ism_bias,
     ///   ism_pcf, rsm_fit, capture_rsm.

@@ -2,6 +2,7 @@
 //! ([`uniforms`]), the per-frame targets ([`targets`]) and a light's RSM with its pyramids
 //! ([`rsm`]). Passes and methods read and write these; nothing here records GPU work.
 
+pub mod lpv;
 pub mod rsm;
 pub mod shading_inputs;
 pub mod shading_visibility;

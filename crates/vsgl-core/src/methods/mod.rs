@@ -15,6 +15,7 @@ mod rsm_lights;
 mod sg_lighting;
 
 mod direct;
+mod lpv;
 mod pathtrace;
 mod reference;
 mod vpl;
@@ -33,7 +34,7 @@ use crate::upload::GpuScene;
 pub use options::{OptionKind, OptionSpec, OptionValue, Options};
 
 /// Every method, in the order `vsgl.METHODS` lists them.
-pub const REGISTRY: &[&MethodInfo] = &[&direct::INFO, &vpl::INFO, &vsgl::INFO, &vsgl2::INFO, &reference::INFO, &pathtrace::INFO];
+pub const REGISTRY: &[&MethodInfo] = &[&direct::INFO, &vpl::INFO, &vsgl::INFO, &vsgl2::INFO, &lpv::INFO, &reference::INFO, &pathtrace::INFO];
 
 /// How a method's frame gets its direct light.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -172,6 +173,9 @@ pub trait Method: Send + Sync {
     }
 }
 
+/// The volumes of `method="lpv"` read back for `Frame.lpv`: (name, shape, data).
+pub type CapturedLpv = Vec<(String, Vec<usize>, Vec<f32>)>;
+
 /// The RSM of the first light, read back for `Frame.rsm`: side and (name, channels, data).
 pub type CapturedRsm = (u32, Vec<(String, usize, Vec<f32>)>);
 
@@ -204,6 +208,8 @@ pub struct FrameContext<'a> {
     /// cube face's that reflects light).
     pub vsgls: Option<wgpu::Buffer>,
     pub captured_rsm: Option<CapturedRsm>,
+    /// `capture_lpv`: the light propagation volumes.
+    pub captured_lpv: Option<CapturedLpv>,
     /// The pyramid the current RSM view's virtual lights were drawn from when it is not the
     /// RSM's own (`importance="brsm"`), for `capture_rsm`'s "sampling_weight".
     pub sampling_pyramid: Option<wgpu::Buffer>,

@@ -10,6 +10,10 @@ pub mod brsm_view_gbuffer;
 pub mod denoise;
 pub mod direct;
 pub mod ism;
+pub mod lpv_geometry;
+pub mod lpv_inject;
+pub mod lpv_lookup;
+pub mod lpv_propagate;
 pub mod material;
 pub mod metropolis_step;
 pub mod moment_mips;
@@ -45,6 +49,10 @@ passes_from_device!(
     denoise::DenoisePass,
     direct::DirectPass,
     ism::IsmPass,
+    lpv_geometry::LpvGeometryPass,
+    lpv_inject::LpvInjectPass,
+    lpv_lookup::LpvLookupPass,
+    lpv_propagate::LpvPropagatePass,
     material::MaterialPass,
     metropolis_step::MetropolisStepPass,
     moment_mips::MomentMipsPass,

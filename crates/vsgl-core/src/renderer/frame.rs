@@ -21,6 +21,8 @@ pub struct Frame {
     pub warnings: Vec<String>,
     /// The first light's RSM when `capture_rsm` was set: side and (name, channels, data).
     pub rsm: Option<(u32, Vec<(String, usize, Vec<f32>)>)>,
+    /// `method="lpv"` with `capture_lpv`: its volumes, (name, shape, data).
+    pub lpv: Option<crate::methods::CapturedLpv>,
     /// The first light's VSGLs (`vsgl`): VSGL_FLOATS floats each, fields in VSGL_FIELDS order.
     pub vsgls: Option<Vec<f32>>,
     /// GPU buffers and render targets the frame used, created now or kept from an earlier

@@ -400,6 +400,7 @@ impl Renderer {
             skipped: Vec::new(),
             vsgls: None,
             captured_rsm: None,
+            captured_lpv: None,
             sampling_pyramid: None,
             stderr: None,
             settings: Vec::new(),
@@ -409,7 +410,7 @@ impl Renderer {
             chains,
         };
         job.method.record(&mut ctx)?;
-        let FrameContext { mut rec, skipped: method_skipped, vsgls, captured_rsm, stderr, settings: method_settings, .. } = ctx;
+        let FrameContext { mut rec, skipped: method_skipped, vsgls, captured_rsm, captured_lpv, stderr, settings: method_settings, .. } = ctx;
         skipped.extend(method_skipped);
 
         let sources = PackSources {
@@ -469,6 +470,7 @@ impl Renderer {
                 Vec::new()
             },
             rsm: captured_rsm,
+            lpv: captured_lpv,
             vsgls: None,
             memory_bytes: Vec::new(),
             variants: Vec::new(),

@@ -1,0 +1,157 @@
+//! `method="lpv"`: light propagation volumes [Kaplanyan & Dachsbacher 2010], the baseline of the
+//! 2015 VSGL poster's Table 1 (diffuse light only, as the poster compares them). Every lit RSM
+//! texel is injected into a grid of two-band SH intensities, optionally with a geometry volume
+//! of blocking potentials from the same texels, the light is propagated cell to cell for a
+//! number of iterations, and every pixel reads its irradiance from the summed iterations.
+
+use super::rsm_lights::{check_rsm_size, for_each_light, RsmSettings};
+use super::{options::common, DirectLight, FrameContext, Method, MethodInfo, OptionKind, OptionSpec, OptionValue, Options};
+use crate::error::Result;
+use crate::frame::lpv::{grid_raw, place_cascades, Cascade, LpvVolumes, MAX_CASCADES};
+use crate::passes::lpv_geometry::{LpvGeometryPass, SurfelSource};
+use crate::passes::lpv_inject::LpvInjectPass;
+use crate::passes::lpv_lookup::LpvLookupPass;
+use crate::passes::lpv_propagate::LpvPropagatePass;
+use crate::setting::Setting;
+
+pub const INFO: MethodInfo = MethodInfo {
+    name: "lpv",
+    summary: "light propagation volumes: RSM texels injected as SH into a grid and propagated cell to cell (Kaplanyan & Dachsbacher 2010; diffuse only)",
+    option_groups: OPTION_GROUPS,
+    direct_light: DirectLight::ShadowMapped,
+    indirect: true,
+    extra_aovs: &[],
+    ground_truth: false,
+    configure: |o| Ok(Box::new(Lpv::new(o)?)),
+};
+
+const OPTION_GROUPS: &[&[OptionSpec]] = &[OPTIONS, common::RSM_OPTIONS];
+
+const fn int(name: &'static str, min: i64, max: i64, default: i64, help: &'static str) -> OptionSpec {
+    OptionSpec { name, kind: OptionKind::Int { min, max, power_of_two: false }, default: OptionValue::Int(default), help, note: "" }
+}
+
+const OPTIONS: &[OptionSpec] = &[
+    common::SHADOW_SIZE,
+    // Injection reads every texel once: any side, no pyramid.
+    OptionSpec { kind: OptionKind::Int { min: 32, max: 4096, power_of_two: false }, ..common::RSM_SIZE },
+    int("lpv_grid", 4, 64, 32, "cells per side of each cascade's grid (the poster compared 32³)"),
+    int("lpv_cascades", 1, MAX_CASCADES as i64, 1, "nested grids, each half the size of the one before and centred on the camera (1: one grid over the whole scene)"),
+    // Light travels one cell per iteration: by default far enough to cross the grid once
+    // (the sum over iterations grows slowly long after; docs/methods/lpv.md, "Iterations").
+    int("lpv_iterations", 0, 256, 32, "propagation iterations, light moving one cell each (default: lpv_grid, enough to cross the grid)"),
+    OptionSpec {
+        name: "lpv_occlusion",
+        kind: OptionKind::Bool,
+        default: OptionValue::Bool(true),
+        help: "attenuate propagation by a geometry volume of the RSM texels' blocking potentials (left out where nothing can block: a convex room)",
+        note: "",
+    },
+    OptionSpec {
+        name: "capture_lpv",
+        kind: OptionKind::Bool,
+        default: OptionValue::Bool(false),
+        help: "read the volumes back into frame.lpv(name): \"injected\", \"total\", \"geometry\"",
+        note: "",
+    },
+];
+
+struct Lpv {
+    rsm: RsmSettings,
+    side: u32,
+    cascades: u32,
+    iterations: u32,
+    occlusion: bool,
+    capture: bool,
+}
+
+impl Lpv {
+    fn new(o: &mut Options) -> Result<Self> {
+        let side = o.u32("lpv_grid")?;
+        o.resolve_default("lpv_iterations", OptionValue::Int(side as i64));
+        Ok(Self {
+            // No sampling, no budget: every texel is injected.
+            rsm: RsmSettings::from_options(o, false, 0)?,
+            side,
+            cascades: o.u32("lpv_cascades")?,
+            iterations: o.u32("lpv_iterations")?,
+            occlusion: o.bool("lpv_occlusion")?,
+            capture: o.bool("capture_lpv")?,
+        })
+    }
+}
+
+impl Method for Lpv {
+    fn check(&self, gpu: &crate::gpu::Gpu) -> Result<()> {
+        check_rsm_size(gpu, self.rsm.size)
+    }
+
+    fn record(&self, ctx: &mut FrameContext<'_>) -> Result<()> {
+        let (anchor, half_size) = (ctx.gpu_scene.anchor, ctx.gpu_scene.half_size);
+        if !half_size.is_finite() {
+            ctx.skip("indirect", "the scene has no geometry");
+            return Ok(());
+        }
+        let (inject, geometry, propagate, lookup) = (ctx.passes.get::<LpvInjectPass>()?, ctx.passes.get::<LpvGeometryPass>()?, ctx.passes.get::<LpvPropagatePass>()?, ctx.passes.get::<LpvLookupPass>()?);
+        // Nothing can stand between two points of a convex shell: no geometry volume.
+        let convex = ctx.gpu_scene.convex_shell(ctx.scene);
+        let occlusion = self.occlusion && self.iterations > 1 && (!convex || ctx.plan_full);
+        if self.occlusion && !occlusion {
+            let why = if self.iterations <= 1 { "one propagation iteration or none: occlusion applies from the second on" } else { "the scene's surfaces lie on their convex hull, so nothing between two of them blocks light" };
+            ctx.skip("lpv_geometry", why);
+        }
+        let cascades = place_cascades(anchor, half_size, ctx.origin, self.side, self.cascades);
+        let grid = ctx.rec.uniform("lpv_grid_uniform_buffer", &grid_raw(&cascades, ctx.origin, self.side));
+        let volumes = LpvVolumes::new(&mut ctx.rec, self.side, self.cascades, occlusion);
+        let lit = for_each_light(ctx, &self.rsm, |ctx, light| {
+            inject.record(&mut ctx.rec, &grid, light.rsm, light.raw.position, &volumes.current);
+            if occlusion {
+                let surfels = SurfelSource { light_offset: light.raw.position, light_dir: light.raw.rsm_light_dir(), texel_footprint: light.texel_footprint() };
+                geometry.record(&mut ctx.rec, &grid, light.rsm, &surfels, &volumes.geometry);
+            }
+            Ok(())
+        })?;
+        if !lit {
+            return Ok(());
+        }
+        // The injected volume is overwritten by the ping-pong: copy it out first.
+        let injected = self.capture.then(|| {
+            let copy = ctx.rec.storage_written("lpv_captured_injected_buffer", volumes.current.size());
+            ctx.rec.enc.copy_buffer_to_buffer(&volumes.current, 0, &copy, 0, copy.size());
+            copy
+        });
+        propagate.record(&mut ctx.rec, &grid, &volumes, self.iterations, occlusion);
+        lookup.record(&mut ctx.rec, &grid, &volumes.total, ctx.gbuffer, ctx.indirect, ctx.size);
+        ctx.skip("indirect_specular", "method=\"lpv\": two SH bands hold diffuse light only (the poster compares LPVs on the light–diffuse–diffuse–eye path)");
+        ctx.settings.push(("lpv_cascade_grids".into(), cascade_rows(&cascades)));
+        if let Some(injected) = injected {
+            ctx.submit_so_far();
+            ctx.captured_lpv = Some(read_volumes(ctx, &injected, &volumes)?);
+        }
+        Ok(())
+    }
+}
+
+/// Each cascade's grid in world space, for `frame.settings["lpv_cascade_grids"]`.
+fn cascade_rows(cascades: &[Cascade]) -> Setting {
+    Setting::List(
+        cascades
+            .iter()
+            .map(|c| Setting::Record(vec![("min", Setting::List(c.min.to_array().iter().map(|&v| v.into()).collect())), ("cell", c.cell.into())]))
+            .collect(),
+    )
+}
+
+/// The volumes as `frame.lpv` names them: (name, shape, data).
+fn read_volumes(ctx: &FrameContext<'_>, injected: &wgpu::Buffer, volumes: &LpvVolumes) -> Result<super::CapturedLpv> {
+    let b = ctx.gpu.read_buffers(&[injected, &volumes.total, &volumes.geometry])?;
+    let f = |x: &Vec<u8>| -> Vec<f32> { bytemuck::cast_slice::<u8, f32>(x).to_vec() };
+    let (c, s) = (volumes.cascades as usize, volumes.side as usize);
+    // (cascade, z, y, x, colour, SH coefficient); the geometry volume (cascade, z, y, x, SH).
+    let light = vec![c, s, s, s, 3, 4];
+    let mut out = vec![("injected".to_string(), light.clone(), f(&b[0])), ("total".to_string(), light, f(&b[1]))];
+    if volumes.geometry.size() > 16 {
+        out.push(("geometry".to_string(), vec![c, s + 1, s + 1, s + 1, 4], f(&b[2])));
+    }
+    Ok(out)
+}
