@@ -29,7 +29,7 @@ import sys
 import numpy as np
 
 sys.path.insert(0, os.path.dirname(__file__))
-import mitsuba_truth  # noqa: E402  (its Mitsuba loader and scene conversion)
+import mitsuba_bridge  # noqa: E402  (the Mitsuba loader and scene conversion of experiments/mitsuba_truth.py)
 import real_scene_breakdown as breakdown  # noqa: E402  (its default camera)
 
 import vsgl  # noqa: E402
@@ -45,12 +45,12 @@ def main() -> int:
     ap.add_argument("--repeats", type=int, default=8, help="draws per estimate (the resampled pick is random)")
     ap.add_argument("--variant", default="llvm_ad_rgb")
     a = ap.parse_args()
-    mi, dr = mitsuba_truth.load_mitsuba(a.variant)
+    mi, dr = mitsuba_bridge.load_mitsuba(a.variant)
     c = vsgl.scenes.corpus_scene(a.scene) if a.scene in vsgl.scenes.corpus_names() else None
     scene = c.scene if c else vsgl.scenes.load(a.scene)
     (light,) = scene.lights[:1]
     cam, eye, fwd, right, up = breakdown.default_camera(scene)
-    mscene, _, _, _ = mitsuba_truth.mitsuba_scene(mi, scene, cam, a.size, 1, 0.0)
+    mscene, _, _, _ = mitsuba_bridge.mitsuba_scene(mi, scene, cam, a.size, 1, 0.0)
     r = vsgl.Renderer(a.size, a.size)
     ref = r.render(scene, camera=cam, method="reference", rsm_size=a.rsm, aovs=["indirect_diffuse", "normal", "depth"])
     f = r.render(scene, camera=cam, method="vsgl", rsm_size=a.rsm, num_lights=16, capture_rsm=True, aovs=[])

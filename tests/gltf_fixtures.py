@@ -4,6 +4,11 @@ Every ``write_<name>(dirpath) -> pathlib.Path`` writes one scene (plus its ``.bi
 images) into ``dirpath`` and returns the path to load with ``vsgl.Scene.load(path)``.
 Use a fresh directory per fixture: several fixtures use the same auxiliary file names.
 
+This module holds the valid scenes and the tables; the building blocks (buffer, PNG and GLB
+encoders, the base quad and textured quad) are in ``gltf_writer``, and the files that load with
+a warning or must be refused are in ``gltf_hostile_fixtures``. Every writer of both is
+importable from here, so tests import this module only.
+
 * ``VALID``: name -> (writer, expected triangle count of ``scene.stats``).
 * ``WARNING_CASES``: name -> (writer, substring of one of ``scene.warnings``); these load.
 * ``HOSTILE``: name -> (writer, substring of the ``vsgl.SceneError`` message). The substring
@@ -12,7 +17,7 @@ Use a fresh directory per fixture: several fixtures use the same auxiliary file 
 
 Run ``python tests/gltf_fixtures.py --write DIR`` to write every fixture into its own
 subfolder of DIR, plus ``DIR/manifest.json`` describing them (used by the Rust test
-``python_fixtures_match_the_loader`` in ``crates/vsgl-core/tests/gltf_loader.rs``).
+``python_fixtures_match_the_loader`` in ``crates/vsgl-core/tests/gltf_hostile.rs``).
 """
 
 from __future__ import annotations
@@ -24,128 +29,47 @@ import os
 import pathlib
 import struct
 import sys
-import zlib
+
+# Re-exported: the tests take every writer (and `_quad`) from this module.
+from gltf_hostile_fixtures import (
+    write_absolute_uri,
+    write_accessor_out_of_bounds,
+    write_bad_glb_header,
+    write_huge_byte_length,
+    write_http_uri,
+    write_index_out_of_range,
+    write_invalid_json,
+    write_missing_texture,
+    write_node_cycle,
+    write_non_finite_position,
+    write_normal_map_without_uvs,
+    write_oversized_image,
+    write_parent_dir_uri,
+    write_points_primitive,
+    write_required_extension_not_used,
+    write_root_listed_twice,
+    write_root_with_a_parent,
+    write_texture_bomb,
+    write_truncated_buffer,
+    write_two_parents,
+    write_unsupported_required_extension,
+)
+from gltf_writer import (
+    QUAD_IDX,
+    QUAD_POS,
+    QUAD_UV,
+    _Bin,
+    _glb,
+    _png,
+    _png_pixels,
+    _quad,
+    _root,
+    _textured,
+    _write_json,
+    write_png_of_zeros,
+)
 
 __all__ = ["VALID", "WARNING_CASES", "HOSTILE", "HOSTILE_KEYWORDS", "write_all"]
-
-# Unit quad in z = 0, counter-clockwise seen from +z (normals +z).
-QUAD_POS = [0.0, 0.0, 0.0, 1.0, 0.0, 0.0, 1.0, 1.0, 0.0, 0.0, 1.0, 0.0]
-QUAD_UV = [0.0, 0.0, 1.0, 0.0, 1.0, 1.0, 0.0, 1.0]
-QUAD_IDX = [0, 1, 2, 0, 2, 3]
-
-
-# ------------------------------------------------------------------------------------------
-# Building blocks
-# ------------------------------------------------------------------------------------------
-
-
-class _Bin:
-    """One binary buffer with its bufferViews and accessors."""
-
-    def __init__(self) -> None:
-        self.data = bytearray()
-        self.views: list[dict] = []
-        self.accessors: list[dict] = []
-
-    def view(self, payload: bytes) -> int:
-        while len(self.data) % 4:
-            self.data.append(0)
-        self.views.append({"buffer": 0, "byteOffset": len(self.data), "byteLength": len(payload)})
-        self.data += payload
-        return len(self.views) - 1
-
-    def floats(self, values: list[float], type_: str, ncomp: int) -> int:
-        view = self.view(struct.pack(f"<{len(values)}f", *values))
-        acc = {"bufferView": view, "componentType": 5126, "count": len(values) // ncomp, "type": type_}
-        if type_ == "VEC3":
-            cols = [values[k::3] for k in range(3)]
-            if all(math.isfinite(v) for v in values):
-                acc["min"] = [min(c) for c in cols]
-                acc["max"] = [max(c) for c in cols]
-        self.accessors.append(acc)
-        return len(self.accessors) - 1
-
-    def indices(self, values: list[int]) -> int:
-        view = self.view(struct.pack(f"<{len(values)}H", *values))
-        self.accessors.append({"bufferView": view, "componentType": 5123, "count": len(values), "type": "SCALAR"})
-        return len(self.accessors) - 1
-
-
-def _root(b: _Bin, buffer: dict, **extra) -> dict:
-    root = {
-        "asset": {"version": "2.0", "generator": "vsgl tests/gltf_fixtures.py"},
-        "buffers": [buffer],
-        "bufferViews": b.views,
-        "accessors": b.accessors,
-    }
-    root.update(extra)
-    return root
-
-
-def _write_json(path: pathlib.Path, root: dict) -> pathlib.Path:
-    path.write_text(json.dumps(root, indent=1))
-    return path
-
-
-def _png_chunk(kind: bytes, payload: bytes) -> bytes:
-    """One PNG chunk: length, type, payload, CRC."""
-    body = kind + payload
-    return struct.pack(">I", len(payload)) + body + struct.pack(">I", zlib.crc32(body) & 0xFFFFFFFF)
-
-
-def _png(width: int, height: int, rgba: tuple[int, int, int, int], with_pixels: bool = True) -> bytes:
-    """An 8-bit RGBA PNG of one colour. Without pixels: the header plus a 16-byte IDAT, so
-    only a loader that decodes before checking the size would notice the missing pixels."""
-
-    out = b"\x89PNG\r\n\x1a\n" + _png_chunk(b"IHDR", struct.pack(">IIBBBBB", width, height, 8, 6, 0, 0, 0))
-    if with_pixels:
-        row = b"\x00" + bytes(rgba) * width
-        out += _png_chunk(b"IDAT", zlib.compress(row * height))
-    else:
-        out += _png_chunk(b"IDAT", zlib.compress(b"\x00" * 16))  # far too short for the header's size
-    return out + _png_chunk(b"IEND", b"")
-
-
-def _glb(root: dict, binary: bytes) -> bytes:
-    j = json.dumps(root).encode()
-    j += b" " * (-len(j) % 4)
-    b = bytes(binary) + b"\x00" * (-len(binary) % 4)
-    total = 12 + 8 + len(j) + 8 + len(b)
-    return (
-        b"glTF"
-        + struct.pack("<II", 2, total)
-        + struct.pack("<I", len(j))
-        + b"JSON"
-        + j
-        + struct.pack("<I", len(b))
-        + b"BIN\x00"
-        + b
-    )
-
-
-def _quad(dirpath, *, uri="quad.bin", node=None, mode=None, indices=QUAD_IDX, positions=QUAD_POS,
-          byte_length=None, name="quad.gltf") -> pathlib.Path:
-    """Quad mesh on node 0 of scene 0, buffer written to ``quad.bin``."""
-    d = pathlib.Path(dirpath)
-    b = _Bin()
-    pos = b.floats(positions, "VEC3", 3)
-    prim = {"attributes": {"POSITION": pos}}
-    if indices is not None:
-        prim["indices"] = b.indices(indices)
-    if mode is not None:
-        prim["mode"] = mode
-    (d / "quad.bin").write_bytes(bytes(b.data))
-    n = {"mesh": 0, "name": "quad"}
-    n.update(node or {})
-    root = _root(
-        b,
-        {"uri": uri, "byteLength": len(b.data) if byte_length is None else byte_length},
-        meshes=[{"name": "quad", "primitives": [prim]}],
-        nodes=[n],
-        scenes=[{"nodes": [0]}],
-        scene=0,
-    )
-    return _write_json(d / name, root)
 
 
 # ------------------------------------------------------------------------------------------
@@ -192,53 +116,6 @@ def write_data_uri(dirpath) -> pathlib.Path:
         nodes=[{"mesh": 0}],
     )
     return _write_json(pathlib.Path(dirpath) / "data_uri.gltf", root)
-
-
-def _textured(dirpath, *, with_uvs=True, missing_image=False, huge_image=False, normal_map=True) -> pathlib.Path:
-    d = pathlib.Path(dirpath)
-    (d / "tex").mkdir(exist_ok=True)
-    (d / "base color.png").write_bytes(_png(4, 2, (255, 0, 0, 255)))
-    if huge_image:
-        # A PNG header claiming 20000 x 20000: must be refused before decoding.
-        (d / "mr.png").write_bytes(_png(20000, 20000, (0, 0, 0, 255), with_pixels=False))
-    elif not missing_image:
-        (d / "mr.png").write_bytes(_png(2, 2, (0, 128, 255, 255)))
-    (d / "tex" / "normal.png").write_bytes(_png(2, 2, (128, 128, 255, 255)))
-    b = _Bin()
-    attributes = {"POSITION": b.floats(QUAD_POS, "VEC3", 3)}
-    if with_uvs:
-        attributes["TEXCOORD_0"] = b.floats(QUAD_UV, "VEC2", 2)
-    idx = b.indices(QUAD_IDX)
-    (d / "tex.bin").write_bytes(bytes(b.data))
-    root = _root(
-        b,
-        {"uri": "tex.bin", "byteLength": len(b.data)},
-        images=[{"uri": "base%20color.png"}, {"uri": "mr.png"}, {"uri": "tex/normal.png"}],
-        textures=[{"source": 0}, {"source": 1}, {"source": 2}],
-        materials=[{
-            "name": "painted",
-            "pbrMetallicRoughness": {
-                "baseColorFactor": [1.0, 0.5, 0.25, 1.0],
-                "baseColorTexture": {"index": 0},
-                "metallicFactor": 0.25,
-                "roughnessFactor": 0.75,
-                "metallicRoughnessTexture": {"index": 1},
-            },
-            **({"normalTexture": {"index": 2, "scale": 0.5}} if normal_map else {}),
-        }],
-        meshes=[{"primitives": [{"attributes": attributes, "indices": idx, "material": 0}]}],
-        nodes=[{"mesh": 0}],
-        scenes=[{"nodes": [0]}],
-    )
-    return _write_json(d / "textured.gltf", root)
-
-
-def _png_pixels(width: int, height: int, pixel) -> bytes:
-    """An 8-bit RGBA PNG whose texel (x, y) is ``pixel(x, y)`` (an RGBA tuple)."""
-
-    rows = b"".join(b"\x00" + b"".join(bytes(pixel(x, y)) for x in range(width)) for y in range(height))
-    return (b"\x89PNG\r\n\x1a\n" + _png_chunk(b"IHDR", struct.pack(">IIBBBBB", width, height, 8, 6, 0, 0, 0))
-            + _png_chunk(b"IDAT", zlib.compress(rows)) + _png_chunk(b"IEND", b""))
 
 
 # The texture transform of ``write_texture_transform``: KHR_texture_transform's offset,
@@ -435,38 +312,6 @@ def write_emissive_glb(dirpath) -> pathlib.Path:
     return path
 
 
-def write_png_of_zeros(path, side: int, channels: int = 1) -> pathlib.Path:
-    """A valid 8-bit PNG of ``side`` x ``side`` black pixels (1 channel: grey, 3: RGB, 4: RGBA).
-    Zeros compress about 200:1 at zlib level 1, so a 16384² grey image is a file of about a
-    megabyte that decodes to 256 MiB (1 GiB as RGBA8): a decompression bomb. Rows are fed to
-    zlib one block at a time, so writing it never holds the raw image in memory."""
-    colour_type = {1: 0, 3: 2, 4: 6}[channels]
-
-    z = zlib.compressobj(1)
-    rows_per_block = 64
-    block = bytes((1 + side * channels) * rows_per_block)  # filter byte 0 + pixels, per row
-    idat = []
-    for start in range(0, side, rows_per_block):
-        n = min(rows_per_block, side - start)
-        idat.append(z.compress(block if n == rows_per_block else block[: (1 + side * channels) * n]))
-    idat.append(z.flush())
-    path = pathlib.Path(path)
-    path.write_bytes(
-        b"\x89PNG\r\n\x1a\n"
-        + _png_chunk(b"IHDR", struct.pack(">IIBBBBB", side, side, 8, colour_type, 0, 0, 0))
-        + _png_chunk(b"IDAT", b"".join(idat))
-        + _png_chunk(b"IEND", b"")
-    )
-    return path
-
-
-def write_texture_bomb(dirpath, side: int = 16384, channels: int = 1) -> pathlib.Path:
-    """`write_textured` whose metallicRoughness image ``mr.png`` is ``write_png_of_zeros``."""
-    path = _textured(dirpath)
-    write_png_of_zeros(pathlib.Path(dirpath) / "mr.png", side, channels)
-    return path
-
-
 def write_textured(dirpath) -> pathlib.Path:
     """Quad with UVs, no NORMAL/TANGENT; baseColor + metallicRoughness + normal PNG textures.
     The loader generates normals (+z) and tangents (+x, w = +1)."""
@@ -601,149 +446,6 @@ def write_animation_times_not_increasing(dirpath) -> pathlib.Path:
 def write_animation_nan_output(dirpath) -> pathlib.Path:
     """A NaN in the translation keyframes."""
     return _animated(dirpath, translations=[0.0, 0.0, 0.0, float("nan"), 0.0, 0.0, 2.0, 4.0, 0.0])
-
-
-# ------------------------------------------------------------------------------------------
-# Loads, with a warning
-# ------------------------------------------------------------------------------------------
-
-
-def write_points_primitive(dirpath) -> pathlib.Path:
-    """mode 0 (POINTS): skipped with a warning naming meshes[0].primitives[0]; 0 triangles."""
-    return _quad(dirpath, mode=0, indices=None)
-
-
-def write_normal_map_without_uvs(dirpath) -> pathlib.Path:
-    """Normal-mapped material on a primitive without TEXCOORD_0: normal map dropped."""
-    return _textured(dirpath, with_uvs=False)
-
-
-# ------------------------------------------------------------------------------------------
-# Hostile and malformed files: each must raise vsgl.SceneError
-# ------------------------------------------------------------------------------------------
-
-
-def write_truncated_buffer(dirpath) -> pathlib.Path:
-    """quad.bin is 5 bytes shorter than the buffer's byteLength."""
-    d = pathlib.Path(dirpath)
-    path = _quad(d)
-    data = (d / "quad.bin").read_bytes()
-    (d / "quad.bin").write_bytes(data[:-5])
-    return path
-
-
-def write_accessor_out_of_bounds(dirpath) -> pathlib.Path:
-    """POSITION accessor count 5 in a bufferView that holds 4 VEC3."""
-    path = _quad(dirpath)
-    root = json.loads(path.read_text())
-    root["accessors"][0]["count"] = 5
-    return _write_json(path, root)
-
-
-def write_index_out_of_range(dirpath) -> pathlib.Path:
-    """Index 7 with 4 vertices."""
-    return _quad(dirpath, indices=[0, 1, 2, 0, 2, 7])
-
-
-def write_parent_dir_uri(dirpath) -> pathlib.Path:
-    """Buffer URI "../outside.bin" (the target exists, outside the scene folder)."""
-    d = pathlib.Path(dirpath)
-    scene_dir = d / "scene"
-    scene_dir.mkdir(exist_ok=True)
-    path = _quad(scene_dir, uri="../outside.bin")
-    (d / "outside.bin").write_bytes((scene_dir / "quad.bin").read_bytes())
-    return path
-
-
-def write_absolute_uri(dirpath) -> pathlib.Path:
-    return _quad(dirpath, uri="/etc/passwd")
-
-
-def write_http_uri(dirpath) -> pathlib.Path:
-    return _quad(dirpath, uri="http://example.com/quad.bin")
-
-
-def write_missing_texture(dirpath) -> pathlib.Path:
-    """images[1] ("mr.png") does not exist."""
-    return _textured(dirpath, missing_image=True)
-
-
-def write_oversized_image(dirpath) -> pathlib.Path:
-    """images[1] is a PNG whose header claims 20000 x 20000 pixels (almost no pixel data)."""
-    return _textured(dirpath, huge_image=True)
-
-
-def write_invalid_json(dirpath) -> pathlib.Path:
-    path = pathlib.Path(dirpath) / "invalid.gltf"
-    path.write_text('{"asset": {"version": "2.0"}, "nodes": [')
-    return path
-
-
-def write_node_cycle(dirpath) -> pathlib.Path:
-    """nodes 0 -> 1 -> 2 -> 0: every node has exactly one parent."""
-    path = _quad(dirpath)
-    root = json.loads(path.read_text())
-    root["nodes"] = [{"children": [1]}, {"children": [2]}, {"children": [0], "mesh": 0}]
-    return _write_json(path, root)
-
-
-def write_two_parents(dirpath) -> pathlib.Path:
-    """nodes[1] is a child of both nodes[0] and nodes[2]."""
-    path = _quad(dirpath)
-    root = json.loads(path.read_text())
-    root["nodes"] = [{"children": [1]}, {"mesh": 0}, {"children": [1]}]
-    root["scenes"] = [{"nodes": [0, 2]}]
-    return _write_json(path, root)
-
-
-def write_huge_byte_length(dirpath) -> pathlib.Path:
-    """byteLength 10**15: must fail at once, without allocating."""
-    return _quad(dirpath, byte_length=10**15)
-
-
-def write_non_finite_position(dirpath) -> pathlib.Path:
-    pos = list(QUAD_POS)
-    pos[4] = float("nan")
-    return _quad(dirpath, positions=pos)
-
-
-def write_bad_glb_header(dirpath) -> pathlib.Path:
-    """A GLB whose header declares a length of 4 bytes (less than the header itself)."""
-    path = pathlib.Path(dirpath) / "bad.glb"
-    path.write_bytes(b"glTF" + struct.pack("<II", 2, 4))
-    return path
-
-
-def write_unsupported_required_extension(dirpath) -> pathlib.Path:
-    path = _quad(dirpath)
-    root = json.loads(path.read_text())
-    root["extensionsUsed"] = root["extensionsRequired"] = ["KHR_draco_mesh_compression"]
-    return _write_json(path, root)
-
-
-def write_root_listed_twice(dirpath) -> pathlib.Path:
-    """scenes[0].nodes lists nodes[0] twice (glTF requires unique root nodes)."""
-    path = _quad(dirpath)
-    root = json.loads(path.read_text())
-    root["scenes"] = [{"nodes": [0, 0]}]
-    return _write_json(path, root)
-
-
-def write_root_with_a_parent(dirpath) -> pathlib.Path:
-    """scenes[0].nodes lists nodes[1], a child of nodes[0] (a scene must list root nodes)."""
-    path = _quad(dirpath)
-    root = json.loads(path.read_text())
-    root["nodes"] = [{"children": [1]}, {"mesh": 0}]
-    root["scenes"] = [{"nodes": [0, 1]}]
-    return _write_json(path, root)
-
-
-def write_required_extension_not_used(dirpath) -> pathlib.Path:
-    """extensionsRequired names an extension that extensionsUsed does not list."""
-    path = _quad(dirpath)
-    root = json.loads(path.read_text())
-    root["extensionsRequired"] = ["KHR_mesh_quantization"]
-    return _write_json(path, root)
 
 
 # ------------------------------------------------------------------------------------------
