@@ -17,6 +17,7 @@ SMALL = {
     "vpl": dict(shadow_size=64, num_lights=16, rsm_size=32),
     "vsgl": dict(shadow_size=64, num_lights=16, rsm_size=32),
     "vsgl2": dict(shadow_size=64, rsm_size=32),
+    "lpv": dict(shadow_size=64, rsm_size=32, lpv_grid=8),
     "reference": dict(shadow_size=64, rsm_size=32),
     "pathtrace": dict(spp=2),
 }
