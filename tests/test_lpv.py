@@ -126,3 +126,18 @@ def test_asking_for_the_volumes_of_another_method_says_how_to_get_them(renderer)
     frame = renderer.render(vsgl.scenes.cornell_box(), method="vpl")
     with pytest.raises(vsgl.ArgumentError, match="capture_lpv"):
         frame.lpv("total")
+
+
+def test_one_iteration_leaves_the_geometry_volume_out_and_plan_full_builds_it_to_the_same_image(renderer):
+    # Occlusion applies from the second propagation step on, so with one step the volume is
+    # never read: left out, and plan="full" (nothing left out) gives the same light.
+    scene = vsgl.scenes.cornell_box()
+    auto = renderer.render(scene, method="lpv", rsm_size=64, lpv_iterations=1, aovs=["indirect_diffuse"])
+    full = renderer.render(scene, method="lpv", rsm_size=64, lpv_iterations=1, plan="full", aovs=["indirect_diffuse"])
+    assert "lpv_geometry" in auto.skipped and "lpv_geometry" not in [p.split("[")[0] for p in auto.passes]
+    assert "lpv_geometry" in [p.split("[")[0] for p in full.passes]
+    assert auto.memory_bytes["lpv_geometry_volume_buffer"] == 16
+    # Injection adds floats in no fixed order: equal to rounding.
+    np.testing.assert_allclose(full.aov("indirect_diffuse"), auto.aov("indirect_diffuse"), rtol=1e-5, atol=1e-7 * float(auto.aov("indirect_diffuse").max()))
+    two = renderer.render(scene, method="lpv", rsm_size=64, lpv_iterations=2)
+    assert "lpv_geometry" in [p.split("[")[0] for p in two.passes]

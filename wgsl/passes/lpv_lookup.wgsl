@@ -5,9 +5,12 @@
 // product of L's SH with the clamped cosine about −n (common/lpv.wgsl), clamped at 0 (two bands
 // ring), and the pixel reflects R_d/π·E.
 // The volume is read trilinearly (cell centres, clamped to the grid's edge) at the receiver
-// moved half a cell along its normal, as the injection moved the emitters (the shift
-// keeps a wall from reading the cell behind it). With several cascades the finest that holds
-// the point is used, blended into the next coarser one over its two outermost cells.
+// itself. Moving the lookup half a cell along the normal, as the injection moves the emitters,
+// was measured worse on every scene tried (block error, diffuse Cornell box 1.21 against 1.05
+// here; docs/methods/lpv.md, "Where the lookup reads"): it reads the cell a surface injected
+// its own light into, whose lobe, pointing away, cancels the light arriving. With several
+// cascades the finest that holds the point is used, blended into the next coarser one over its
+// two outermost cells.
 // Specular receivers get nothing: two SH bands hold no glossy light (the papers compare LPVs
 // on diffuse paths only).
 #include "common/constants.wgsl"
@@ -66,7 +69,7 @@ fn main(@builtin(global_invocation_id) gid: vec3u) {
     var e = vec3f(0.0);
     for (var c = 0u; c < grid.cascade_count; c++) {
         let g = grid.cascades[c];
-        let u = (rcv.p + 0.5 * g.w * rcv.n - g.xyz) / g.w;
+        let u = (rcv.p - g.xyz) / g.w;
         if (c == 0u) {
             e = cascade_irradiance(c, u, rcv.n);
             continue;

@@ -23,6 +23,12 @@ pub struct LpvGridRaw {
     pub _pad: [u32; 2],
 }
 
+/// Empty cells below the scene's bounds in cascade 0: one, plus (√5 − 1)/4, a fraction that no
+/// simple ratio of the bounds maps onto a cell boundary.
+pub const LOW_MARGIN_CELLS: f64 = 1.309_016_994_374_947_4;
+/// Empty cells above them.
+pub const HIGH_MARGIN_CELLS: f64 = 1.25;
+
 /// One cascade in world space.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Cascade {
@@ -32,9 +38,14 @@ pub struct Cascade {
 
 /// The cascades' grids for a scene whose bounds are `anchor ± half_size`, seen from `eye`.
 ///
-/// Cascade 0 holds the whole scene: a cube over the bounds' largest side with one empty cell
-/// on every side, so that injection (half a cell along the normal) and the lookup's trilinear
-/// reads at walls on the bounds stay inside. Each further cascade has half the side of the one
+/// Cascade 0 holds the whole scene: a cube over the bounds' largest side with more than one
+/// empty cell on every side, so that injection (half a cell along the normal) and the lookup's
+/// trilinear reads at walls on the bounds stay inside. The margins are unequal and not whole
+/// or half cells ([`LOW_MARGIN_CELLS`], [`HIGH_MARGIN_CELLS`]): with whole-cell margins the
+/// centre plane of a symmetric scene and the quarter planes of many lie exactly on cell
+/// boundaries, where a texel's cell is decided by rounding, so scaling or moving the scene
+/// moved light from cell to cell (the scene stability suite saw 0.4–11% on the furnished room
+/// and the atrium). Each further cascade has half the side of the one
 /// before, the same cell count, and is centred on the eye [Kaplanyan & Dachsbacher 2010:
 /// nested grids around the viewer], snapped to its own cells (counted from cascade 0's corner) (so a moving camera does not make
 /// the injected light swim) and kept inside cascade 0.
@@ -42,8 +53,8 @@ pub fn place_cascades(anchor: DVec3, half_size: DVec3, eye: DVec3, side: u32, co
     let n = side as f64;
     // A scene without extent (a point) still gets a grid of positive size.
     let largest = (2.0 * half_size.max_element()).max(f64::MIN_POSITIVE.sqrt());
-    let outer = largest * n / (n - 2.0);
-    let outer_min = anchor - DVec3::splat(outer / 2.0);
+    let outer = largest * n / (n - LOW_MARGIN_CELLS - HIGH_MARGIN_CELLS);
+    let outer_min = anchor - DVec3::splat(largest / 2.0 + LOW_MARGIN_CELLS * outer / n);
     let mut cascades = vec![Cascade { min: outer_min, cell: outer / n }];
     for c in 1..count {
         let extent = outer / f64::from(1u32 << c);
@@ -116,8 +127,9 @@ mod tests {
         let (anchor, half) = (DVec3::new(1.0, 2.0, 3.0), DVec3::new(2.0, 1.0, 0.5));
         let c = place_cascades(anchor, half, DVec3::new(2.5, 2.0, 3.0), 32, 3);
         assert_eq!(c.len(), 3);
-        // 4 units over 30 inner cells.
-        assert!((c[0].cell - 4.0 / 30.0).abs() < 1e-12);
+        // 4 units over the cells the margins leave.
+        assert!((c[0].cell - 4.0 / (32.0 - LOW_MARGIN_CELLS - HIGH_MARGIN_CELLS)).abs() < 1e-12);
+        assert!(((anchor - half - c[0].min) / c[0].cell - DVec3::splat(LOW_MARGIN_CELLS)).abs().max_element() < 1e-9);
         let outer_max = c[0].min + DVec3::splat(32.0 * c[0].cell);
         assert!((anchor - half - c[0].min).min_element() >= c[0].cell - 1e-12);
         assert!((outer_max - (anchor + half)).min_element() >= c[0].cell - 1e-12);

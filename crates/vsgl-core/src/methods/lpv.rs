@@ -44,7 +44,7 @@ const OPTIONS: &[OptionSpec] = &[
         name: "lpv_occlusion",
         kind: OptionKind::Bool,
         default: OptionValue::Bool(true),
-        help: "attenuate propagation by a geometry volume of the RSM texels' blocking potentials (left out where nothing can block: a convex room)",
+        help: "attenuate propagation (from the second iteration on) by a geometry volume of the RSM texels' blocking potentials",
         note: "",
     },
     OptionSpec {
@@ -93,12 +93,13 @@ impl Method for Lpv {
             return Ok(());
         }
         let (inject, geometry, propagate, lookup) = (ctx.passes.get::<LpvInjectPass>()?, ctx.passes.get::<LpvGeometryPass>()?, ctx.passes.get::<LpvPropagatePass>()?, ctx.passes.get::<LpvLookupPass>()?);
-        // Nothing can stand between two points of a convex shell: no geometry volume.
-        let convex = ctx.gpu_scene.convex_shell(ctx.scene);
-        let occlusion = self.occlusion && self.iterations > 1 && (!convex || ctx.plan_full);
+        // Occlusion applies from the second iteration on: with fewer the geometry volume is
+        // never read. (A convex room has no occluders either, but there the volume is not a
+        // no-op: its two-band lobes also block light running along a lit wall, so leaving it
+        // out would change the image, which a leave-out must not; docs/methods/lpv.md.)
+        let occlusion = self.occlusion && (self.iterations > 1 || ctx.plan_full);
         if self.occlusion && !occlusion {
-            let why = if self.iterations <= 1 { "one propagation iteration or none: occlusion applies from the second on" } else { "the scene's surfaces lie on their convex hull, so nothing between two of them blocks light" };
-            ctx.skip("lpv_geometry", why);
+            ctx.skip("lpv_geometry", "one propagation iteration or none: occlusion applies from the second on");
         }
         let cascades = place_cascades(anchor, half_size, ctx.origin, self.side, self.cascades);
         let grid = ctx.rec.uniform("lpv_grid_uniform_buffer", &grid_raw(&cascades, ctx.origin, self.side));
