@@ -14,7 +14,8 @@ use std::time::Instant;
 use vsgl_core::gpu::{storage_buffer, FrameResources, Gpu, PassTimer, Recorder};
 use vsgl_core::frame::Rsm;
 use vsgl_core::passes::vsgl_gen::VSGL_BYTES;
-use vsgl_core::passes::vsgl2_reduce::{ReducedLight, Vsgl2Reduce, Vsgl2Reduction, VSGL2_COUNT};
+use vsgl_core::frame::RsmLight;
+use vsgl_core::passes::vsgl2_reduce::{Vsgl2Reduce, Vsgl2Reduction, VSGL2_COUNT};
 use vsgl_core::plan::ShaderFeatures;
 use vsgl_core::rng::SplitMix64;
 
@@ -51,7 +52,7 @@ fn time_sample(gpu: &Gpu, reduce: &Vsgl2Reduce, rsm: &Rsm, out: &wgpu::Buffer, r
     let mut resources = FrameResources::default();
     let mut rec = Recorder::new(gpu, &mut timer, &mut resources);
     for _ in 0..repeats {
-        reduce.record(&mut rec, rsm, &ReducedLight { light_offset: [0.0; 3], light_dir: [0.0; 4], texel_footprint: [0.0; 4] }, out, features, reduction).expect("record the reduction");
+        reduce.record(&mut rec, rsm, &RsmLight::default(), out, features, reduction).expect("record the reduction");
     }
     let commands = rec.finish().finish();
     let start = Instant::now();

@@ -9,7 +9,7 @@ pub mod shading_visibility;
 pub mod targets;
 pub mod uniforms;
 
-pub use rsm::{pyramid_layout, MomentChains, Rsm};
+pub use rsm::{pyramid_layout, MomentChains, Rsm, RsmLight};
 pub use shading_inputs::{ShadingInputs, VirtualLightList};
 pub use shading_visibility::{IsmLookupRaw, ShadingVisibility};
 pub use targets::{GBuffer, IndirectTargets, VisibilityTargets};

@@ -21,6 +21,17 @@ pub fn pyramid_layout(size: u32) -> (Vec<u32>, u32) {
     (offsets, offset)
 }
 
+/// The light an RSM was rendered from, as the passes that read its texels need it.
+#[derive(Clone, Copy, Debug, Default)]
+pub struct RsmLight {
+    /// The light's position relative to the frame origin (RSM positions are relative to it).
+    pub offset: [f32; 3],
+    /// [`LightRaw::rsm_light_dir`](super::uniforms::LightRaw::rsm_light_dir).
+    pub dir: [f32; 4],
+    /// `LightRsm::texel_footprint`, or zeros for texels taken as points.
+    pub texel_footprint: [f32; 4],
+}
+
 /// The per-texel RSM data: the light-view G-buffer plus flux and the weight pyramid.
 pub struct Rsm {
     pub size: u32,

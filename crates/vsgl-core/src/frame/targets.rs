@@ -51,6 +51,8 @@ pub struct GBuffer {
     /// keeps the bind group layouts (the material pass then compiles the write out).
     pub emission: wgpu::Buffer,
     pub has_emission: bool,
+    /// Width and height in texels (what the passes writing it dispatch over).
+    pub size: (u32, u32),
 }
 
 impl GBuffer {
@@ -85,6 +87,7 @@ impl GBuffer {
             base_color: make("gbuffer_base_color_buffer", texels),
             emission: make("gbuffer_emission_buffer", if emission { texels } else { 16 }),
             has_emission: emission,
+            size: (width, height),
         }
     }
 }

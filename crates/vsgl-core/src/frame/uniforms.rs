@@ -207,8 +207,7 @@ pub fn camera_view_proj(cam: &Camera, anchor: DVec3, aspect: f64, extent: f64) -
 /// positions are relative to) is the eye; uploaded vertices are relative to `anchor`, so
 /// `view_proj` takes anchor-relative positions and `view_origin` is the eye's offset from the
 /// anchor (the material pass subtracts it).
-#[allow(clippy::too_many_arguments)]
-pub fn frame_uniforms(cam: &Camera, anchor: DVec3, width: u32, height: u32, lights: u32, layer: u32, extent: f64, shadow_size: u32) -> FrameUniforms {
+pub fn frame_uniforms(cam: &Camera, anchor: DVec3, (width, height): (u32, u32), lights: u32, layer: u32, extent: f64, shadow_size: u32) -> FrameUniforms {
     let aspect = width as f64 / height as f64;
     let t = (cam.fov_y as f64 * 0.5).tan();
     let right = cam.forward.cross(cam.up).normalize();

@@ -18,7 +18,7 @@ use super::choices::ImportanceChoice;
 use super::rsm_lights::LightRsm;
 use super::FrameContext;
 use crate::error::Result;
-use crate::frame::{pyramid_layout, MomentChains};
+use crate::frame::{pyramid_layout, MomentChains, RsmLight, VirtualLightList};
 use crate::passes::brsm_importance::BrsmImportancePass;
 use crate::passes::brsm_importance_filter::BrsmImportanceFilterPass;
 use crate::passes::brsm_mix::BrsmMixPass;
@@ -74,7 +74,7 @@ impl ViewImportance {
         pdf_mips.record_pyramid(rec, "brsm_view_mips", side, &grid.pyramid);
         let chains = MomentChains::labelled(rec, "brsm_view_moment_chain_buffer", side, false);
         // The eye is the grid's "light": positions relative to it (light_dir w = 0).
-        moments.record_as(rec, "brsm_view_moments", &grid, &chains, [0.0; 4], [0.0; 4], features);
+        moments.record_as(rec, "brsm_view_moments", &grid, &RsmLight::default(), &chains, features);
         moment_mips.record_as(rec, "brsm_view_mips", side, &chains);
         let vsgls = rec.storage("brsm_view_vsgl_buffer", count as u64 * VSGL_BYTES);
         // The 2016 paper's generation (integral kernel, K = 1, 12 bisection steps, Fibonacci
@@ -96,10 +96,10 @@ impl ViewImportance {
         let pyramid = rec.storage_written("brsm_pdf_pyramid_buffer", pyramid_layout(size).1 as u64 * 4);
         if self.interleave > 1 {
             let interleaved = rec.storage_written("brsm_interleaved_importance_buffer", size as u64 * size as u64 * 4);
-            importance.record(rec, light.light.as_entire_binding(), light.rsm, &self.vsgls, self.count, self.interleave, &interleaved, ctx.features);
+            importance.record(rec, light.light.as_entire_binding(), light.rsm, VirtualLightList { records: &self.vsgls, count: self.count, interleave: self.interleave }, &interleaved, ctx.features);
             filter.record(rec, light.rsm, self.interleave, &interleaved, &pyramid);
         } else {
-            importance.record(rec, light.light.as_entire_binding(), light.rsm, &self.vsgls, self.count, 1, &pyramid, ctx.features);
+            importance.record(rec, light.light.as_entire_binding(), light.rsm, VirtualLightList { records: &self.vsgls, count: self.count, interleave: 1 }, &pyramid, ctx.features);
         }
         pdf_mips.record_pyramid(rec, "brsm_pdf_mips", size, &pyramid);
         mix.record(rec, light.rsm, &pyramid);

@@ -8,7 +8,7 @@ use super::rsm_lights::{check_rsm_size, for_each_light, RsmSettings};
 use super::{options::common, DirectLight, FrameContext, Method, MethodInfo, OptionKind, OptionSpec, OptionValue, Options};
 use crate::error::Result;
 use crate::frame::lpv::{grid_raw, place_cascades, Cascade, LpvVolumes, MAX_CASCADES};
-use crate::passes::lpv_geometry::{LpvGeometryPass, SurfelSource};
+use crate::passes::lpv_geometry::LpvGeometryPass;
 use crate::passes::lpv_inject::LpvInjectPass;
 use crate::passes::lpv_lookup::LpvLookupPass;
 use crate::passes::lpv_propagate::LpvPropagatePass;
@@ -107,8 +107,7 @@ impl Method for Lpv {
         let lit = for_each_light(ctx, &self.rsm, |ctx, light| {
             inject.record(&mut ctx.rec, &grid, light.rsm, light.raw.position, &volumes.current);
             if occlusion {
-                let surfels = SurfelSource { light_offset: light.raw.position, light_dir: light.raw.rsm_light_dir(), texel_footprint: light.texel_footprint() };
-                geometry.record(&mut ctx.rec, &grid, light.rsm, &surfels, &volumes.geometry);
+                geometry.record(&mut ctx.rec, &grid, light.rsm, &light.rsm_light(), &volumes.geometry);
             }
             Ok(())
         })?;

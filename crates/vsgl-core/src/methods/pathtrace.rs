@@ -69,8 +69,10 @@ impl Method for PathTrace {
             stop: ctx.stop,
             time_budget_s: (self.time_budget_s > 0.0).then_some(self.time_budget_s),
             strategy: self.strategy,
+            spp: self.spp,
+            seed: self.seed,
         };
-        let out = pass.record(&mut ctx.rec, &input, ctx.indirect, ctx.direct, self.spp, self.seed, ctx.size)?;
+        let out = pass.record(&mut ctx.rec, &input, ctx.indirect, ctx.direct, ctx.size)?;
         ctx.settings.push(("spp_done".into(), out.spp_done.into()));
         if !out.bvh_built {
             ctx.skip("bvh_build", "the BVH built for this scene upload is reused");

@@ -12,7 +12,7 @@ use crate::setting::Setting;
 use crate::frame::{Rsm, VisibilityTargets};
 use crate::gpu::{kept_staging_buffer, read_staging};
 use std::sync::Arc;
-use crate::passes::{material::MaterialPass, pdf_mips::PdfMipsPass, rsm_flux::RsmFluxPass, visibility::VisibilityPass};
+use crate::passes::{material::{MaterialPass, RasterView}, pdf_mips::PdfMipsPass, rsm_flux::RsmFluxPass, visibility::VisibilityPass};
 
 /// How the RSMs of a frame are made.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -99,6 +99,11 @@ pub struct LightRsm<'a> {
 }
 
 impl LightRsm<'_> {
+    /// The light as the passes that read this RSM's texels need it.
+    pub fn rsm_light(&self) -> crate::frame::RsmLight {
+        crate::frame::RsmLight { offset: self.raw.position, dir: self.raw.rsm_light_dir(), texel_footprint: self.texel_footprint() }
+    }
+
     /// What `vsgl_moments.wgsl` needs to give each RSM texel its area on the surface: for a
     /// perspective RSM (spot light, point light face) the view
     /// axis and t²·(2/N)², so that a texel at angle α to the axis spans the solid angle
@@ -133,11 +138,11 @@ impl RsmPasses {
     /// Renders `view` of the light in `light` into the shared RSM (`what`: the pass-name
     /// prefix, `rsm` or `rsm_power`).
     fn record(&self, ctx: &mut FrameContext<'_>, what: &str, view: &crate::frame::uniforms::FrameUniforms, light: &wgpu::Buffer) {
-        let n = self.rsm.size;
         let view_buf = ctx.rec.uniform("rsm_view_uniform_buffer", view);
         let gs = ctx.gpu_scene;
         self.visibility.record(&mut ctx.rec, &format!("{what}_visibility"), &view_buf, &gs.raster_vertices, gs.raster_vertex_count, &self.visibility_targets);
-        self.material.record(&mut ctx.rec, &format!("{what}_material"), &view_buf, &self.visibility_targets.ids, gs, ctx.features, &self.rsm.gbuffer, (n, n));
+        let view = RasterView { label: &format!("{what}_material"), frame_uniforms: &view_buf, ids: &self.visibility_targets.ids };
+        self.material.record(&mut ctx.rec, &view, gs, ctx.features, &self.rsm.gbuffer);
         self.flux.record(&mut ctx.rec, &view_buf, light.as_entire_binding(), &self.rsm, ctx.features);
     }
 }

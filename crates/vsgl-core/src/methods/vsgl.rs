@@ -223,7 +223,7 @@ impl Method for Vsgl {
                 Some(view) => Some(view.pyramid(ctx, light)?),
                 None => None,
             };
-            moments.record(&mut ctx.rec, light.rsm, chains, light.raw.rsm_light_dir(), light.texel_footprint(), feat);
+            moments.record(&mut ctx.rec, light.rsm, &light.rsm_light(), chains, feat);
             moment_mips.record(&mut ctx.rec, self.rsm.size, chains);
             // This RSM's share of num_lights (split over lights and cube faces by reflected
             // power, `power_budgets`).

@@ -9,7 +9,7 @@ use super::{options::common, DirectLight, FrameContext, Method, MethodInfo, Opti
 use super::visibility::{VirtualLightVisibility, VisibilityMode, VSGL_RECORD_WORDS};
 use crate::error::Result;
 use crate::gpu::Gpu;
-use crate::passes::vsgl2_reduce::{ReducedLight, Vsgl2Reduce, Vsgl2Reduction, VSGL2_COUNT};
+use crate::passes::vsgl2_reduce::{Vsgl2Reduce, Vsgl2Reduction, VSGL2_COUNT};
 use crate::passes::vsgl_gen::VSGL_BYTES;
 use crate::frame::{ShadingInputs, VirtualLightList};
 use crate::passes::vsgl_shading::VsglShadingPass;
@@ -86,7 +86,7 @@ impl Method for Vsgl2 {
         let lit = for_each_light(ctx, &self.rsm, |ctx, light| {
             let feat = ctx.features;
             let buf = ctx.rec.storage("vsgl2_buffer", VSGL2_COUNT as u64 * VSGL_BYTES);
-            let reduced = ReducedLight { light_offset: light.raw.position, light_dir: light.raw.rsm_light_dir(), texel_footprint: light.texel_footprint() };
+            let reduced = light.rsm_light();
             reduce.record(&mut ctx.rec, light.rsm, &reduced, &buf, feat, reduction)?;
             vis.build_maps(ctx, &buf, VSGL2_COUNT, VSGL_RECORD_WORDS)?;
             let io = ShadingInputs { frame_uniforms: ctx.frame_uniforms, gbuffer: ctx.gbuffer, out: ctx.indirect, features: feat, size: ctx.size, visibility: &vis };

@@ -58,7 +58,6 @@ impl AovPackPass {
     /// Packs `entries` (at most [`MAX_ENTRIES`]) of a `size` frame into `out`, and counts into
     /// `counts` (zero before the pass) each entry's non-finite values, then the pixels that see
     /// a surface and those whose image is not black.
-    #[allow(clippy::too_many_arguments)]
     pub fn record(&self, rec: &mut Recorder<'_>, src: &PackSources<'_>, entries: &[PackEntry], out: &wgpu::Buffer, counts: &wgpu::Buffer, size: (u32, u32)) {
         let mut raw = PackParamsRaw {
             width: size.0,

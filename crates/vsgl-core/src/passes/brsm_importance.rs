@@ -3,7 +3,7 @@
 //! BRDF, an estimate of what it adds to the image.
 
 use crate::error::Result;
-use crate::frame::Rsm;
+use crate::frame::{Rsm, VirtualLightList};
 use crate::gpu::{interleaved_groups, Gpu, PipelineVariants, Recorder};
 use crate::plan::ShaderFeatures;
 
@@ -30,8 +30,8 @@ impl BrsmImportancePass {
     /// Writes level 0 of `importance` (a pyramid in the layout of `rsm.pyramid`) from the
     /// `count` view VSGLs in `view_vsgls`, each texel evaluating those of its class of the
     /// `interleave`² classes (k = 1: all); `light`: the RSM's light as its passes bind it.
-    #[allow(clippy::too_many_arguments)]
-    pub fn record(&self, rec: &mut Recorder<'_>, light: wgpu::BindingResource<'_>, rsm: &Rsm, view_vsgls: &wgpu::Buffer, count: u32, interleave: u32, importance: &wgpu::Buffer, features: ShaderFeatures) {
+    pub fn record(&self, rec: &mut Recorder<'_>, light: wgpu::BindingResource<'_>, rsm: &Rsm, view: VirtualLightList<'_>, importance: &wgpu::Buffer, features: ShaderFeatures) {
+        let VirtualLightList { records: view_vsgls, count, interleave } = view;
         let gpu = rec.gpu;
         let pipeline = self.pipelines.get(gpu, &features.specular_flags());
         let uniform = rec.uniform("brsm_importance_params_uniform_buffer", &ImportanceParamsRaw { rsm_size: rsm.size, count, interleave, _pad: 0 });

@@ -45,6 +45,7 @@ pub fn view_grid(rec: &mut Recorder<'_>, side: u32, specular: bool) -> Rsm {
         base_color: make("brsm_view_unused_buffer", 16),
         emission: make("brsm_view_unused_buffer", 16),
         has_emission: false,
+        size: (side, side),
     };
     Rsm {
         size: side,

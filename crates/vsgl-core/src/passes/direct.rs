@@ -7,6 +7,15 @@ use crate::plan::ShaderFeatures;
 
 use crate::shader_lib::constants::direct::WORKGROUP;
 
+/// The lights and the shadow maps the direct pass reads.
+#[derive(Clone, Copy)]
+pub struct ShadowMappedLights<'a> {
+    /// Every light of the frame (`LightRaw` records).
+    pub lights: &'a wgpu::Buffer,
+    /// Their shadow maps (one layer per spot or directional light, six per point light).
+    pub shadow_maps: &'a wgpu::TextureView,
+}
+
 pub struct DirectPass {
     pipelines: PipelineVariants,
     sampler: wgpu::Sampler,
@@ -28,18 +37,18 @@ impl DirectPass {
         Ok(Self { pipelines, sampler })
     }
 
-    #[allow(clippy::too_many_arguments)]
+    /// Direct light of `lit` at every pixel of `gbuffer`, into `out`.
     pub fn record(
         &self,
         rec: &mut Recorder<'_>,
         frame_uniforms: &wgpu::Buffer,
-        lights: &wgpu::Buffer,
-        shadow_maps: &wgpu::TextureView,
+        lit: &ShadowMappedLights<'_>,
         gbuffer: &GBuffer,
         out: &wgpu::Buffer,
         features: ShaderFeatures,
-        size: (u32, u32),
     ) {
+        let ShadowMappedLights { lights, shadow_maps } = *lit;
+        let size = gbuffer.size;
         let gpu = rec.gpu;
         let pipeline = &self.pipelines.get(gpu, &features.specular_flags());
         let frame_bind = rec.bind_group("direct_frame_bind_group", PipelineRef::Compute(pipeline), 0, &[frame_uniforms.as_entire_binding()]);

@@ -3,7 +3,7 @@
 //! the nearest light-volume corner in every cascade (`wgsl/passes/lpv_geometry.wgsl`).
 
 use crate::error::Result;
-use crate::frame::Rsm;
+use crate::frame::{Rsm, RsmLight};
 use crate::gpu::{groups, Gpu, PipelineVariants, Recorder};
 use crate::shader_lib::constants::lpv_geometry::WORKGROUP;
 
@@ -16,17 +16,6 @@ struct GeometryParamsRaw {
     texel_footprint: [f32; 4],
 }
 
-/// The light whose RSM surfels are injected, as the pass needs it.
-#[derive(Clone, Copy)]
-pub struct SurfelSource {
-    /// The light's position relative to the eye.
-    pub light_offset: [f32; 3],
-    /// [`LightRaw::rsm_light_dir`](crate::frame::uniforms::LightRaw::rsm_light_dir).
-    pub light_dir: [f32; 4],
-    /// `LightRsm::texel_footprint` of the RSM.
-    pub texel_footprint: [f32; 4],
-}
-
 pub struct LpvGeometryPass {
     pipelines: PipelineVariants,
 }
@@ -36,9 +25,9 @@ impl LpvGeometryPass {
         Ok(Self { pipelines: PipelineVariants::new(gpu, "passes/lpv_geometry.wgsl", "main")? })
     }
 
-    pub fn record(&self, rec: &mut Recorder<'_>, grid: &wgpu::Buffer, rsm: &Rsm, source: &SurfelSource, geometry_volume: &wgpu::Buffer) {
+    pub fn record(&self, rec: &mut Recorder<'_>, grid: &wgpu::Buffer, rsm: &Rsm, light: &RsmLight, geometry_volume: &wgpu::Buffer) {
         let pipeline = self.pipelines.get(rec.gpu, &[]);
-        let SurfelSource { light_offset, light_dir, texel_footprint } = *source;
+        let RsmLight { offset: light_offset, dir: light_dir, texel_footprint } = *light;
         let params = rec.uniform("lpv_geometry_params_uniform_buffer", &GeometryParamsRaw { light_offset, rsm_size: rsm.size, light_dir, texel_footprint });
         let g = groups(rsm.size, WORKGROUP);
         rec.compute(

@@ -13,6 +13,16 @@ use crate::upload::GpuScene;
 use crate::shader_lib::constants::material::WORKGROUP;
 
 
+/// The view whose visibility buffer the material pass resolves.
+#[derive(Clone, Copy)]
+pub struct RasterView<'a> {
+    /// The pass name in `frame.passes` (`material`, `rsm_material`, `rsm_power_material`).
+    pub label: &'a str,
+    pub frame_uniforms: &'a wgpu::Buffer,
+    /// The triangle ids the visibility pass rasterized.
+    pub ids: &'a wgpu::TextureView,
+}
+
 pub struct MaterialPass {
     pipelines: PipelineVariants,
     sampler: wgpu::Sampler,
@@ -32,18 +42,16 @@ impl MaterialPass {
         Ok(Self { pipelines: PipelineVariants::new(gpu, "passes/material.wgsl", "main")?, sampler })
     }
 
-    #[allow(clippy::too_many_arguments)]
     pub fn record(
         &self,
         rec: &mut Recorder<'_>,
-        label: &str,
-        frame_uniforms: &wgpu::Buffer,
-        ids: &wgpu::TextureView,
+        view: &RasterView<'_>,
         scene: &GpuScene,
         features: ShaderFeatures,
         gbuffer: &GBuffer,
-        size: (u32, u32),
     ) {
+        let RasterView { label, frame_uniforms, ids } = *view;
+        let size = gbuffer.size;
         let gpu = rec.gpu;
         // Emission follows the target, not the plan: only a G-buffer made with an emission
         // channel (the camera's, when some material emits) has one to write.

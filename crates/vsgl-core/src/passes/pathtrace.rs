@@ -74,6 +74,9 @@ pub struct PathTraceInputs<'a> {
     pub features: ShaderFeatures,
     /// Which paths estimate the indirect light.
     pub strategy: Strategy,
+    /// Samples per pixel, and the seed of their random numbers.
+    pub spp: u32,
+    pub seed: u32,
 }
 
 /// What one path-traced frame produced besides the indirect buffers and the direct buffer.
@@ -161,17 +164,15 @@ impl PathTracePass {
     /// pixel into `indirect` (means of the diffuse and specular parts) in batches, and resolves
     /// the standard error. Each batch after the first goes in its own submission, so no
     /// submission runs long (the recorder continues in a fresh encoder).
-    #[allow(clippy::too_many_arguments)]
     pub fn record(
         &self,
         rec: &mut Recorder<'_>,
         input: &PathTraceInputs,
         indirect: &IndirectTargets,
         direct_out: &wgpu::Buffer,
-        spp: u32,
-        seed: u32,
         size: (u32, u32),
     ) -> Result<PathTraceOutput> {
+        let (spp, seed) = (input.spp, input.seed);
         let gpu = rec.gpu;
         let (w, h) = size;
         let (bvh, bvh_built) = input.gscene.bvh(gpu, input.scene)?;

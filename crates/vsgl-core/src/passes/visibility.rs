@@ -48,7 +48,6 @@ impl VisibilityPass {
     }
 
 
-    #[allow(clippy::too_many_arguments)]
     pub fn record(
         &self,
         rec: &mut Recorder<'_>,

@@ -9,7 +9,7 @@
 //! buffers of 112 bytes per partial, ⌈n/8⌉² and ⌈⌈n/8⌉²/256⌉ partials (see [`Vsgl2Reduce::temporary_bytes`]).
 
 use crate::error::Result;
-use crate::frame::Rsm;
+use crate::frame::{Rsm, RsmLight};
 use crate::gpu::{groups, storage_binding, uniform_binding, Gpu, PipelineVariants, Recorder};
 use crate::plan::ShaderFeatures;
 
@@ -78,17 +78,6 @@ fn tile_partials(rsm_size: u32) -> u64 {
     t * t
 }
 
-/// The light whose RSM is reduced, as the sums need it.
-#[derive(Clone, Copy)]
-pub struct ReducedLight {
-    /// The light's position relative to the frame origin.
-    pub light_offset: [f32; 3],
-    /// [`LightRaw::rsm_light_dir`](crate::frame::uniforms::LightRaw::rsm_light_dir).
-    pub light_dir: [f32; 4],
-    /// `LightRsm::texel_footprint` of the RSM.
-    pub texel_footprint: [f32; 4],
-}
-
 impl Vsgl2Reduce {
     pub fn new(gpu: &Gpu) -> Result<Self> {
         Ok(Self { shared_memory: ReducePipelines::new(gpu, "passes/vsgl2_reduce.wgsl")?, subgroup: Default::default() })
@@ -130,8 +119,8 @@ impl Vsgl2Reduce {
 
     /// Records the reduction of `rsm` into `out` (two VSGL records, means relative to the
     /// frame origin) for the light `light` says.
-    pub fn record(&self, rec: &mut Recorder<'_>, rsm: &Rsm, light: &ReducedLight, out: &wgpu::Buffer, features: ShaderFeatures, reduction: Vsgl2Reduction) -> Result<()> {
-        let ReducedLight { light_offset, light_dir, texel_footprint } = *light;
+    pub fn record(&self, rec: &mut Recorder<'_>, rsm: &Rsm, light: &RsmLight, out: &wgpu::Buffer, features: ShaderFeatures, reduction: Vsgl2Reduction) -> Result<()> {
+        let RsmLight { offset: light_offset, dir: light_dir, texel_footprint } = *light;
         let gpu = rec.gpu;
         let pipelines = self.pipelines(gpu, reduction)?;
         let (tiles, merge) = (pipelines.tiles.get(gpu, &features.specular_flags()), pipelines.merge.get(gpu, &features.specular_flags()));

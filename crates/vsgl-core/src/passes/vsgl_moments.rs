@@ -3,7 +3,7 @@
 
 use crate::frame::MomentChains;
 use crate::error::Result;
-use crate::frame::Rsm;
+use crate::frame::{Rsm, RsmLight};
 use crate::gpu::{groups, Gpu, PipelineVariants, Recorder};
 use crate::plan::ShaderFeatures;
 
@@ -31,14 +31,15 @@ impl VsglMomentsPass {
         Ok(Self { pipelines: PipelineVariants::new(gpu, "passes/vsgl_moments.wgsl", "main")? })
     }
 
-    /// `light_dir`: [`LightRaw::rsm_light_dir`](crate::frame::uniforms::LightRaw::rsm_light_dir) of the RSM's light.
-    pub fn record(&self, rec: &mut Recorder<'_>, rsm: &Rsm, chains: &MomentChains, light_dir: [f32; 4], texel_footprint: [f32; 4], features: ShaderFeatures) {
-        self.record_as(rec, "vsgl_moments", rsm, chains, light_dir, texel_footprint, features);
+    /// The moments of `rsm`, rendered from `light`.
+    pub fn record(&self, rec: &mut Recorder<'_>, rsm: &Rsm, light: &RsmLight, chains: &MomentChains, features: ShaderFeatures) {
+        self.record_as(rec, "vsgl_moments", rsm, light, chains, features);
     }
 
-    /// As [`Self::record`], timed as `label`. `texel_footprint`: `LightRsm::texel_footprint`, or
-    /// zeros for point texels.
-    pub fn record_as(&self, rec: &mut Recorder<'_>, label: &str, rsm: &Rsm, chains: &MomentChains, light_dir: [f32; 4], texel_footprint: [f32; 4], features: ShaderFeatures) {
+    /// As [`Self::record`], timed as `label` (`RsmLight::default()`: texels taken as points, no
+    /// light direction).
+    pub fn record_as(&self, rec: &mut Recorder<'_>, label: &str, rsm: &Rsm, light: &RsmLight, chains: &MomentChains, features: ShaderFeatures) {
+        let RsmLight { dir: light_dir, texel_footprint, .. } = *light;
         let gpu = rec.gpu;
         let pipeline = self.pipelines.get(gpu, &features.specular_flags());
         let uniform = rec.uniform("vsgl_moments_params_uniform_buffer", &MomentParamsRaw { rsm_size: rsm.size, chain_len: chains.chain_len, planes: u32::from(chains.has_planes()), _pad: 0, light_dir, texel_footprint });

@@ -17,7 +17,7 @@ use crate::frame::{GBuffer, IndirectTargets, VisibilityTargets};
 use crate::gpu::frame_log::{log_frame, FrameLog};
 use crate::gpu::{kept_staging_buffer, read_staging, FrameResources, Gpu, PassCache, PassTimer, Recorder};
 use crate::methods::{options::common, DirectLight, FrameContext, Method, MethodInfo, OptionValue, Options};
-use crate::passes::{direct::DirectPass, material::MaterialPass, shadow_map::ShadowMapPass, visibility::VisibilityPass};
+use crate::passes::{direct::{DirectPass, ShadowMappedLights}, material::{MaterialPass, RasterView}, shadow_map::ShadowMapPass, visibility::VisibilityPass};
 use crate::plan::{Plan, ShaderFeatures};
 use crate::scene::{Camera, Scene};
 use crate::setting::Setting;
@@ -305,7 +305,7 @@ impl Renderer {
         let lights = light_raws(&scene.lights, origin, anchor, extent, shadow_size);
         // Shadow layers: one per spot or directional light, a cube of six per point light.
         let shadow_layers: u32 = scene.lights.iter().map(shadow_layer_count).sum();
-        let uniforms = frame_uniforms(camera, anchor, w, h, lights.len() as u32, gscene.texture_layer_size, extent, shadow_size);
+        let uniforms = frame_uniforms(camera, anchor, (w, h), lights.len() as u32, gscene.texture_layer_size, extent, shadow_size);
 
         // What the renderer keeps from frame to frame: targets, buffers, the timer's queries.
         let mut state = self.frame_state.lock().unwrap_or_else(|e| e.into_inner());
@@ -360,7 +360,7 @@ impl Renderer {
             skipped.push(("emission".into(), "no material in the scene is emissive: no emission channel, nothing added to the image".into()));
         }
         let gbuffer = GBuffer::with_emission(&mut rec, w, h, emission);
-        self.passes.get::<MaterialPass>()?.record(&mut rec, "material", &frame_buf, &vis.ids, &gscene, feat, &gbuffer, (w, h));
+        self.passes.get::<MaterialPass>()?.record(&mut rec, &RasterView { label: "material", frame_uniforms: &frame_buf, ids: &vis.ids }, &gscene, feat, &gbuffer);
 
         // Written for every pixel by the direct pass (or the path tracer's direct entry point).
         let direct_out = rec.storage_written("direct_radiance_buffer", w as u64 * h as u64 * 16);
@@ -370,7 +370,7 @@ impl Renderer {
                 dimension: Some(wgpu::TextureViewDimension::D2Array),
                 ..Default::default()
             });
-            self.passes.get::<DirectPass>()?.record(&mut rec, &frame_buf, &light_buf, &shadow_view, &gbuffer, &direct_out, feat, (w, h));
+            self.passes.get::<DirectPass>()?.record(&mut rec, &frame_buf, &ShadowMappedLights { lights: &light_buf, shadow_maps: &shadow_view }, &gbuffer, &direct_out, feat);
         }
 
         // Indirect targets; without specular materials the specular one is never bound for

@@ -41,7 +41,6 @@ const COUNTS_BYTES: u64 = (MAX_ENTRIES as u64 + 2) * 4;
 
 /// Records the packing of the AOVs `opts` asks for (all float AOVs the method makes when it
 /// names none) and their copy into the staging buffer `kept` (made or resized as needed).
-#[allow(clippy::too_many_arguments)]
 pub(super) fn record_aovs(rec: &mut Recorder<'_>, pack: &AovPackPass, opts: &RenderOptions, info: &MethodInfo, src: &PackSources<'_>, size: (u32, u32), kept: &mut Option<wgpu::Buffer>) -> PendingAovs {
     let pixels = size.0 as usize * size.1 as usize;
     let mut layout = Vec::new();

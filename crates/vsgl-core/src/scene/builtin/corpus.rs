@@ -244,7 +244,8 @@ pub fn atrium() -> Scene {
     add(&mut s, "curtains", Material::dielectric("silk", [0.6, 0.15, 0.2], 0.5), |b| {
         for k in 0..6 {
             let x0 = column_place(k, hx, hz).0 + 0.1;
-            b.curtain(DVec3::new(x0, 4.6, -(hz - 0.4)), DVec3::new(1.3, 0.0, 0.0), DVec3::Z, 4.4, 6.0, 0.04, 160, 80);
+            let sheet = Curtain { top_left: DVec3::new(x0, 4.6, -(hz - 0.4)), across: DVec3::new(1.3, 0.0, 0.0), n0: DVec3::Z, height: 4.4, folds: 6.0, depth: 0.04 };
+            b.curtain(&sheet, 160, 80);
         }
     });
     // Planters with leaves: 12 boxes, 100 leaves each (curved quads, 8 × 2 cells).

@@ -51,6 +51,19 @@ struct MeshBuilder {
     prim: Primitive,
 }
 
+
+/// A hanging curtain: a single sheet from `top_left` along `across` (horizontal, its length the
+/// width) and down by `height`, folded along its normal `n0` by `depth`·sin(2π·folds·u).
+#[derive(Clone, Copy)]
+pub(crate) struct Curtain {
+    pub top_left: DVec3,
+    pub across: DVec3,
+    pub n0: DVec3,
+    pub height: f64,
+    pub folds: f64,
+    pub depth: f64,
+}
+
 impl MeshBuilder {
     fn vertex(&mut self, p: DVec3, n: DVec3, uv: [f32; 2]) -> u32 {
         self.prim.positions.push(p.as_vec3().to_array());
@@ -254,11 +267,10 @@ impl MeshBuilder {
         }
     }
 
-    /// A hanging curtain: a single sheet from `top_left` along `across` (horizontal, its
-    /// length the width) and down by `height`, folded along its normal `n0` by
-    /// `depth`·sin(2π·folds·u), with the normals of the folded sheet.
-    #[allow(clippy::too_many_arguments)]
-    fn curtain(&mut self, top_left: DVec3, across: DVec3, n0: DVec3, height: f64, folds: f64, depth: f64, nu: u32, nv: u32) {
+    /// A hanging curtain (see [`Curtain`]) as an `nu` × `nv` grid, with the normals of the
+    /// folded sheet.
+    fn curtain(&mut self, curtain: &Curtain, nu: u32, nv: u32) {
+        let Curtain { top_left, across, n0, height, folds, depth } = *curtain;
         let width = across.length();
         let t = across / width;
         self.grid(nu, nv, [4.0, 4.0], |u, v| {

@@ -17,6 +17,17 @@ fn read_le<const N: usize>(bytes: &[u8]) -> Option<[u8; N]> {
     bytes.get(..N)?.try_into().ok()
 }
 
+
+/// What a sparse substitution needs of its accessor's elements: how many, their components,
+/// the component type and whether integers are normalized.
+#[derive(Clone, Copy)]
+struct ElementLayout {
+    count: u64,
+    ncomp: usize,
+    ct: ComponentType,
+    normalized: bool,
+}
+
 impl Component for f32 {
     fn decode(b: &[u8], ct: ComponentType, normalized: bool) -> Option<f32> {
         Some(match ct {
@@ -218,22 +229,13 @@ impl Ctx<'_> {
         };
 
         if let Some(sparse) = &acc.sparse {
-            self.apply_sparse(&mut out, sparse, idx, count, ncomp, ct, acc.normalized)?;
+            self.apply_sparse(&mut out, sparse, idx, ElementLayout { count, ncomp, ct, normalized: acc.normalized })?;
         }
         Ok(out)
     }
 
-    #[allow(clippy::too_many_arguments)]
-    fn apply_sparse<T: Component>(
-        &self,
-        out: &mut [T],
-        sparse: &json::accessor::sparse::Sparse,
-        idx: usize,
-        count: u64,
-        ncomp: usize,
-        ct: ComponentType,
-        normalized: bool,
-    ) -> Result<()> {
+    fn apply_sparse<T: Component>(&self, out: &mut [T], sparse: &json::accessor::sparse::Sparse, idx: usize, layout: ElementLayout) -> Result<()> {
+        let ElementLayout { count, ncomp, ct, normalized } = layout;
         let el = format!("accessors[{idx}].sparse");
         let n = sparse.count.0;
         if n > count {
