@@ -1,3 +1,4 @@
+// vsgl:include-only
 // Float addition into storage words (WGSL has no float atomics): a compare-exchange loop on the
 // value's bits. The including shader declares `float_sums: array<atomic<u32>>`. The order in
 // which threads add is not fixed, so sums may differ in their last bits from run to run.
