@@ -99,7 +99,8 @@ struct PathParams {
 // Bidirectional mode: this batch's light-tracing splats, f32 bits added atomically (diffuse
 // rgb, specular rgb, 2 unused per pixel); the light part's running means over batches (diffuse
 // rgb + batch count in w, specular rgb), and its weighted M2 (rgb) and total weight (w).
-@group(0) @binding(22) var<storage, read_write> light_splat: array<atomic<u32>>;
+// (float_sums: the name common/atomic_float.wgsl adds into.)
+@group(0) @binding(22) var<storage, read_write> float_sums: array<atomic<u32>>;
 @group(0) @binding(23) var<storage, read_write> light_mean: array<vec4f>;
 @group(0) @binding(24) var<storage, read_write> light_m2: array<vec4f>;
 
@@ -500,18 +501,7 @@ fn direct(@builtin(global_invocation_id) gid: vec3u) {
     direct_out[index] = vec4f(lights_radiance(s, v, NO_MIS), 1.0);
 }
 
-// Adds `value` to the f32 stored as bits in light_splat[i] (WGSL has no float atomics: a
-// compare-exchange loop on the bits).
-fn splat_add(i: u32, value: f32) {
-    var old = atomicLoad(&light_splat[i]);
-    loop {
-        let r = atomicCompareExchangeWeak(&light_splat[i], old, bitcast<u32>(bitcast<f32>(old) + value));
-        if (r.exchanged) {
-            break;
-        }
-        old = r.old_value;
-    }
-}
+#include "common/atomic_float.wgsl"
 
 const LIGHT_WORKGROUP: u32 = 64u;
 
@@ -654,10 +644,10 @@ fn light_paths(@builtin(global_invocation_id) gid: vec3u, @builtin(num_workgroup
     let base = 8u * index;
     for (var c = 0u; c < 3u; c++) {
         if (c_d[c] > 0.0) {
-            splat_add(base + c, c_d[c]);
+            atomic_add_float(base + c, c_d[c]);
         }
         if (c_s[c] > 0.0) {
-            splat_add(base + 3u + c, c_s[c]);
+            atomic_add_float(base + 3u + c, c_s[c]);
         }
     }
 }
@@ -675,10 +665,10 @@ fn light_fold(@builtin(global_invocation_id) gid: vec3u) {
     var y_d: vec3f;
     var y_s: vec3f;
     for (var c = 0u; c < 3u; c++) {
-        y_d[c] = bitcast<f32>(atomicLoad(&light_splat[base + c]));
-        y_s[c] = bitcast<f32>(atomicLoad(&light_splat[base + 3u + c]));
-        atomicStore(&light_splat[base + c], 0u);
-        atomicStore(&light_splat[base + 3u + c], 0u);
+        y_d[c] = bitcast<f32>(atomicLoad(&float_sums[base + c]));
+        y_s[c] = bitcast<f32>(atomicLoad(&float_sums[base + 3u + c]));
+        atomicStore(&float_sums[base + c], 0u);
+        atomicStore(&float_sums[base + 3u + c], 0u);
     }
     let c = f32(params.batch_samples);
     let old_d = light_mean[2u * index];
