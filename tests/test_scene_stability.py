@@ -18,9 +18,9 @@ from vsgl import stability
 def test_every_method_on_every_case_passes():
     rows = stability.scene_suite()
     print("\n" + stability.format_scene_table(rows))
-    # Seven scenes (the generated corpus scenes and the file scene among them) × 6 methods × 10
-    # cases, and the file scene's own case: the offset written into the file.
-    assert len(rows) == 7 * 6 * 10 + 6
+    # Seven scenes (the generated corpus scenes and the file scene among them) × every method × 10
+    # cases, and the file scene's own case per method: the offset written into the file.
+    assert len(rows) == 7 * len(vsgl.METHODS) * 10 + len(vsgl.METHODS)
     assert {r["scene"] for r in rows} == {"cornell_box", "glossy_cornell", "caustics_ring", *vsgl.scenes.GENERATED_CORPUS, stability.FILE_SCENE}
     # Every method met the near-mirror materials.
     stiff = [r for r in rows if r["case"] == "roughness 1e-4"]
