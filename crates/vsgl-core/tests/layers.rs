@@ -2,7 +2,10 @@
 //! to its own top-level module and to modules of lower layers, and no method module reaches into
 //! another. References are read from the source text with comments removed: `crate::x` paths
 //! anywhere (`use` lines and inline paths alike), `super::` chains that climb to the crate root,
-//! and `vsgl_core::x` paths. The layer order is written once, here.
+//! and `vsgl_core::x` paths, grouped imports (`use crate::{a::X, b::Y}`) and the names the crate
+//! root re-exports (`crate::Renderer` is the renderer layer). Within a group of one layer the
+//! modules may use each other, but not in a circle. The layer order is written once, here; the
+//! method modules are read from the registry's files (those that declare a method's `INFO`).
 
 use std::collections::BTreeSet;
 use std::path::{Path, PathBuf};
@@ -26,9 +29,36 @@ const LAYERS: &[&[&str]] = &[
 /// Macros exported at the crate root, by the module that defines them.
 const ROOT_MACROS: &[(&str, &str)] = &[("choice_names", "methods")];
 
-/// The method modules of `methods/` (its registry): each is self-contained, sharing code
-/// through the helper modules beside them, never through another method.
-const METHOD_MODULES: &[&str] = &["direct", "vpl", "vsgl", "vsgl2", "reference", "pathtrace"];
+/// The method modules of `methods/` (its registry: the files that declare a method's
+/// `pub const INFO: MethodInfo`): each is self-contained, sharing code through the helper
+/// modules beside them, never through another method.
+fn method_modules(src: &Path) -> Vec<String> {
+    let mut names: Vec<String> = std::fs::read_dir(src.join("methods"))
+        .expect("read methods/")
+        .map(|e| e.expect("dir entry").path())
+        .filter(|p| p.extension().is_some_and(|e| e == "rs") && std::fs::read_to_string(p).unwrap().contains("pub const INFO: MethodInfo"))
+        .map(|p| p.file_stem().unwrap().to_string_lossy().to_string())
+        .collect();
+    names.sort();
+    names
+}
+
+/// The names `lib.rs` re-exports at the crate root (`pub use renderer::{Frame, …};`), by the
+/// top-level module they come from.
+fn root_reexports(src: &Path) -> Vec<(String, String)> {
+    let lib = without_comments(&std::fs::read_to_string(src.join("lib.rs")).unwrap());
+    let mut out = Vec::new();
+    for line in lib.lines().filter_map(|l| l.trim().strip_prefix("pub use ")) {
+        let line = line.trim_end_matches(';');
+        let module = line.split("::").next().unwrap_or("").to_string();
+        let names = match (line.find('{'), line.rfind('}')) {
+            (Some(a), Some(b)) => line[a + 1..b].split(',').map(|n| n.trim().to_string()).collect(),
+            _ => vec![line.rsplit("::").next().unwrap_or("").to_string()],
+        };
+        out.extend(names.into_iter().filter(|n| !n.is_empty()).map(|n| (n, module.clone())));
+    }
+    out
+}
 
 fn layer_of(module: &str) -> Option<usize> {
     LAYERS.iter().position(|group| group.contains(&module))
@@ -50,19 +80,45 @@ fn without_comments(text: &str) -> String {
     text.lines().map(|line| line.split("//").next().unwrap_or("")).collect::<Vec<_>>().join("\n")
 }
 
-/// Identifiers that follow `prefix` in `text` (e.g. `crate::` → `frame`, `gpu`, …).
+fn identifier(text: &str) -> String {
+    text.trim_start().chars().take_while(|c| c.is_alphanumeric() || *c == '_').collect()
+}
+
+/// Identifiers that follow `prefix` in `text` (e.g. `crate::` → `frame`, `gpu`, …), and for a
+/// grouped path (`crate::{frame::X, gpu::{Y, Z}}`) the first identifier of each item of the
+/// group.
 fn after(text: &str, prefix: &str) -> Vec<String> {
     let mut found = Vec::new();
     let mut rest = text;
     while let Some(i) = rest.find(prefix) {
         let boundary = rest[..i].chars().next_back().is_none_or(|c| !(c.is_alphanumeric() || c == '_'));
         let tail = &rest[i + prefix.len()..];
-        let name: String = tail.chars().take_while(|c| c.is_alphanumeric() || *c == '_').collect();
-        if boundary && !name.is_empty() {
-            found.push(name);
+        if boundary {
+            if let Some(group) = tail.strip_prefix('{') {
+                // The items at brace depth 0 of the group.
+                let (mut depth, mut item_start) = (0usize, 0usize);
+                for (j, c) in group.char_indices() {
+                    match c {
+                        '{' => depth += 1,
+                        '}' if depth == 0 => {
+                            found.push(identifier(&group[item_start..j]));
+                            break;
+                        }
+                        '}' => depth -= 1,
+                        ',' if depth == 0 => {
+                            found.push(identifier(&group[item_start..j]));
+                            item_start = j + 1;
+                        }
+                        _ => {}
+                    }
+                }
+            } else {
+                found.push(identifier(tail));
+            }
         }
         rest = tail;
     }
+    found.retain(|n| !n.is_empty());
     found
 }
 
@@ -91,6 +147,11 @@ fn references(src: &Path, file: &Path) -> (String, Vec<String>, BTreeSet<String>
             refs.insert((*module).to_string());
         }
     }
+    for (name, module) in root_reexports(src) {
+        if refs.remove(&name) {
+            refs.insert(module);
+        }
+    }
     let modules: BTreeSet<String> = refs.into_iter().filter(|r| layer_of(r).is_some()).collect();
     (top, path, modules)
 }
@@ -99,7 +160,10 @@ fn violations(src: &Path) -> Vec<String> {
     let mut files = Vec::new();
     source_files(src, &mut files);
     files.sort();
+    let methods = method_modules(src);
     let mut bad = Vec::new();
+    // Same-layer references between top-level modules, for the circle check below.
+    let mut same_layer: BTreeSet<(String, String)> = BTreeSet::new();
     for file in &files {
         let (top, path, refs) = references(src, file);
         let name = file.strip_prefix(src).unwrap().display().to_string();
@@ -114,18 +178,33 @@ fn violations(src: &Path) -> Vec<String> {
             let theirs = layer_of(r).unwrap();
             if theirs > own {
                 bad.push(format!("{name} ({top}, layer {own}) uses crate::{r} (layer {theirs}): an upward reference"));
+            } else if theirs == own && *r != top {
+                same_layer.insert((top.clone(), r.clone()));
             }
         }
         // Method modules do not use each other.
-        if top == "methods" && path.len() == 2 && METHOD_MODULES.contains(&path[1].as_str()) {
+        if top == "methods" && path.len() == 2 && methods.contains(&path[1]) {
             let text = without_comments(&std::fs::read_to_string(file).unwrap());
-            for other in METHOD_MODULES.iter().filter(|m| **m != path[1]) {
+            for other in methods.iter().filter(|m| **m != path[1]) {
                 for prefix in [format!("super::{other}::"), format!("crate::methods::{other}::")] {
                     if text.contains(&prefix) {
                         bad.push(format!("{name}: the method module {:?} uses {prefix}…: share it through a helper module of methods/", path[1]));
                     }
                 }
             }
+        }
+    }
+    // Two modules of one layer that use each other, directly or through others, are a circle.
+    for (a, b) in &same_layer {
+        let mut reached: BTreeSet<&str> = BTreeSet::new();
+        let mut stack = vec![b.as_str()];
+        while let Some(m) = stack.pop() {
+            if reached.insert(m) {
+                stack.extend(same_layer.iter().filter(|(from, _)| from == m).map(|(_, to)| to.as_str()));
+            }
+        }
+        if reached.contains(a.as_str()) {
+            bad.push(format!("{a} uses {b} and {b} reaches {a}: a circle within one layer"));
         }
     }
     bad
@@ -141,14 +220,21 @@ fn every_module_uses_only_its_own_and_lower_layers() {
     assert!(bad.is_empty(), "layer violations:\n  {}", bad.join("\n  "));
 }
 
-/// The checker sees both forms of an upward reference, and a method module using another: the
-/// same tree with a planted `use` line, an inline path and a method-to-method call each fails.
+/// The checker sees every form of an upward reference, a method module using another and a
+/// circle within a layer: the same tree with a planted `use` line, an inline path, a grouped
+/// import, a crate-root re-export, a method-to-method call (in the newest method too) and a
+/// same-layer circle each fails.
 #[test]
 fn the_check_fails_on_planted_upward_references() {
-    let planted: [(&str, &str); 3] = [
+    let planted: [(&str, &str); 7] = [
         ("passes/denoise.rs", "\nuse crate::methods::options::Options;\n"),
         ("frame/rsm.rs", "\nfn planted() -> usize { crate::renderer::AOV_NAMES.len() }\n"),
+        ("gpu/timer.rs", "\nuse crate::{error::Result, renderer::AOV_NAMES};\n"),
+        ("scene/mod.rs", "\nfn planted(_: &crate::Renderer) {}\n"),
         ("methods/vsgl2.rs", "\nfn planted() { let _ = super::vsgl::INFO; }\n"),
+        ("methods/lpv.rs", "\nfn planted() { let _ = super::vpl::INFO; }\n"),
+        // progress uses error already: error using progress closes a circle.
+        ("error.rs", "\nfn planted(_: &crate::progress::StopCheck) {}\n"),
     ];
     for (file, line) in planted {
         let tmp = std::env::temp_dir().join(format!("vsgl-layers-{}-{}", std::process::id(), file.replace('/', "_")));
@@ -160,7 +246,8 @@ fn the_check_fails_on_planted_upward_references() {
         std::fs::write(&target, text).unwrap();
         let bad = violations(&tmp);
         let _ = std::fs::remove_dir_all(&tmp);
-        assert!(bad.iter().any(|b| b.starts_with(file)), "{file}: planted {line:?} not caught: {bad:?}");
+        let circle = file == "error.rs";
+        assert!(bad.iter().any(|b| b.starts_with(file) || (circle && b.contains("a circle"))), "{file}: planted {line:?} not caught: {bad:?}");
     }
 }
 
