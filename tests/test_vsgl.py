@@ -20,8 +20,8 @@ LAMBERT_LOBE_SG_SHARPNESS = wgsl_constant("common/sg.wgsl", "LAMBERT_LOBE_SG_SHA
 LAMBERT_LOBE_SG_SHAPE_ERROR = wgsl_constant("common/sg.wgsl", "LAMBERT_LOBE_SG_SHAPE_ERROR")
 LAMBERT_LOBE_HEMISPHERE_GAIN = wgsl_constant("common/sg.wgsl", "LAMBERT_LOBE_HEMISPHERE_GAIN")
 TOKSVIG_SHARPNESS_MAX = wgsl_constant("common/sg.wgsl", "TOKSVIG_SHARPNESS_MAX")
-SG_SHARPNESS_MAX = 1.0e9
-VSGL_VARIANCE_MIN_FRACTION = 1.0e-6
+SG_SHARPNESS_MAX = wgsl_constant("common/sg.wgsl", "SG_SHARPNESS_MAX")
+VSGL_VARIANCE_MIN_FRACTION = wgsl_constant("common/vsgl.wgsl", "VSGL_VARIANCE_MIN_FRACTION")
 
 
 def _rmse(a, b):

@@ -18,10 +18,10 @@ from shader_constants import wgsl_constant
 
 # Constants of wgsl/common/sg.wgsl, ggx.wgsl and vsgl.wgsl (as in test_vsgl.py).
 LAMBERT_LOBE_SG_SHARPNESS = wgsl_constant("common/sg.wgsl", "LAMBERT_LOBE_SG_SHARPNESS")
-TOKSVIG_SHARPNESS_MAX = 1.0e5
-SG_SHARPNESS_MAX = 1.0e9
-GGX_ALPHA_MIN = 1.0e-4
-VSGL_VARIANCE_MIN_FRACTION = 1.0e-6
+TOKSVIG_SHARPNESS_MAX = wgsl_constant("common/sg.wgsl", "TOKSVIG_SHARPNESS_MAX")
+SG_SHARPNESS_MAX = wgsl_constant("common/sg.wgsl", "SG_SHARPNESS_MAX")
+GGX_ALPHA_MIN = wgsl_constant("common/ggx.wgsl", "GGX_ALPHA_MIN")
+VSGL_VARIANCE_MIN_FRACTION = wgsl_constant("common/vsgl.wgsl", "VSGL_VARIANCE_MIN_FRACTION")
 
 
 def _rmse(a, b):

@@ -1,8 +1,9 @@
 //! Embeds every file under `wgsl/` into the binary (so a wheel is self-contained): writes a
 //! table `(relative path, contents)` that `shader_lib` composes at run time. Also writes the
-//! integer constants each pass shader declares at its top level (`const NAME: u32 = 8u;`) as
-//! Rust constants, one module per `wgsl/passes/*.wgsl` (`shader_lib::constants::denoise::TILE`),
-//! so the numbers the host dispatches by are written once, in the shader.
+//! integer constants each pass shader declares at its top level (`const NAME: u32 = 8u;`), its
+//! own and those of the files it includes, as Rust constants, one module per
+//! `wgsl/passes/*.wgsl` and `wgsl/harness/*.wgsl` (`shader_lib::constants::denoise::TILE`), so
+//! the numbers the host dispatches by are written once, in the shaders.
 use std::{env, fs, path::Path};
 
 fn collect(dir: &Path, root: &Path, out: &mut Vec<String>) {
@@ -42,22 +43,42 @@ fn top_level_integer_constant(line: &str) -> Option<(String, &'static str, Strin
     Some((name.to_string(), ty, digits.to_string()))
 }
 
+/// The integer constants of `file` and of every file it includes (each file once), in order.
+fn constants_with_includes(root: &Path, file: &Path, seen: &mut Vec<std::path::PathBuf>, out: &mut Vec<(String, &'static str, String)>) {
+    if seen.iter().any(|s| s == file) {
+        return;
+    }
+    seen.push(file.to_path_buf());
+    let text = fs::read_to_string(file).unwrap();
+    for line in text.lines() {
+        if let Some(included) = line.trim().strip_prefix("#include").map(|r| r.trim().trim_matches('"')) {
+            constants_with_includes(root, &root.join(included), seen, out);
+        } else if let Some(c) = top_level_integer_constant(line) {
+            out.push(c);
+        }
+    }
+}
+
 fn pass_constants(root: &Path) -> String {
-    let dir = root.join("passes");
-    let mut files: Vec<_> = fs::read_dir(&dir).expect("read wgsl/passes").flatten().map(|e| e.path()).collect();
+    let mut files: Vec<_> = ["passes", "harness"]
+        .iter()
+        .flat_map(|d| fs::read_dir(root.join(d)).expect("read wgsl/passes and wgsl/harness").flatten().map(|e| e.path()))
+        .collect();
     files.sort();
     let mut out = String::new();
     let mut table = String::from("/// Every (shader, constant, value) above, for the test that checks them against naga.\npub static ALL: &[(&str, &str, i64)] = &[\n");
     for p in files.iter().filter(|p| p.extension().is_some_and(|x| x == "wgsl")) {
         let stem = p.file_stem().unwrap().to_string_lossy().to_string();
-        let consts: Vec<_> = fs::read_to_string(p).unwrap().lines().filter_map(top_level_integer_constant).collect();
+        let rel = p.strip_prefix(root).unwrap().to_string_lossy().replace('\\', "/");
+        let mut consts = Vec::new();
+        constants_with_includes(root, p, &mut Vec::new(), &mut consts);
         if consts.is_empty() {
             continue;
         }
-        out.push_str(&format!("/// The integer constants of `wgsl/passes/{stem}.wgsl`.\npub mod {stem} {{\n"));
+        out.push_str(&format!("/// The integer constants of `wgsl/{rel}` and the files it includes.\npub mod {stem} {{\n"));
         for (name, ty, value) in consts {
             out.push_str(&format!("    pub const {name}: {ty} = {value};\n"));
-            table.push_str(&format!("    (\"passes/{stem}.wgsl\", \"{name}\", {value}),\n"));
+            table.push_str(&format!("    (\"{rel}\", \"{name}\", {value}),\n"));
         }
         out.push_str("}\n");
     }

@@ -13,10 +13,9 @@ use crate::frame::{Rsm, RsmLight};
 use crate::gpu::{groups, storage_binding, uniform_binding, Gpu, PipelineVariants, Recorder};
 use crate::plan::ShaderFeatures;
 
-/// Side of an RSM tile summed by one `tiles` workgroup.
-const TILE: u32 = 8;
-/// Partials one `merge` workgroup sums.
-const MERGE_SPAN: u32 = 256;
+/// Side of an RSM tile summed by one `tiles` workgroup, and the partials one `merge` workgroup
+/// sums (`wgsl/common/vsgl2_moments.wgsl`).
+use crate::shader_lib::constants::vsgl2_reduce::{MERGE_SPAN, TILE};
 /// Bytes of one partial: seven vec4 (`Moments2` in the shader).
 pub const PARTIAL_BYTES: u64 = 112;
 /// Records written: diffuse, specular.

@@ -28,12 +28,14 @@ use crate::verify::oracle;
 use glam::DVec3;
 use wgpu::util::DeviceExt;
 
+use crate::shader_lib::constants::eval as shader;
+
 /// f32 slots per input record (`INPUT_WIDTH` in eval.wgsl).
-pub const INPUT_WIDTH: usize = 16;
+pub const INPUT_WIDTH: usize = shader::INPUT_WIDTH as usize;
 /// f32 slots per output record (`OUTPUT_WIDTH` in eval.wgsl).
-pub const OUTPUT_WIDTH: usize = 16;
+pub const OUTPUT_WIDTH: usize = shader::OUTPUT_WIDTH as usize;
 /// Threads per workgroup (`WORKGROUP` in eval.wgsl).
-const WORKGROUP: u32 = 64;
+const WORKGROUP: u32 = shader::WORKGROUP;
 
 /// One input record.
 pub type Input = [f32; INPUT_WIDTH];
