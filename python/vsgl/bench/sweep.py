@@ -40,8 +40,13 @@ def _makes_indirect(method: str) -> bool:
     return "indirect" in _info(method)["aovs"]
 
 
-# The `sampling=` values of vpl and vsgl (--sampling sweeps them).
-SAMPLINGS = ("stratified", "random", "metropolis")
+def _choices(option: str, method: str = "vsgl") -> tuple[str, ...]:
+    """The values the core takes for a choice option (the registry's one list of them)."""
+    return tuple(_info(method)["options"][option]["choices"])
+
+
+# The `sampling=` values of vpl and vsgl (--sampling sweeps them), from the registry.
+SAMPLINGS = _choices("sampling")
 # sampling="metropolis": each seed's error frame comes from fresh chains stepped this many
 # frames first (other seeds), so seeds are independent and the chains have left their
 # stratified start (the warp's lattice) for the unstratified equilibrium they render at.
@@ -180,11 +185,14 @@ def run(
                 vsgl.check_method_options("vsgl", lighting=lighting)
             except vsgl.ArgumentError as e:
                 raise ValueError(f"lightings: {e}") from e
-    bad_importance = [i for i in importances if i not in ("rsm", "brsm")]
-    if bad_importance or not importances:
-        raise ValueError(f"importances: expected a non-empty list of \"rsm\" and \"brsm\", got {list(importances)}")
-    if importance_interleave is not None and not (isinstance(importance_interleave, int) and 1 <= importance_interleave <= 16):
-        raise ValueError(f"importance_interleave: expected an integer 1..16 (or None for the default), got {importance_interleave!r}")
+    known_importances = _choices("importance")
+    if not importances or any(i not in known_importances for i in importances):
+        raise ValueError(f"importances: expected a non-empty list of {', '.join(map(repr, known_importances))}, got {list(importances)}")
+    if importance_interleave is not None:
+        try:
+            vsgl.check_method_options("vsgl", importance="brsm", importance_interleave=importance_interleave)
+        except vsgl.ArgumentError as e:
+            raise ValueError(f"importance_interleave: {e}") from e
     if not samplings or any(s not in (None, *SAMPLINGS) for s in samplings):
         raise ValueError(f"samplings: expected values from {', '.join(SAMPLINGS)} (or None for the default), got {list(samplings)}")
     options = dict(options or {})
@@ -213,8 +221,8 @@ def run(
     # A pathtrace reference combines light tracing with camera paths by default (caustics
     # converge), and so averages each pixel's area where the methods shade its centre: at
     # geometric edges that difference is part of the error it reports (docs/error.md).
-    if visibility not in ("none", "raytrace", "ism"):
-        raise ValueError(f"visibility: must be \"none\", \"raytrace\" or \"ism\", got {visibility!r}")
+    if visibility not in _choices("visibility"):
+        raise ValueError(f"visibility: must be one of {', '.join(map(repr, _choices('visibility')))}, got {visibility!r}")
     ref_settings: dict[str, Any] = {"rsm_size": reference_rsm} if reference == "reference" else {"spp": reference_spp, "strategy": reference_strategy}
     if reference == "reference" and visibility != "none":
         # The every-texel reference shadows its VPLs exactly (ray traced) whenever the methods
