@@ -428,7 +428,8 @@ class _VsglOptions(TypedDict, total=False):
     sampling: Literal["stratified", "random", "metropolis"]
     chain_space: Literal["world", "rsm"]
     seed: int
-    kernel: Literal["integral", "density", "node"]
+    kernel: Literal["integral", "density", "node", "kmeans2d", "kmeans3d"]
+    kmeans_iterations: int
     kernel_filter: Literal["nodes", "trilinear"]
     K: float
     coherence: float

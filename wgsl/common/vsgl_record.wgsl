@@ -21,7 +21,8 @@ struct VsglRaw {
     // (4^l/M)·p̄(s, l) at the chosen level (what the integral kernel's bisection solves for).
     center: vec2f,
     mass: f32,
-    _pad: f32,
+    // Texels in the cluster where the clustering knows them (k-means: its exact count), else 0.
+    texels: f32,
     // The cluster's mean tangent plane: plane_normal = Σw·n/Σw (not unit:
     // its length says how coherent the normals are), plane_offset = E_w[(μ − y)·n], so that
     // (p − μ)·plane_normal + plane_offset is the weighted mean height of p above the texels'

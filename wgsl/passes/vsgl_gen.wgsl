@@ -37,6 +37,7 @@
 #include "common/vsgl.wgsl"
 #include "common/vsgl_tangent_plane.wgsl"
 #include "common/vsgl_record.wgsl"
+#include "common/vsgl_cluster.wgsl"
 #include "common/rsm_warp.wgsl"
 
 struct GenParams {
@@ -241,28 +242,15 @@ fn write_shadow_candidates(i: u32, start_level: u32, start: vec2u, upper_share: 
             node = start >> vec2u(1u);
         }
         let texel = vec2i(warp_descend_from(min(u, vec2f(ONE_MINUS_ULP)), params.rsm_size, level, node).texel);
-        let a = moment_texel(0u, 0u, texel);
-        let w = a.w;
-        var y = fallback;
-        var normal = vec3f(0.0);
-        var footprint = 0.0;
-        var diffuse_share = 0.0;
-        if (w > 0.0) {
-            let y_light = moment_texel(4u, 0u, texel).xyz / w;
-            y = y_light + params.light_offset;
-            var direction = moment_texel(2u, 0u, texel).xyz;
-            if (params.planes == 1u) {
-                direction = moment_texel(5u, 0u, texel).xyz;
-            }
-            normal = safe_normalize(direction, vec3f(0.0));
-            // Chain D's w·(y·y + σ_t²) less y·y: the texel's own footprint variance.
-            footprint = max(moment_texel(3u, 0u, texel).w / w - dot(y_light, y_light), 0.0);
-            // Its diffuse power over the density it was drawn by (self-normalised in shading).
-            let q = pyramid[u32(texel.y) * params.rsm_size + u32(texel.x)];
-            diffuse_share = select(0.0, (a.r + a.g + a.b) / q, q > 0.0);
+        var f = vec4f(0.0);
+        if (params.planes == 1u) {
+            f = moment_texel(5u, 0u, texel);
         }
-        shadow_candidates[2u * (i * c + j)] = vec4f(y, footprint);
-        shadow_candidates[2u * (i * c + j) + 1u] = vec4f(normal, diffuse_share);
+        let moments_here = ClusterMoments(moment_texel(0u, 0u, texel), vec4f(0.0), moment_texel(2u, 0u, texel), moment_texel(3u, 0u, texel), moment_texel(4u, 0u, texel), f);
+        let q = pyramid[u32(texel.y) * params.rsm_size + u32(texel.x)];
+        let candidate = shadow_candidate_from_texel(moments_here, params.planes == 1u, q, fallback, params.light_offset);
+        shadow_candidates[2u * (i * c + j)] = candidate.point;
+        shadow_candidates[2u * (i * c + j) + 1u] = candidate.normal;
     }
 }
 
@@ -360,30 +348,15 @@ fn main(@builtin(global_invocation_id) gid: vec3u) {
     } else {
         scale = select(0.0, total / (n * a.w), a.w > 0.0);
     }
-    let lobe_d = sg_from_toksvig_mean_direction(c.xyz / max(b.w, FLT_MIN));
-    let lobe_s = sg_from_toksvig_mean_direction(d.xyz / max(c.w, FLT_MIN));
-    let position = vsgl_position_from_moments(a.w, e.xyz, d.w);
-    if (params.planes == 1u && a.w > 0.0) {
-        // Ratios of texel averages at one level = ratios of the cluster's sums.
-        let plane = vsgl_tangent_plane_from_moments(a.w, f.xyz, f.w, position.mean);
-        out.plane_normal = plane.normal;
-        out.plane_offset = plane.offset;
-    }
-    out.mean = position.mean + params.light_offset;
-    out.variance = position.variance;
-    out.diffuse_axis = lobe_d.axis;
-    out.diffuse_sharpness = lobe_d.sharpness;
-    out.diffuse_power = min(a.rgb * scale, vec3f(FLT_MAX));
+    out = vsgl_from_cluster_moments(ClusterMoments(a, b, c, d, e, f), scale, params.planes == 1u, params.light_offset);
     out.level = level;
-    out.specular_axis = lobe_s.axis;
-    out.specular_sharpness = lobe_s.sharpness;
-    out.specular_power = min(b.rgb * scale, vec3f(FLT_MAX));
     out.pdf = p;
     out.center = s;
     // The centre texel's own position y = (w·y)/w at level 0 (chains 0 and 4 hold w and w·y).
     let centre_weight = moment_texel(0u, 0u, vec2i(warped.texel)).w;
     let centre_position = moment_texel(4u, 0u, vec2i(warped.texel)).xyz / max(centre_weight, FLT_MIN);
-    out.shadow_target = select(position.mean, centre_position, centre_weight > 0.0) + params.light_offset;
+    // (Without weight there the cluster's mean: position.mean + light_offset, as out.mean is.)
+    out.shadow_target = select(out.mean, centre_position + params.light_offset, centre_weight > 0.0);
     if (params.shadow_candidates > 0u) {
         // The cluster's node: the kernel's own for "node"; for a trilinear read the node of the
         // kernel's level rounded up around the centre texel (a trilinear read at level 0.3

@@ -98,7 +98,9 @@ impl PyRenderer {
     ///   ("scene", the default: a spot light's RSM covers only the part of its cone the
     ///   scene's bounds can fill | "cone": the whole cone, before 2026-12-02), capture_rsm.
     /// - "vsgl": num_lights VSGLs (in all) by filtered importance sampling. shadow_size,
-    ///   num_lights, rsm_size, sampling, seed, kernel ("integral" | "density" | "node"),
+    ///   num_lights, rsm_size, sampling, seed, kernel ("integral" | "density" | "node", or the
+    ///   2016 paper's k-means baseline "kmeans2d" | "kmeans3d"), kmeans_iterations (0, the
+    ///   paper's single assignment; more for Lloyd's updates),
     ///   kernel_filter (how "integral" and "density" read the mips: "nodes", the default: the
     ///   quadtree node holding the kernel's centre at each level, so a texel-sized kernel is
     ///   that texel | "trilinear": the papers' read, bilinear within a level), K,

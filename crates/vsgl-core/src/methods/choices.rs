@@ -5,6 +5,7 @@
 
 use crate::choice_names;
 use crate::frame::uniforms::RsmFit;
+use crate::passes::kmeans_centres::KmeansSpace;
 use crate::passes::pathtrace::Strategy;
 use crate::passes::vpl_sample::Sampling;
 use crate::passes::vsgl2_reduce::Vsgl2Reduction;
@@ -13,7 +14,6 @@ use crate::passes::vsgl_shading::{DiffuseMode, LambertLobe, LightingMode};
 
 use super::metropolis::ChainSpace;
 
-choice_names!(Kernel { Integral => "integral", Density => "density", Node => "node" });
 choice_names!(KernelFilter { Nodes => "nodes", Trilinear => "trilinear" });
 choice_names!(Sampling { Stratified => "stratified", Random => "random", Metropolis => "metropolis" });
 choice_names!(ChainSpace { World => "world", Rsm => "rsm" });
@@ -23,6 +23,33 @@ choice_names!(LambertLobe { ExactCompact => "exact_compact", Hemisphere => "hemi
 choice_names!(LightingMode { Asg => "asg", Accurate => "accurate", Blend => "blend" });
 choice_names!(Vsgl2Reduction { Auto => "auto", Subgroup => "subgroup", SharedMemory => "shared_memory" });
 choice_names!(Strategy { Camera => "camera", Bidirectional => "bidirectional", Light => "light" });
+
+choice_names!(
+    /// `kernel=` (vsgl): a kernel rule of the filtered importance sampling, or k-means
+    /// clustering in RSM texel coordinates or world positions.
+    pub enum VsglKernel { Integral => "integral", Density => "density", Node => "node", Kmeans2d => "kmeans2d", Kmeans3d => "kmeans3d" }
+);
+
+impl VsglKernel {
+    /// The sampled kernel rule, or none for k-means.
+    pub fn sampled(self) -> Option<Kernel> {
+        match self {
+            VsglKernel::Integral => Some(Kernel::Integral),
+            VsglKernel::Density => Some(Kernel::Density),
+            VsglKernel::Node => Some(Kernel::Node),
+            VsglKernel::Kmeans2d | VsglKernel::Kmeans3d => None,
+        }
+    }
+
+    /// k-means' clustering space, or none for a sampled kernel.
+    pub fn kmeans(self) -> Option<KmeansSpace> {
+        match self {
+            VsglKernel::Kmeans2d => Some(KmeansSpace::Texels),
+            VsglKernel::Kmeans3d => Some(KmeansSpace::World),
+            VsglKernel::Integral | VsglKernel::Density | VsglKernel::Node => None,
+        }
+    }
+}
 
 choice_names!(
     /// `visibility=`; the ISM settings are read with it (`VisibilityMode::from_options`).
@@ -88,7 +115,7 @@ mod tests {
     /// Every name parses to its variant and back, and an unknown string to nothing.
     #[test]
     fn every_choice_round_trips() {
-        round_trips::<Kernel>();
+        round_trips::<VsglKernel>();
         round_trips::<KernelFilter>();
         round_trips::<Sampling>();
         round_trips::<ChainSpace>();

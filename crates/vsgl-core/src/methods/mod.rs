@@ -10,6 +10,7 @@ pub mod choices;
 pub mod options;
 mod brsm;
 mod interleaved;
+mod kmeans;
 pub mod metropolis;
 mod rsm_lights;
 mod sg_lighting;

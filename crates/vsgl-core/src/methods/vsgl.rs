@@ -3,7 +3,8 @@
 //! interleaving and a geometry-aware filter.
 
 use super::brsm::{Importance, ViewImportance};
-use super::choices::{NearField, ShadowTarget};
+use super::choices::{ImportanceChoice, NearField, ShadowTarget, VsglKernel};
+use super::kmeans::{KmeansClustering, KmeansJob};
 use super::options::ChoiceEnum;
 use super::interleaved::{InterleaveSettings, InterleavedShading};
 use super::metropolis::{MetropolisSampling, TexelSampling};
@@ -17,7 +18,8 @@ use crate::gpu::Gpu;
 use crate::passes::moment_mips::MomentMipsPass;
 use crate::passes::pdf_mips::PdfMipsPass;
 use crate::passes::vpl_sample::Sampling;
-use crate::passes::vsgl_gen::{GenSettings, GenSource, Kernel, KernelFilter, VsglGenPass, SHADOW_CANDIDATE_BYTES, VSGL_BYTES};
+use crate::passes::vsgl_gen::{GenSettings, GenSource, Kernel, KernelFilter, VsglGenPass, SHADOW_CANDIDATES, SHADOW_CANDIDATE_BYTES, VSGL_BYTES};
+use crate::setting::Setting;
 use crate::passes::vsgl_moments::VsglMomentsPass;
 use crate::frame::{ShadingInputs, VirtualLightList};
 use crate::passes::vsgl_shading::{ShadingCandidates, VsglShadingPass};
@@ -43,9 +45,17 @@ const OPTION_GROUPS: &[&[OptionSpec]] = &[
     &[
         OptionSpec {
             name: "kernel",
-            kind: OptionKind::Choice(Kernel::NAMES),
+            kind: OptionKind::Choice(VsglKernel::NAMES),
             default: OptionValue::Str(Cow::Borrowed("integral")),
-            help: "kernel size rule: \"integral\" (2016, bisection to mass K/N), \"density\" (2015) or \"node\" (quadtree nodes of mass <= K/N read exactly: unbiased cluster totals, VPL-like as N reaches the texel count)",
+            help: "kernel size rule: \"integral\" (2016, bisection to mass K/N), \"density\" (2015) or \"node\" (quadtree nodes of mass <= K/N read exactly: unbiased cluster totals, VPL-like as N reaches the texel count); or the 2016 paper's k-means baseline, \"kmeans2d\" (every lit texel to its nearest of N centres in RSM texel coordinates) or \"kmeans3d\" (in world positions), its clusters' exact sums as VSGLs",
+            note: "",
+        },
+        OptionSpec {
+            name: "kmeans_iterations",
+            kind: OptionKind::Int { min: 0, max: 64, power_of_two: false },
+            // 0 as the paper ("we do not update iteratively").
+            default: OptionValue::Int(0),
+            help: "with kernel=\"kmeans2d\"/\"kmeans3d\": Lloyd iterations after the first assignment (each centre moved to its cluster's weighted mean, the texels assigned again); 0 is the paper's single assignment",
             note: "",
         },
         // "nodes" (experiments/vsgl_defaults_on_the_corpus.md): FlightHelmet's indirect diffuse
@@ -120,8 +130,10 @@ struct Vsgl {
     num_lights: u32,
     rsm: RsmSettings,
     sampling: TexelSampling,
-    kernel: Kernel,
+    kernel: VsglKernel,
     kernel_filter: KernelFilter,
+    /// `kmeans_iterations=` (k-means kernels only).
+    kmeans_iterations: u32,
     k: f32,
     /// Smallest mean-normal length of a cluster (`coherence=`, 0: off).
     coherence: f32,
@@ -135,14 +147,42 @@ struct Vsgl {
     near_field_texels: bool,
 }
 
-/// `kernel_filter=`: for the filtered kernels; `kernel="node"` reads its node exactly, so one
-/// given with it is an error rather than silently ignored.
+/// `kernel_filter=`: for the filtered kernels; `kernel="node"` reads its node exactly and
+/// k-means sums its clusters exactly, so one given with them is an error rather than silently
+/// ignored.
 fn kernel_filter(o: &Options) -> Result<KernelFilter> {
     let filter = o.str("kernel_filter")?;
-    if o.was_given("kernel_filter") && o.choice::<Kernel>("kernel")? == Kernel::Node {
-        return Err(Error::invalid("kernel_filter", format!("kernel_filter={filter:?} applies to kernel=\"integral\" and \"density\"; kernel=\"node\" reads each node's moments exactly")));
+    let kernel = o.choice::<VsglKernel>("kernel")?;
+    if o.was_given("kernel_filter") && kernel.sampled() != Some(Kernel::Integral) && kernel.sampled() != Some(Kernel::Density) {
+        let kernel = kernel.name();
+        return Err(Error::invalid("kernel_filter", format!("kernel_filter={filter:?} applies to kernel=\"integral\" and \"density\"; kernel={kernel:?} reads its clusters' moments exactly")));
     }
     o.choice("kernel_filter")
+}
+
+/// k-means' own option and the sampled kernels' options: each given with the other kind of
+/// kernel is an error naming both, and k-means does not yet run with what it was not built for.
+fn check_kmeans_options(o: &Options) -> Result<()> {
+    let kernel = o.choice::<VsglKernel>("kernel")?;
+    let name = kernel.name();
+    if kernel.kmeans().is_none() {
+        if o.was_given("kmeans_iterations") {
+            return Err(Error::invalid("kmeans_iterations", format!("applies to kernel=\"kmeans2d\" and \"kmeans3d\", not kernel={name:?}")));
+        }
+        return Ok(());
+    }
+    for option in ["K", "coherence", "bisection_steps"] {
+        if o.was_given(option) {
+            return Err(Error::invalid(option, format!("applies to the sampled kernels (\"integral\", \"density\", \"node\"); kernel={name:?} assigns every lit texel to its nearest centre")));
+        }
+    }
+    if o.choice::<ImportanceChoice>("importance")? != ImportanceChoice::Rsm {
+        return Err(Error::invalid("importance", format!("kernel={name:?} clusters by the RSM's own weights; importance=\"brsm\" is not built for k-means yet (use kernel=\"integral\" or \"node\")")));
+    }
+    if o.choice::<Sampling>("sampling")? == Sampling::Metropolis {
+        return Err(Error::invalid("sampling", format!("kernel={name:?} draws its centres once per frame; sampling=\"metropolis\" is for the sampled kernels (use \"stratified\" or \"random\")")));
+    }
+    Ok(())
 }
 
 /// `coherence=`: a length of a mean of unit vectors, so at most 1.
@@ -158,6 +198,7 @@ impl Vsgl {
     fn new(o: &mut Options) -> Result<Self> {
         resolve_rsm_size_for_num_lights(o)?;
         let num_lights = o.u32("num_lights")?;
+        check_kmeans_options(o)?;
         Ok(Self {
             lighting: SgLighting::from_options(o, BLEND_DIFFUSE)?,
             visibility: VisibilityMode::from_options(o)?,
@@ -166,6 +207,7 @@ impl Vsgl {
             sampling: TexelSampling::from_options(o)?,
             kernel: o.choice("kernel")?,
             kernel_filter: kernel_filter(o)?,
+            kmeans_iterations: o.u32("kmeans_iterations")?,
             k: o.f32("K")?,
             coherence: coherence(o)?,
             bisection_steps: o.u32("bisection_steps")?,
@@ -184,6 +226,10 @@ impl Vsgl {
         self.lighting.plane_fade || self.coherence > 0.0
     }
 
+    fn kmeans(&self) -> Option<KmeansClustering> {
+        self.kernel.kmeans().map(|space| KmeansClustering { space, iterations: self.kmeans_iterations })
+    }
+
     fn metropolis(&self) -> MetropolisSampling {
         MetropolisSampling { method: INFO.name, num_lights: self.num_lights, rsm_size: self.rsm.size, seed: self.sampling.seed, space: self.sampling.chain_space, importance: self.importance }
     }
@@ -199,6 +245,11 @@ impl Method for Vsgl {
             return Err(Error::invalid("rsm_size", format!("the VSGL moment mips of a {n}² RSM ({bytes} bytes) exceed this adapter's storage binding limit of {limit} bytes")));
         }
         Ok(())
+    }
+
+    fn settings(&self, _gpu: &Gpu) -> Result<Vec<(String, Setting)>> {
+        // The paper's dispatch count of its k-means (39) has a row to stand beside.
+        Ok(self.kmeans().map(|k| ("kmeans_dispatches".to_string(), Setting::Int(i64::from(k.dispatches(self.num_lights))))).into_iter().collect())
     }
 
     fn record(&self, ctx: &mut FrameContext<'_>) -> Result<()> {
@@ -224,7 +275,10 @@ impl Method for Vsgl {
                 None => None,
             };
             moments.record(&mut ctx.rec, light.rsm, &light.rsm_light(), chains, feat);
-            moment_mips.record(&mut ctx.rec, self.rsm.size, chains);
+            // k-means sums whole texels (level 0): the mips are for the sampled kernels.
+            if self.kmeans().is_none() {
+                moment_mips.record(&mut ctx.rec, self.rsm.size, chains);
+            }
             // This RSM's share of num_lights (split over lights and cube faces by reflected
             // power, `power_budgets`).
             // The chains target the density the VSGLs' estimators then divide by (`pdf`).
@@ -237,25 +291,39 @@ impl Method for Vsgl {
             let resample_target = self.resampled_shadow_target && self.visibility == VisibilityMode::RayTraced;
             let candidates = (resample_target || self.near_field_texels)
                 .then(|| ctx.rec.storage("vsgl_shadow_candidate_buffer", light.budget as u64 * SHADOW_CANDIDATE_BYTES));
-            let settings = GenSettings {
-                count: light.budget,
-                sampling: self.sampling.sampling,
-                samples: samples.as_ref(),
-                seed: self.sampling.seed,
-                kernel: self.kernel,
-                k: self.k,
-                bisection_steps: self.bisection_steps,
-                light_offset: light.raw.position,
-                importance: reweighted.is_some(),
-                coherence: self.coherence,
-                shadow_candidates: candidates.as_ref(),
-                filter: self.kernel_filter,
-            };
-            gen.record_with_pdf(&mut ctx.rec, "vsgl_gen", &GenSource { rsm: light.rsm, pdf, chains }, &settings, &buf);
+            if let Some(kmeans) = self.kmeans() {
+                let job = KmeansJob {
+                    rsm: light.rsm,
+                    chains,
+                    count: light.budget,
+                    seed: self.sampling.seed,
+                    stratified: self.sampling.sampling == Sampling::Stratified,
+                    light_offset: light.raw.position,
+                    vsgls: &buf,
+                    shadow_candidates: candidates.as_ref().map(|b| (b, SHADOW_CANDIDATES)),
+                };
+                kmeans.record(ctx, &job)?;
+            } else {
+                let settings = GenSettings {
+                    count: light.budget,
+                    sampling: self.sampling.sampling,
+                    samples: samples.as_ref(),
+                    seed: self.sampling.seed,
+                    kernel: self.kernel.sampled().unwrap_or(Kernel::Integral),
+                    k: self.k,
+                    bisection_steps: self.bisection_steps,
+                    light_offset: light.raw.position,
+                    importance: reweighted.is_some(),
+                    coherence: self.coherence,
+                    shadow_candidates: candidates.as_ref(),
+                    filter: self.kernel_filter,
+                };
+                gen.record_with_pdf(&mut ctx.rec, "vsgl_gen", &GenSource { rsm: light.rsm, pdf, chains }, &settings, &buf);
+            }
             vis.build_maps(ctx, &buf, light.budget, VSGL_RECORD_WORDS)?;
             let target = shading_out.target(ctx.indirect);
             let io = ShadingInputs { frame_uniforms: ctx.frame_uniforms, gbuffer: ctx.gbuffer, out: target, features: feat, size: ctx.size, visibility: &vis };
-            let form = self.lighting.shading_form(self.kernel == Kernel::Node);
+            let form = self.lighting.shading_form(self.kernel == VsglKernel::Node || self.kmeans().is_some());
             let lights = VirtualLightList { records: &buf, count: light.budget, interleave: self.interleave.interleave };
             let candidates = candidates.as_ref().map(|buffer| ShadingCandidates { buffer, seed: self.sampling.seed, resample_target, near_field: self.near_field_texels });
             shading.record(&mut ctx.rec, &io, lights, form, candidates.as_ref());
@@ -266,6 +334,9 @@ impl Method for Vsgl {
         })?;
         if !lit {
             return Ok(());
+        }
+        if self.kmeans().is_some() {
+            ctx.skip("moment_mips", "k-means sums its clusters' texels at level 0; the mips serve the sampled kernels");
         }
         shading_out.resolve(ctx)
     }

@@ -10,6 +10,10 @@ pub mod brsm_view_gbuffer;
 pub mod denoise;
 pub mod direct;
 pub mod ism;
+pub mod kmeans_assign;
+pub mod kmeans_centres;
+pub mod kmeans_grid;
+pub mod kmeans_sums;
 pub mod lpv_geometry;
 pub mod lpv_inject;
 pub mod lpv_lookup;
@@ -19,6 +23,7 @@ pub mod metropolis_step;
 pub mod moment_mips;
 pub mod pathtrace;
 pub mod pdf_mips;
+pub mod radix_sort;
 pub mod rsm_flux;
 pub mod shadow_map;
 pub mod visibility;
@@ -49,6 +54,10 @@ passes_from_device!(
     denoise::DenoisePass,
     direct::DirectPass,
     ism::IsmPass,
+    kmeans_assign::KmeansAssignPass,
+    kmeans_centres::KmeansCentresPass,
+    kmeans_grid::KmeansGridPass,
+    kmeans_sums::KmeansSumsPass,
     lpv_geometry::LpvGeometryPass,
     lpv_inject::LpvInjectPass,
     lpv_lookup::LpvLookupPass,
@@ -58,6 +67,7 @@ passes_from_device!(
     moment_mips::MomentMipsPass,
     pathtrace::PathTracePass,
     pdf_mips::PdfMipsPass,
+    radix_sort::RadixSortPass,
     rsm_flux::RsmFluxPass,
     shadow_map::ShadowMapPass,
     visibility::VisibilityPass,

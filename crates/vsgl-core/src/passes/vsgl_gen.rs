@@ -26,7 +26,7 @@ pub const VSGL_FIELDS: &[(&str, usize)] = &[
     ("pdf", 1),
     ("center", 2),
     ("mass", 1),
-    ("_pad", 1),
+    ("texels", 1),
     ("plane_normal", 3),
     ("plane_offset", 1),
     ("shadow_target", 3),
