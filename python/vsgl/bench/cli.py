@@ -52,7 +52,8 @@ def main(argv: list[str] | None = None) -> int:
     p.add_argument("--sampling", type=_strs, default=None, metavar="S1,S2,...",
                    help=f"vpl and vsgl sampling to sweep, from {','.join(SAMPLINGS)} (default: the methods', stratified); "
                         "metropolis keeps Markov chains through each configuration's frames and its --sequence")
-    p.add_argument("--kernels", type=_strs, default=["integral"], help="VSGL kernels: integral, density, node (default: integral)")
+    kernel_choices = ", ".join(vsgl.method_info("vsgl")["options"]["kernel"]["choices"])
+    p.add_argument("--kernels", type=_strs, default=["integral"], help=f"VSGL kernels: {kernel_choices} (default: integral)")
     p.add_argument("-O", "--option", action="append", default=[], type=_option_axis, metavar="NAME=V1,V2",
                    help="sweep any other method option (repeatable), for the methods that take it, e.g. -O lambert_lobe=papers,hemisphere "
                         "-O denoise=true,false; values are read as int, float, true/false or text")
