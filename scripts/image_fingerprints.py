@@ -23,24 +23,17 @@ import sys
 import numpy as np
 
 import vsgl
+from vsgl.stability import small_settings
 
-# Small settings per method, so the whole sweep runs in about a minute on lavapipe.
-SETTINGS: dict[str, dict] = {
-    "direct": {"shadow_size": 256},
-    "vpl": {"shadow_size": 256, "num_lights": 64, "rsm_size": 64, "seed": 2},
-    "reference": {"shadow_size": 256, "rsm_size": 64},
-    "vsgl": {"shadow_size": 256, "num_lights": 64, "rsm_size": 64, "interleave": 4},
-    "vsgl2": {"shadow_size": 256, "rsm_size": 48},
-    "lpv": {"shadow_size": 256, "rsm_size": 64, "lpv_grid": 16},
-    "pathtrace": {"spp": 4, "seed": 1},
-}
 # Rows of frame.settings that name the machine or the run rather than the image.
 UNSTABLE_SETTINGS = {"adapter", "scene_upload", "readback_ms"}
 
 
 def fingerprint(renderer: vsgl.Renderer, scene_name: str, method: str) -> dict:
     scene = vsgl.scenes.load(scene_name)
-    frame = renderer.render(scene, method=method, **SETTINGS[method])
+    # The scene suite's small settings (vsgl.stability.small_settings), so the sweep runs in
+    # about a minute on lavapipe.
+    frame = renderer.render(scene, method=method, **small_settings(method))
     aovs = {}
     for name in frame.aovs:
         arr = np.ascontiguousarray(frame.aov(name))
@@ -61,7 +54,7 @@ def main() -> int:
     args = ap.parse_args()
     w, h = (int(x) for x in args.size.split("x"))
     renderer = vsgl.Renderer(width=w, height=h)
-    methods = list(getattr(vsgl, "METHODS", SETTINGS))
+    methods = list(vsgl.METHODS)
     result = {}
     for scene_name in vsgl.scenes.names():
         for method in methods:

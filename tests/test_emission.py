@@ -10,26 +10,11 @@ import pytest
 
 import gltf_fixtures as fx
 import vsgl
-
-# Small settings per method (lavapipe runs the shaders on the CPU).
-SMALL = {
-    "direct": dict(shadow_size=64),
-    "vpl": dict(shadow_size=64, num_lights=16, rsm_size=32),
-    "vsgl": dict(shadow_size=64, num_lights=16, rsm_size=32),
-    "vsgl2": dict(shadow_size=64, rsm_size=32),
-    "lpv": dict(shadow_size=64, rsm_size=32, lpv_grid=8),
-    "reference": dict(shadow_size=64, rsm_size=32),
-    "pathtrace": dict(spp=2),
-}
-
+from vsgl.stability import small_settings
 
 def settings(method: str) -> dict:
-    # Every registered method must be covered here; a new one fails this lookup.
-    return SMALL[method]
-
-
-def test_every_method_has_small_settings():
-    assert set(SMALL) == set(vsgl.METHODS)
+    # Small settings for whichever options the method takes (lavapipe runs the shaders on the CPU).
+    return small_settings(method, shadow_size=64, num_lights=16, rsm_size=32, spp=2, lpv_grid=8)
 
 
 @pytest.fixture(scope="module")
@@ -69,10 +54,10 @@ def test_emission_is_reported_in_the_scene_stats(emissive_quad):
 def test_scenes_without_emission_leave_it_out_and_a_channel_of_zeros_changes_nothing(make_renderer):
     r = make_renderer(32, 32)
     scene = vsgl.scenes.cornell_box()
-    auto = r.render(scene, method="vsgl", **SMALL["vsgl"])
+    auto = r.render(scene, method="vsgl", **settings("vsgl"))
     assert "emissive" in auto.skipped["emission"]
     # plan="full" writes the emission channel (zeros here) and adds it: bit-identical.
-    full = r.render(scene, method="vsgl", plan="full", **SMALL["vsgl"])
+    full = r.render(scene, method="vsgl", plan="full", **settings("vsgl"))
     assert "emission" not in full.skipped
     np.testing.assert_array_equal(full.image, auto.image)
     np.testing.assert_array_equal(full.aov("direct"), auto.aov("direct"))
@@ -113,10 +98,10 @@ def test_a_material_made_emissive_from_python_shows_in_the_image(make_renderer):
     scene.lights = []
     assert all(m["emissive"] == [0.0, 0.0, 0.0] for m in scene.materials)
     # Rendered once before the edit: the edit must re-upload the materials, not reuse the cache.
-    assert not r.render(scene, method="vsgl", **SMALL["vsgl"]).image.any()
+    assert not r.render(scene, method="vsgl", **settings("vsgl")).image.any()
     scene.set_material("red", emissive=(2.0, 0.5, 0.0))
     assert "emissive" in scene.stats["features"]
-    f = r.render(scene, method="vsgl", **SMALL["vsgl"])
+    f = r.render(scene, method="vsgl", **settings("vsgl"))
     shown = f.image.reshape(-1, 3)
     # Only the red wall emits: its pixels show exactly its radiance, every other pixel is black
     # (no light, and the wall lights nothing).

@@ -106,7 +106,7 @@ def test_accurate_lighting_is_finite_on_the_stability_scenes(renderer, method, f
     # Every case of the scene-level stability suite (moved 1e5 m, scaled 1e∓3, intensities 1e-8
     # and 1e30, a grazing light, roughness 1e-4, the camera inside geometry): no NaN/Inf (the
     # renderer raises NumericsError for one) and no negative light.
-    settings = dict(stability.SCENE_SETTINGS[method], lighting=form)
+    settings = dict(stability.small_settings(method), lighting=form)
     for name in ("cornell_box", "glossy_cornell", "caustics_ring"):
         for case, scene, camera, *_ in stability._scene_cases(name):
             f = renderer.render(scene, camera, method=method, aovs=["image", "indirect_specular"], **settings)

@@ -78,15 +78,25 @@ def format_table(rows: Sequence[dict[str, Any]]) -> str:
 
 SCENE_COLUMNS = ("scene", "method", "case", "rel. RMSE", "bound", "surface px", "flipped px", "NaN/Inf", "pass/fail")
 
-#: Small settings per method, so the whole suite runs in about a minute on lavapipe.
-SCENE_SETTINGS: dict[str, dict[str, Any]] = {
-    "direct": {"shadow_size": 256},
-    "vpl": {"shadow_size": 256, "num_lights": 64, "rsm_size": 64},
-    "vsgl": {"shadow_size": 256, "num_lights": 64, "rsm_size": 64, "interleave": 4},
-    "vsgl2": {"shadow_size": 256, "rsm_size": 64},
-    "reference": {"shadow_size": 256, "rsm_size": 64},
-    "pathtrace": {"spp": 8, "seed": 1},
-}
+#: Small values of the options that decide a frame's cost, each given to the methods that take
+#: it (`small_settings`), so the whole suite runs in about a minute on lavapipe.
+SMALL_SETTINGS: dict[str, Any] = {"shadow_size": 256, "num_lights": 64, "rsm_size": 64, "spp": 8, "seed": 1}
+#: Interleaving at most this (vsgl's default 8 leaves one of 64 VSGLs per pixel).
+SMALL_INTERLEAVE = 4
+
+
+def small_settings(method: str, **sizes: Any) -> dict[str, Any]:
+    """`SMALL_SETTINGS`, with `sizes` over them, for the options `method` takes (from the
+    registry, so a new method needs no row anywhere), and its interleave capped at
+    `SMALL_INTERLEAVE`."""
+    import vsgl
+
+    takes = vsgl.method_options(method)
+    settings = {k: v for k, v in {**SMALL_SETTINGS, **sizes}.items() if k in takes}
+    if "interleave" in takes and "interleave" not in sizes:
+        settings["interleave"] = min(int(takes["interleave"]), SMALL_INTERLEAVE)
+    return settings
+
 
 #: Invariance bound: relative RMSE of an image against the untransformed scene's, over the
 #: pixels that did not flip.
@@ -111,7 +121,9 @@ INVARIANCE_BOUND = 1e-3
 #: same at scale 0.37 (the "scaled 0.37" case below), while 1e-3 and 1e3 happen to round alike
 #: there. At most SURFACE_FRACTION of the pixels may change surface; the rest must be invariant.
 SURFACE_FRACTION = 0.02
-FLIP_FRACTION = {"pathtrace": 0.01}
+#: Pixels a method whose direct light it traces itself (exact, hard shadow rays: the registry's
+#: direct_light "by_method") may flip; the others may flip none.
+TRACED_FLIP_FRACTION = 0.01
 
 
 #: The scene of the suite that comes from a glTF file (written by `write_room_gltf`): the
@@ -354,7 +366,8 @@ def scene_suite(scenes: Sequence[str] = ("cornell_box", "glossy_cornell", "caust
     for name in scenes:
         cases = list(_scene_cases(name))
         for method in methods or vsgl.METHODS:
-            settings = SCENE_SETTINGS.get(method, {})
+            settings = small_settings(method)
+            flip_fraction = TRACED_FLIP_FRACTION if vsgl.method_info(method)["direct_light"] == "by_method" else 0.0
             base = None
             for case, scene, camera, divide, geometry_scale in cases:
                 row: dict[str, Any] = {"scene": name, "method": method, "case": case, "rel_rmse": None, "bound": None, "flipped": 0,
@@ -379,7 +392,7 @@ def scene_suite(scenes: Sequence[str] = ("cornell_box", "glossy_cornell", "caust
                     rel = lambda a, b: float(np.sqrt(np.mean((a - b) ** 2)) / np.sqrt(np.mean(b**2))) if b.size and np.any(b) else 0.0  # noqa: E731
                     row.update(rel_rmse=rel(scaled, base), rel_rmse_unflipped=rel(scaled[keep], base[keep]), bound=INVARIANCE_BOUND,
                                flipped=int(flipped.sum()), surface=int(surface.sum()))
-                allowed_flips = int(FLIP_FRACTION.get(method, 0.0) * size[0] * size[1])
+                allowed_flips = int(flip_fraction * size[0] * size[1])
                 row["passed"] = row["rel_rmse"] is None or (row["rel_rmse_unflipped"] <= INVARIANCE_BOUND and row["flipped"] <= allowed_flips
                                                             and row["surface"] <= SURFACE_FRACTION * size[0] * size[1])
                 rows.append(row)
