@@ -52,7 +52,7 @@ fn every_pass_binds_the_variant_its_plan_asks_for() {
                 // Each method gets the small settings it takes.
                 let info = vsgl_core::methods::info(method).expect("registered method");
                 let mut opts = RenderOptions::new(method);
-                opts.plan = plan.into();
+                opts.plan = vsgl_core::renderer::PlanMode::parse(plan).expect("a plan mode");
                 for (name, value) in [("num_lights", 16u32), ("rsm_size", 32), ("spp", 2)] {
                     if info.takes(name) {
                         opts = opts.set(name, value);

@@ -12,7 +12,7 @@ use vsgl_core::methods::{self, OptionValue};
 /// The settings of `render` and `render_sequence` as the core takes them.
 pub(crate) fn render_options(method: &str, plan: &str, aovs: Option<Vec<String>>, options: Option<&Bound<'_, PyDict>>) -> PyResult<RenderOptions> {
     let mut opts = RenderOptions::new(method);
-    opts.plan = plan.into();
+    opts.plan = vsgl_core::renderer::PlanMode::parse(plan).map_err(to_py)?;
     opts.aovs = aovs;
     for (key, value) in options.into_iter().flat_map(|d| d.iter()) {
         let name: String = key.extract()?;

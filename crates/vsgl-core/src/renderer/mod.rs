@@ -9,13 +9,14 @@ mod options;
 mod readback;
 
 pub use frame::Frame;
-pub use options::{Progress, RenderOptions, StopCheck, AOV_NAMES, ON_REQUEST_AOVS};
+pub use options::{PlanMode, Progress, RenderOptions, StopCheck, AOV_NAMES, ON_REQUEST_AOVS};
 
 use crate::error::{Error, Result};
 use crate::frame::uniforms::{frame_uniforms, light_raws, shadow_layer_count, shadow_view_projs, views_seeing_scene};
 use crate::frame::{GBuffer, IndirectTargets, VisibilityTargets};
 use crate::gpu::frame_log::{log_frame, FrameLog};
 use crate::gpu::{kept_staging_buffer, read_staging, FrameResources, Gpu, PassCache, PassTimer, Recorder};
+use crate::methods::options::ChoiceEnum;
 use crate::methods::{options::common, DirectLight, FrameContext, Method, MethodInfo, OptionValue, Options};
 use crate::passes::{direct::{DirectPass, ShadowMappedLights}, material::{MaterialPass, RasterView}, shadow_map::ShadowMapPass, visibility::VisibilityPass};
 use crate::plan::{Plan, ShaderFeatures};
@@ -286,7 +287,7 @@ impl Renderer {
     fn render_inner(&self, job: &FrameJob<'_>, slot: &mut ReadbackSlot) -> Result<Recorded> {
         let (gpu, scene, camera, info) = (&*self.gpu, job.scene, job.camera, job.info);
         let (w, h) = (self.width, self.height);
-        let plan = Plan::new(scene, job.opts.plan == "full");
+        let plan = Plan::new(scene, job.opts.plan == PlanMode::Full);
         let feat = plan.features;
         let mut skipped: Vec<(String, String)> = plan.skipped.clone();
 
@@ -355,7 +356,7 @@ impl Renderer {
         // rather than in the plan's shader features because no pass but the camera's material
         // pass and the compositing (aov_pack) reads it.
         let scene_emits = scene.stats().has_emission;
-        let emission = scene_emits || job.opts.plan == "full";
+        let emission = scene_emits || job.opts.plan == PlanMode::Full;
         if !emission {
             skipped.push(("emission".into(), "no material in the scene is emissive: no emission channel, nothing added to the image".into()));
         }
@@ -406,7 +407,7 @@ impl Renderer {
             settings: Vec::new(),
             stop: job.opts.stop.as_ref(),
             power_staging: &mut slot.power_staging,
-            plan_full: job.opts.plan == "full",
+            plan_full: job.opts.plan == PlanMode::Full,
             chains,
         };
         job.method.record(&mut ctx)?;
@@ -438,7 +439,7 @@ impl Renderer {
             ("method".into(), info.name.into()),
             ("width".into(), w.into()),
             ("height".into(), h.into()),
-            ("plan".into(), job.opts.plan.clone().into()),
+            ("plan".into(), job.opts.plan.name().into()),
             ("adapter".into(), gpu.adapter.name.clone().into()),
             ("scene_upload".into(), if scene_reused { "reused" } else { "uploaded" }.into()),
         ];

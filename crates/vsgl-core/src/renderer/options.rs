@@ -2,6 +2,7 @@
 //! method's keyword options, validated once against the method registry.
 
 use crate::error::{Error, Result};
+use crate::methods::options::ChoiceEnum;
 use crate::methods::{self, MethodInfo, OptionValue, Options};
 pub use crate::progress::{Progress, StopCheck};
 
@@ -13,13 +14,27 @@ pub const AOV_NAMES: &[&str] = &["image", "indirect", "indirect_diffuse", "indir
 /// `image`, (H, W, 4) uint8 sRGB tone-mapped on the GPU as `Frame.save(".png")` does.
 pub const ON_REQUEST_AOVS: &[&str] = &["ldr"];
 
+crate::choice_names!(
+    /// `plan=`: what a frame runs. `Auto` leaves out what the scene does not need (the passes,
+    /// shader variants and targets of features no material or light has); `Full` runs every
+    /// variant (for checking that leaving things out changes nothing).
+    pub enum PlanMode { Auto => "auto", Full => "full" }
+);
+
+impl PlanMode {
+    /// The mode called `text`, or an error naming `plan` and the choices.
+    pub fn parse(text: &str) -> Result<Self> {
+        Self::from_name(text).ok_or_else(|| Error::invalid("plan", format!("must be {}, got {text:?}", Self::NAMES.iter().map(|n| format!("{n:?}")).collect::<Vec<_>>().join(" or "))))
+    }
+}
+
 /// Settings of one render (the keyword arguments of `Renderer.render`).
 #[derive(Clone, Debug)]
 pub struct RenderOptions {
     /// A name from [`methods::REGISTRY`].
     pub method: String,
-    /// `"auto"` leaves out what the scene does not need; `"full"` runs every variant.
-    pub plan: String,
+    /// What the frame runs ([`PlanMode`]).
+    pub plan: PlanMode,
     /// The AOVs to read back (names from [`AOV_NAMES`]); `None`: every AOV the method makes.
     /// Readback and the RGB conversion are most of a frame's wall time at high resolution, so
     /// a loop that only shows `image` should ask for it alone.
@@ -39,7 +54,7 @@ impl Default for RenderOptions {
 
 impl RenderOptions {
     pub fn new(method: &str) -> Self {
-        Self { method: method.into(), plan: "auto".into(), aovs: None, options: Vec::new(), stop: None }
+        Self { method: method.into(), plan: PlanMode::Auto, aovs: None, options: Vec::new(), stop: None }
     }
 
     /// Sets one keyword option of the method (`RenderOptions::new("vsgl").set("num_lights", 64u32)`).
@@ -52,9 +67,6 @@ impl RenderOptions {
     /// The method and its validated options, after checking the frame's own settings.
     pub fn resolve(&self) -> Result<(&'static MethodInfo, Options)> {
         let info = methods::info(&self.method)?;
-        if self.plan != "auto" && self.plan != "full" {
-            return Err(Error::invalid("plan", format!("must be \"auto\" or \"full\", got {:?}", self.plan)));
-        }
         for name in self.aovs.iter().flatten() {
             if !AOV_NAMES.contains(&name.as_str()) {
                 return Err(Error::invalid("aovs", format!("unknown AOV {name:?}; valid: {}", AOV_NAMES.join(", "))));
