@@ -78,69 +78,11 @@ impl PyRenderer {
     /// `aovs=["image"]` reads back only those AOVs (default: every float AOV the method makes;
     /// `"ldr"`, the (H, W, 4) uint8 display image tone-mapped on the GPU, only when named).
     /// Every other keyword is an option of the method; an option the method does not take
-    /// raises `vsgl.ArgumentError` naming it. `vsgl.describe_method(name)` lists each
-    /// method's options with their ranges and defaults:
-    ///
-    /// - "direct": direct light only. shadow_size.
-    /// - "vpl": num_lights VPLs (in all, split over lights by reflected power)
-    ///   importance-sampled from rsm_size² reflective shadow maps. shadow_size, num_lights,
-    ///   rsm_size, sampling ("stratified" | "random" | "metropolis": Markov chains kept across
-    ///   frames, one step per frame, see reset_chains), chain_space ("world" | "rsm": where a
-    ///   metropolis chain's state lives between frames), seed, vpl_clamp (minimum VPL distance as a fraction of the scene size; 0 = unbiased),
-    ///   interleave (default 1), denoise, denoise_form ("gather", the default: each pixel the
-    ///   normalised average of its taps | "exchange": pixels trade light, so the image keeps
-    ///   its total light exactly), visibility ("none" | "ism" | "raytrace"), ism_size,
-    ///   ism_points, ism_points_per_map, ism_bias, ism_pcf (imperfect shadow maps, with
-    ///   visibility="ism"), importance ("rsm" | "brsm": bidirectional RSM importance from
-    ///   importance_lights VSGLs of the camera's view; combines with every sampling),
-    ///   importance_lights, importance_interleave (1..16: with "brsm", RSM texel (x, y)
-    ///   evaluates only the view VSGLs of its interleave class, k² times cheaper), rsm_fit
-    ///   ("scene", the default: a spot light's RSM covers only the part of its cone the
-    ///   scene's bounds can fill | "cone": the whole cone, before 2026-12-02), capture_rsm.
-    /// - "vsgl": num_lights VSGLs (in all) by filtered importance sampling. shadow_size,
-    ///   num_lights, rsm_size, sampling, seed, kernel ("integral" | "density" | "node", or the
-    ///   2016 paper's k-means baseline "kmeans2d" | "kmeans3d"), kmeans_iterations (0, the
-    ///   paper's single assignment; more for Lloyd's updates),
-    ///   kernel_filter (how "integral" and "density" read the mips: "nodes", the default: the
-    ///   quadtree node holding the kernel's centre at each level, so a texel-sized kernel is
-    ///   that texel | "trilinear": the papers' read, bilinear within a level), K,
-    ///   coherence (0..1, default 0.9: each kernel shrinks until its texels' mean normal is at
-    ///   least this long, so clusters do not straddle creases; 0: the papers' kernels),
-    ///   bisection_steps, interleave, denoise, denoise_form (as for "vpl"), diffuse ("papers" | "accurate" | "sg_product",
-    ///   with lighting="asg"), lighting ("blend", the default: the two specular forms weighted
-    ///   by the receiver's share of the widened lobe, and the clamped-cosine diffuse | "asg":
-    ///   the papers' SG–ASG specular and diffuse= | "accurate": GGX with its NDF widened by the
-    ///   light's spread, after Tokuyoshi et al. 2024, and the clamped-cosine diffuse;
-    ///   docs/methods/vsgl.md "SG lighting" and "The real-scene corpus"),
-    ///   lambert_lobe ("exact_compact", the default: the hemisphere-normalized Lambert SG
-    ///   blended with an exact Lambertian point emitter where a cluster is compact as seen
-    ///   from the receiver | "hemisphere": each texel's Lambert SG normalized over its
-    ///   hemisphere, the default until 2026-12-01 | "papers": over the sphere, 9.2% of the
-    ///   diffuse power lost), plane_fade (with lighting="asg" and diffuse="papers", True fades
-    ///   each VSGL's light below its cluster's mean tangent plane, as the other forms always
-    ///   do; False: the papers' formula, which lights the back of a lit surface), visibility,
-    ///   shadow_target (with visibility="raytrace": "resampled", the default: each VSGL's ray
-    ///   aims at one of 8 texels of its cluster kept per receiver by its geometric term |
-    ///   "centre": at the sampled centre texel), near_field ("texels", the default: inside a
-    ///   VSGL's Gaussian or behind its tangent plane the diffuse light is also taken from 8 of
-    ///   its texels one by one | "sg": the Gaussian's SG alone), ism_size, ism_points, ism_points_per_map, ism_bias, ism_pcf, importance,
-    ///   importance_lights, importance_interleave, rsm_fit, capture_rsm.
-    /// - "vsgl2": two VSGLs per light by a parallel sum. shadow_size, rsm_size (any side
-    ///   32..4096), diffuse, lighting, lambert_lobe, plane_fade (default False: one plane
-    ///   spans the whole RSM), vsgl2_reduction ("auto" | "subgroup" | "shared_memory"),
-    ///   visibility, ism_size, ism_points, ism_points_per_map, ism_bias, ism_pcf, rsm_fit,
-    ///   capture_rsm.
-    /// - "lpv": light propagation volumes (Kaplanyan & Dachsbacher 2010), diffuse indirect
-    ///   light only. shadow_size, rsm_size (any side 32..4096), lpv_grid (cells per side),
-    ///   lpv_cascades (1..4), lpv_iterations, lpv_occlusion, capture_lpv, rsm_fit, capture_rsm.
-    /// - "reference": every texel of an rsm_size² RSM (default 1024²) as a VPL. shadow_size,
-    ///   rsm_size, vpl_clamp, visibility, ism_size, ism_points, ism_points_per_map, ism_bias,
-    ///   ism_pcf, rsm_fit, capture_rsm.
-    /// - "pathtrace": path-traced one-bounce ground truth with a stderr AOV. spp, seed,
-    ///   time_budget_s (stop sampling after this many seconds; Ctrl-C stops any long render),
-    ///   strategy ("bidirectional", the default: light tracing + camera paths by MIS over pixel
-    ///   areas, which converges on caustics, repeatable within float rounding | "camera": pixel
-    ///   centres, bit-deterministic | "light": light tracing alone).
+    /// raises `vsgl.ArgumentError` naming it. The methods are `vsgl.METHODS`; each one's options,
+    /// with their types, ranges, choices, defaults and what each does, come from the method
+    /// registry: `vsgl.describe_method(name)` prints them, `vsgl.method_info(name)["options"]`
+    /// returns them, and the stubs type them per method (so an editor completes the options of
+    /// the method named). docs/methods/ says when to use which.
     ///
     /// `capture_rsm=True` keeps the first light's RSM for `Frame.rsm(name)`.
     ///
