@@ -16,6 +16,7 @@
 use super::options::Options;
 use super::choices::ImportanceChoice;
 use super::rsm_lights::LightRsm;
+use super::kmeans::{KmeansClustering, KmeansJob};
 use super::FrameContext;
 use crate::error::Result;
 use crate::frame::{pyramid_layout, MomentChains, RsmLight, VirtualLightList};
@@ -60,9 +61,11 @@ pub struct ViewImportance {
 
 impl ViewImportance {
     /// Builds `count` VSGLs of the camera's view (seeded by `seed`, as the frame's own
-    /// sampling is, so estimates of different seeds stay independent); each RSM texel will
-    /// evaluate those of its class of the `interleave`² classes.
-    pub fn new(ctx: &mut FrameContext<'_>, count: u32, interleave: u32, seed: u32) -> Result<Self> {
+    /// sampling is, so estimates of different seeds stay independent), by the 2016 paper's
+    /// filtered importance sampling or, with `clustering`, by k-means on the view's G-buffer
+    /// (the paper ran its k-means baseline there too [Tok16 §5]); each RSM texel will evaluate
+    /// those of its class of the `interleave`² classes.
+    pub fn new(ctx: &mut FrameContext<'_>, count: u32, interleave: u32, seed: u32, clustering: Option<KmeansClustering>) -> Result<Self> {
         let p = ctx.passes;
         let (view, pdf_mips, moments, moment_mips, gen) =
             (p.get::<BrsmViewPass>()?, p.get::<PdfMipsPass>()?, p.get::<VsglMomentsPass>()?, p.get::<MomentMipsPass>()?, p.get::<VsglGenPass>()?);
@@ -75,8 +78,15 @@ impl ViewImportance {
         let chains = MomentChains::labelled(rec, "brsm_view_moment_chain_buffer", side, false);
         // The eye is the grid's "light": positions relative to it (light_dir w = 0).
         moments.record_as(rec, "brsm_view_moments", &grid, &RsmLight::default(), &chains, features);
-        moment_mips.record_as(rec, "brsm_view_mips", side, &chains);
         let vsgls = rec.storage("brsm_view_vsgl_buffer", count as u64 * VSGL_BYTES);
+        if let Some(kmeans) = clustering {
+            // Positions relative to the frame origin, the eye; in "kmeans2d" the grid's texel
+            // coordinates are the screen's.
+            let job = KmeansJob { rsm: &grid, centre_density: &grid.pyramid, chains: &chains, count, seed, stratified: true, light_offset: [0.0; 3], vsgls: &vsgls, shadow_candidates: None };
+            kmeans.record(ctx, &job)?;
+            return Ok(Self { vsgls, count, interleave });
+        }
+        moment_mips.record_as(rec, "brsm_view_mips", side, &chains);
         // The 2016 paper's generation (integral kernel, K = 1, 12 bisection steps, Fibonacci
         // centres); positions relative to the frame origin, the eye.
         let settings = GenSettings { count, sampling: Sampling::Stratified, samples: None, seed, kernel: Kernel::Integral, k: 1.0, bisection_steps: 12, light_offset: [0.0; 3], importance: false, coherence: 0.0, shadow_candidates: None, filter: KernelFilter::Trilinear };

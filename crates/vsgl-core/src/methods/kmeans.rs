@@ -24,6 +24,9 @@ fn key_bits(limit: u32) -> u32 {
 /// What k-means clusters and where its VSGLs go.
 pub struct KmeansJob<'a> {
     pub rsm: &'a Rsm,
+    /// The pyramid the centres are drawn from (`rsm.pyramid`, or the importance-weighted one of
+    /// `importance="brsm"`): the clusters' sums are exact whatever draws their centres.
+    pub centre_density: &'a wgpu::Buffer,
     pub chains: &'a MomentChains,
     /// Clusters (this RSM's share of `num_lights`).
     pub count: u32,
@@ -67,7 +70,7 @@ impl KmeansClustering {
         let (centre_keys, centre_ids) = (pair(rec, "kmeans_centre_key_buffer", n), pair(rec, "kmeans_centre_id_buffer", n));
         let (texel_keys, texel_ids) = (pair(rec, "kmeans_texel_key_buffer", texels), pair(rec, "kmeans_texel_id_buffer", texels));
         let partials = rec.storage_written("kmeans_partial_sum_buffer", partial_bytes(size, n));
-        centre_pass.record(rec, job.rsm, job.chains, &CentreDraw { count: n, seed: job.seed, stratified: job.stratified, space }, &centres);
+        centre_pass.record(rec, job.rsm, job.chains, &CentreDraw { density: job.centre_density, count: n, seed: job.seed, stratified: job.stratified, space }, &centres);
         for round in 0..=self.iterations {
             if round > 0 {
                 rec.enc.copy_buffer_to_buffer(&next_centres, 0, &centres, 0, u64::from(n) * CENTRE_BYTES);

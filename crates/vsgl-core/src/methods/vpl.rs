@@ -76,7 +76,7 @@ impl Method for Vpl {
         // Metropolis chains keep one view seed while they live (`target_seed` says why).
         let view_seed = if self.sampling.sampling == Sampling::Metropolis { metropolis.target_seed(ctx) } else { self.sampling.seed };
         let view = match self.importance {
-            Importance::Brsm { view_lights, interleave } => Some(ViewImportance::new(ctx, view_lights, interleave, view_seed)?),
+            Importance::Brsm { view_lights, interleave } => Some(ViewImportance::new(ctx, view_lights, interleave, view_seed, None)?),
             Importance::Rsm => None,
         };
         let lit = for_each_light(ctx, &self.rsm, |ctx, light| {

@@ -3,7 +3,7 @@
 //! interleaving and a geometry-aware filter.
 
 use super::brsm::{Importance, ViewImportance};
-use super::choices::{ImportanceChoice, NearField, ShadowTarget, VsglKernel};
+use super::choices::{NearField, ShadowTarget, VsglKernel};
 use super::kmeans::{KmeansClustering, KmeansJob};
 use super::options::ChoiceEnum;
 use super::interleaved::{InterleaveSettings, InterleavedShading};
@@ -176,9 +176,6 @@ fn check_kmeans_options(o: &Options) -> Result<()> {
             return Err(Error::invalid(option, format!("applies to the sampled kernels (\"integral\", \"density\", \"node\"); kernel={name:?} assigns every lit texel to its nearest centre")));
         }
     }
-    if o.choice::<ImportanceChoice>("importance")? != ImportanceChoice::Rsm {
-        return Err(Error::invalid("importance", format!("kernel={name:?} clusters by the RSM's own weights; importance=\"brsm\" is not built for k-means yet (use kernel=\"integral\" or \"node\")")));
-    }
     if o.choice::<Sampling>("sampling")? == Sampling::Metropolis {
         return Err(Error::invalid("sampling", format!("kernel={name:?} draws its centres once per frame; sampling=\"metropolis\" is for the sampled kernels (use \"stratified\" or \"random\")")));
     }
@@ -262,7 +259,7 @@ impl Method for Vsgl {
         // Metropolis chains keep one view seed while they live (`target_seed` says why).
         let view_seed = if self.sampling.sampling == Sampling::Metropolis { self.metropolis().target_seed(ctx) } else { self.sampling.seed };
         let view = match self.importance {
-            Importance::Brsm { view_lights, interleave } => Some(ViewImportance::new(ctx, view_lights, interleave, view_seed)?),
+            Importance::Brsm { view_lights, interleave } => Some(ViewImportance::new(ctx, view_lights, interleave, view_seed, self.kmeans())?),
             Importance::Rsm => None,
         };
         let lit = for_each_light(ctx, &self.rsm, |ctx, light| {
@@ -294,6 +291,7 @@ impl Method for Vsgl {
             if let Some(kmeans) = self.kmeans() {
                 let job = KmeansJob {
                     rsm: light.rsm,
+                    centre_density: pdf,
                     chains,
                     count: light.budget,
                     seed: self.sampling.seed,

@@ -45,7 +45,10 @@ pub const CENTRE_BYTES: u64 = 16;
 
 /// How the centres are drawn.
 #[derive(Clone, Copy)]
-pub struct CentreDraw {
+pub struct CentreDraw<'a> {
+    /// The density they are drawn by: a pyramid in the layout of `rsm.pyramid` (the RSM's own
+    /// weights, or with `importance="brsm"` the re-weighted ones).
+    pub density: &'a wgpu::Buffer,
     pub count: u32,
     pub seed: u32,
     /// The Fibonacci lattice (`sampling="stratified"`) rather than random points.
@@ -63,7 +66,7 @@ impl KmeansCentresPass {
         Ok(Self { pipeline: gpu.compute_pipeline("kmeans_centres_pipeline", &module, "main") })
     }
 
-    pub fn record(&self, rec: &mut Recorder<'_>, rsm: &Rsm, chains: &MomentChains, draw: &CentreDraw, centres: &wgpu::Buffer) {
+    pub fn record(&self, rec: &mut Recorder<'_>, rsm: &Rsm, chains: &MomentChains, draw: &CentreDraw<'_>, centres: &wgpu::Buffer) {
         let params = CentreParamsRaw {
             count: draw.count,
             rsm_size: rsm.size,
@@ -78,7 +81,7 @@ impl KmeansCentresPass {
         rec.compute(
             "kmeans_centres",
             &self.pipeline,
-            &[&[uniform.as_entire_binding(), rsm.pyramid.as_entire_binding(), rsm.level_offsets.as_entire_binding(), chains.buffer.as_entire_binding(), centres.as_entire_binding()]],
+            &[&[uniform.as_entire_binding(), draw.density.as_entire_binding(), rsm.level_offsets.as_entire_binding(), chains.buffer.as_entire_binding(), centres.as_entire_binding()]],
             (groups(draw.count, WORKGROUP), 1, 1),
         );
     }
