@@ -84,7 +84,7 @@ __all__ = [
 # The submodules beyond `scenes` load on first use, so `import vsgl` stays light (bench pulls in
 # statistics and plotting helpers) while `vsgl.metrics.rmse(...)` works without an import of
 # its own (PEP 562).
-_LAZY_SUBMODULES = ("bench", "lightspec", "metrics", "stability", "video")
+_LAZY_SUBMODULES = ("bench", "lightspec", "metrics", "reproduce", "stability", "video")
 
 
 def __getattr__(name: str):

@@ -285,7 +285,14 @@ def main(argv: list[str] | None = None) -> int:
     # `stability` has its own parser (vsgl.stability.main); it is listed here for --help.
     sub.add_parser("stability", help="the numerical stability suite: every WGSL math function in f32 against its f64 oracle", add_help=False)
 
+    # `reproduce` has its own parser (vsgl.reproduce.main); it is listed here for --help.
+    sub.add_parser("reproduce", help="the papers' tables (pass times, k-means against FIS, LPV against one VSGL) next to ours, with error", add_help=False)
+
     argv = sys.argv[1:] if argv is None else argv
+    if argv[:1] == ["reproduce"]:
+        from vsgl import reproduce as reproduce_module
+
+        return reproduce_module.main(argv[1:])
     if argv[:1] == ["stability"]:
         from vsgl import stability as stability_module
 

@@ -245,8 +245,13 @@ impl Method for Vsgl {
     }
 
     fn settings(&self, _gpu: &Gpu) -> Result<Vec<(String, Setting)>> {
-        // The paper's dispatch count of its k-means (39) has a row to stand beside.
-        Ok(self.kmeans().map(|k| ("kmeans_dispatches".to_string(), Setting::Int(i64::from(k.dispatches(self.num_lights))))).into_iter().collect())
+        // The paper's dispatch count of its k-means (39, both views with BRSM) has a row to
+        // stand beside: one clustering of num_lights, and with importance="brsm" the view's.
+        let view = match self.importance {
+            Importance::Brsm { view_lights, .. } => Some(view_lights),
+            Importance::Rsm => None,
+        };
+        Ok(self.kmeans().map(|k| ("kmeans_dispatches".to_string(), Setting::Int(i64::from(k.dispatches(self.num_lights) + view.map_or(0, |n| k.dispatches(n)))))).into_iter().collect())
     }
 
     fn record(&self, ctx: &mut FrameContext<'_>) -> Result<()> {
