@@ -185,3 +185,23 @@ def lit_floor_corner(directory: pathlib.Path, *, wall_roughness: float = 0.35):
     scene = vsgl.Scene.load(write_quads(directory, [floor, wall], name="lit_floor_corner.gltf"))
     scene.lights = [vsgl.SpotLight(position=(0.0, 5.0, 1.0), direction=(0.0, -1.0, 0.0), intensity=40.0, inner_cone_deg=55, outer_cone_deg=65)]
     return scene, vsgl.Camera.look_at(eye=(1.5, 0.4, -2.5), target=(1.5, 0.3, -4.0), fov_y_deg=30)
+
+
+def columns_before_wall(directory: pathlib.Path):
+    """The 2016 paper's Fig. 7 case, a light occluded by columns: a row of seven square columns
+    (0.24 m wide, 1.8 m high) stands 1 m in front of a lit back wall on a floor, and a spot light
+    shines at the wall past them. In the RSM the columns' lit faces and the wall between them are
+    neighbours in texel space but a metre apart in the world, so a cluster of neighbouring texels
+    can hold both; the floor in front gets the wall's bounce in stripes between the columns'
+    shadows. The camera looks down at that floor. Returns (scene, camera)."""
+    floor = dict(corners=[(-2, 0, -2), (-2, 0, 2), (2, 0, 2), (2, 0, -2)], base_color=(0.8, 0.8, 0.8), specular=0.0, name="floor")
+    quads = [floor]
+    x, w = -1.0, 0.12
+    for i, z in enumerate(np.linspace(-1.6, 1.6, 7)):
+        sides = [((x, z - w), (x, z + w)), ((x, z + w), (x - 2 * w, z + w)), ((x - 2 * w, z + w), (x - 2 * w, z - w)), ((x - 2 * w, z - w), (x, z - w))]
+        for k, ((x0, z0), (x1, z1)) in enumerate(sides):
+            quads.append(dict(corners=[(x0, 0, z0), (x0, 1.8, z0), (x1, 1.8, z1), (x1, 0, z1)], base_color=(0.8, 0.8, 0.8), specular=0.0, name=f"column{i}_{k}"))
+    wall = dict(corners=[(-2, 0, 2), (-2, 0, -2), (-2, 2, -2), (-2, 2, 2)], base_color=(0.9, 0.9, 0.9), specular=0.0, name="wall")
+    scene = vsgl.Scene.load(write_quads(directory, quads + [wall], name="columns_before_wall.gltf"))
+    scene.lights = [vsgl.SpotLight(position=(1.5, 1.5, 0.0), direction=(-1.0, -0.45, 0.0), intensity=10.0, inner_cone_deg=50, outer_cone_deg=60)]
+    return scene, vsgl.Camera.look_at(eye=(1.8, 2.2, 0.0), target=(-0.5, 0.0, 0.0), fov_y_deg=60)

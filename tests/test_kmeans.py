@@ -9,6 +9,8 @@ import numpy as np
 import pytest
 
 import vsgl
+from scene_builders import columns_before_wall
+from vsgl.metrics import block_rmse
 
 EYE = (0.0, 1.0, 3.9)
 CAMERA = vsgl.Camera.look_at(eye=EYE, target=(0.0, 1.0, 0.0), fov_y_deg=40)
@@ -157,3 +159,24 @@ def test_with_bidirectional_importance_both_sides_are_kmeans_clusters(renderer, 
 def test_options_that_do_not_apply_to_kmeans_are_errors_naming_them(renderer, options, named):
     with pytest.raises(vsgl.ArgumentError, match=named):
         renderer.render(vsgl.scenes.cornell_box(), method="vsgl", rsm_size=32, num_lights=16, aovs=[], **options)
+
+
+def test_3d_kmeans_keeps_the_columns_indirect_shadows_sharper_than_2d(make_renderer, tmp_path):
+    # The 2016 paper's Fig. 7: with one shadow test per VSGL (the papers' visibility: a ray to
+    # the cluster's centre, shadow_target="centre"), a 2D cluster that holds both a column's lit
+    # face and the wall a metre behind it is shadowed as one, and the floor's striped bounce
+    # light blurs; 3D clusters keep column and wall apart. Measured (3 seeds, N = 128, 64², RSM
+    # 64², against the reference shadowed by ray tracing): block error 2D 0.163, 3D 0.119; mean
+    # 0.872 and 0.970 of the reference's (ISM visibility: 0.195 and 0.141).
+    r = make_renderer(64, 64)
+    scene, cam = columns_before_wall(tmp_path)
+    ref = r.render(scene, camera=cam, method="reference", rsm_size=64, visibility="raytrace", aovs=["indirect"]).aov("indirect")
+    errors = {}
+    for kernel in ("kmeans2d", "kmeans3d"):
+        errors[kernel] = np.mean([
+            block_rmse(r.render(scene, camera=cam, method="vsgl", kernel=kernel, num_lights=128, rsm_size=64, interleave=1, denoise=False,
+                                visibility="raytrace", shadow_target="centre", seed=seed, aovs=["indirect"]).aov("indirect"), ref, block=4)
+            for seed in range(3)
+        ])
+    print(errors)
+    assert errors["kmeans3d"] < 0.85 * errors["kmeans2d"], errors
