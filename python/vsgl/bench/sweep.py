@@ -119,6 +119,104 @@ def _resolve_defaults(given: dict[str, Any], cpu: bool) -> tuple[dict[str, Any],
     return used, scaled
 
 
+def _check_arguments(*, frames, warmup_seconds, reference, reference_strategy, methods, plans, seeds, Ks, lightings, importances, importance_interleave, samplings, options, sequence) -> None:
+    """The sweep's own arguments (ranges and choices of method options are the core's: each is
+    handed to `vsgl.check_method_options`, so this holds no second copy of them)."""
+    if frames is not None and frames < 1:
+        raise ValueError(f"frames: must be >= 1, got {frames}")
+    if not (warmup_seconds >= 0 and np.isfinite(warmup_seconds)):
+        raise ValueError(f"warmup_seconds: must be finite and >= 0, got {warmup_seconds}")
+    truths = [m for m in vsgl.METHODS if vsgl.method_info(m)["ground_truth"]]
+    if reference not in truths:
+        raise ValueError(f"reference: must be one of {', '.join(map(repr, truths))} (the ground-truth methods), got {reference!r}")
+    strategies = vsgl.method_info("pathtrace")["options"]["strategy"]["choices"]
+    if reference_strategy not in strategies:
+        raise ValueError(f"reference_strategy: must be one of {', '.join(map(repr, strategies))} (pathtrace's strategy=), got {reference_strategy!r}")
+    unknown = [m for m in methods if m not in vsgl.METHODS]
+    if unknown:
+        raise ValueError(f"methods: unknown {unknown}; valid: {', '.join(vsgl.METHODS)}")
+    bad_plans = [p for p in plans if p not in ("auto", "full")]
+    if bad_plans or not plans:
+        raise ValueError(f"plans: expected a non-empty list of \"auto\" and \"full\", got {list(plans)}")
+    if seeds is not None and len(seeds) < 1:
+        raise ValueError("seeds: expected at least one seed")
+    if not Ks:
+        raise ValueError("Ks: expected kernel masses K (or None for the default), got none")
+    for K in Ks:
+        if K is not None:
+            try:
+                vsgl.check_method_options("vsgl", K=K)
+            except vsgl.ArgumentError as e:
+                raise ValueError(f"Ks: {e}") from e
+    if not lightings:
+        raise ValueError("lightings: expected SG lighting forms of vsgl (or None for the default), got none")
+    for lighting in lightings:
+        if lighting is not None:
+            # The core's option spec is the one list of forms (vsgl.method_options("vsgl")).
+            try:
+                vsgl.check_method_options("vsgl", lighting=lighting)
+            except vsgl.ArgumentError as e:
+                raise ValueError(f"lightings: {e}") from e
+    known_importances = _choices("importance")
+    if not importances or any(i not in known_importances for i in importances):
+        raise ValueError(f"importances: expected a non-empty list of {', '.join(map(repr, known_importances))}, got {list(importances)}")
+    if importance_interleave is not None:
+        try:
+            vsgl.check_method_options("vsgl", importance="brsm", importance_interleave=importance_interleave)
+        except vsgl.ArgumentError as e:
+            raise ValueError(f"importance_interleave: {e}") from e
+    if not samplings or any(s not in (None, *SAMPLINGS) for s in samplings):
+        raise ValueError(f"samplings: expected values from {', '.join(SAMPLINGS)} (or None for the default), got {list(samplings)}")
+    for name, values in options.items():
+        takers = [m for m in methods if name in vsgl.method_options(m)]
+        if not takers:
+            raise ValueError(f"options: {name!r} is an option of none of the methods {list(methods)}; `python -m vsgl methods` lists each one's")
+        if name in SWEPT_ELSEWHERE:
+            raise ValueError(f"options: {name!r} has its own axis or setting ({SWEPT_ELSEWHERE[name]}); use that")
+        if isinstance(values, (str, bytes)) or not hasattr(values, "__len__") or len(values) == 0:
+            raise ValueError(f"options: {name!r} needs a non-empty list of values, got {values!r}")
+    if isinstance(sequence, bool) or not isinstance(sequence, int) or sequence < 0 or sequence == 1:
+        raise ValueError(f"sequence: expected 0 (off) or a number of frames >= 2, got {sequence!r}")
+
+
+def _configurations(*, methods, lights, rsm_sizes, kernels, Ks, lightings, importances, samplings, options, plans) -> list[tuple]:
+    """Every configuration of the sweep: (method, N, RSM size, kernel, K, lighting, importance,
+    sampling, other options, plan), each axis only for the methods that take its option."""
+    configs = []
+    # Each axis for the methods that take its option (the registry's option lists).
+    def axis(m: str, option: str, values):
+        return values if _takes(m, option) else (None,)
+
+    for m in methods:
+        if _takes(m, "num_lights"):
+            for n in lights:
+                for r in rsm_sizes:
+                    for k in axis(m, "kernel", kernels):
+                        for K in axis(m, "K", Ks):
+                            for li in axis(m, "lighting", lightings):
+                                for imp in axis(m, "importance", importances):
+                                    for s in axis(m, "sampling", samplings):
+                                        configs.append((m, n, r, k, K, li, imp, s))
+        elif _takes(m, "rsm_size"):
+            # Without a light count (every texel, or two sums over them): one configuration
+            # per RSM size.
+            for r in rsm_sizes:
+                for li in axis(m, "lighting", lightings):
+                    configs.append((m, None, r, None, None, li, None, None))
+        else:
+            configs.append((m, None, None, None, None, None, None, None))
+    # --option axes, for the methods that take each option; then the plans, which alternate
+    # inside one configuration so both see the same machine state.
+    configs = [(*c, extra) for c in configs for extra in _option_combinations(c[0], options)]
+    # A value the method refuses, or a combination it refuses (K with a k-means kernel), fails
+    # here, naming the option, before the scenes' references (minutes on a GPU at high spp) are
+    # rendered.
+    for m, _n, _r, kernel, K, lighting, importance, sampling, extra in configs:
+        axes = dict(kernel=kernel, K=K, lighting=lighting, importance=importance, sampling=sampling)
+        vsgl.check_method_options(m, **{k: v for k, v in axes.items() if v is not None}, **dict(extra))
+    return [(*c, plan) for c in configs for plan in plans]
+
+
 def run(
     scenes=("cornell_box",),
     methods=("vpl", "vsgl"),
@@ -156,56 +254,10 @@ def run(
 
     Settings left at None take GPU_DEFAULTS, or CPU_DEFAULTS on a CPU adapter (then printed to
     stderr and listed in ``report.scaled_for_cpu``)."""
-    if frames is not None and frames < 1:
-        raise ValueError(f"frames: must be >= 1, got {frames}")
-    if not (warmup_seconds >= 0 and np.isfinite(warmup_seconds)):
-        raise ValueError(f"warmup_seconds: must be finite and >= 0, got {warmup_seconds}")
-    truths = [m for m in vsgl.METHODS if vsgl.method_info(m)["ground_truth"]]
-    if reference not in truths:
-        raise ValueError(f"reference: must be one of {', '.join(map(repr, truths))} (the ground-truth methods), got {reference!r}")
-    strategies = vsgl.method_info("pathtrace")["options"]["strategy"]["choices"]
-    if reference_strategy not in strategies:
-        raise ValueError(f"reference_strategy: must be one of {', '.join(map(repr, strategies))} (pathtrace's strategy=), got {reference_strategy!r}")
-    unknown = [m for m in methods if m not in vsgl.METHODS]
-    if unknown:
-        raise ValueError(f"methods: unknown {unknown}; valid: {', '.join(vsgl.METHODS)}")
-    bad_plans = [p for p in plans if p not in ("auto", "full")]
-    if bad_plans or not plans:
-        raise ValueError(f"plans: expected a non-empty list of \"auto\" and \"full\", got {list(plans)}")
-    if seeds is not None and len(seeds) < 1:
-        raise ValueError("seeds: expected at least one seed")
-    if not Ks or any(K is not None and not (isinstance(K, (int, float)) and np.isfinite(K) and K > 0) for K in Ks):
-        raise ValueError(f"Ks: expected kernel masses K > 0 (or None for the default), got {list(Ks)}")
-    if not lightings:
-        raise ValueError("lightings: expected SG lighting forms of vsgl (or None for the default), got none")
-    for lighting in lightings:
-        if lighting is not None:
-            # The core's option spec is the one list of forms (vsgl.method_options("vsgl")).
-            try:
-                vsgl.check_method_options("vsgl", lighting=lighting)
-            except vsgl.ArgumentError as e:
-                raise ValueError(f"lightings: {e}") from e
-    known_importances = _choices("importance")
-    if not importances or any(i not in known_importances for i in importances):
-        raise ValueError(f"importances: expected a non-empty list of {', '.join(map(repr, known_importances))}, got {list(importances)}")
-    if importance_interleave is not None:
-        try:
-            vsgl.check_method_options("vsgl", importance="brsm", importance_interleave=importance_interleave)
-        except vsgl.ArgumentError as e:
-            raise ValueError(f"importance_interleave: {e}") from e
-    if not samplings or any(s not in (None, *SAMPLINGS) for s in samplings):
-        raise ValueError(f"samplings: expected values from {', '.join(SAMPLINGS)} (or None for the default), got {list(samplings)}")
     options = dict(options or {})
-    for name, values in options.items():
-        takers = [m for m in methods if name in vsgl.method_options(m)]
-        if not takers:
-            raise ValueError(f"options: {name!r} is an option of none of the methods {list(methods)}; `python -m vsgl methods` lists each one's")
-        if name in SWEPT_ELSEWHERE:
-            raise ValueError(f"options: {name!r} has its own axis or setting ({SWEPT_ELSEWHERE[name]}); use that")
-        if isinstance(values, (str, bytes)) or not hasattr(values, "__len__") or len(values) == 0:
-            raise ValueError(f"options: {name!r} needs a non-empty list of values, got {values!r}")
-    if isinstance(sequence, bool) or not isinstance(sequence, int) or sequence < 0 or sequence == 1:
-        raise ValueError(f"sequence: expected 0 (off) or a number of frames >= 2, got {sequence!r}")
+    _check_arguments(frames=frames, warmup_seconds=warmup_seconds, reference=reference, reference_strategy=reference_strategy,
+                     methods=methods, plans=plans, seeds=seeds, Ks=Ks, lightings=lightings, importances=importances,
+                     importance_interleave=importance_interleave, samplings=samplings, options=options, sequence=sequence)
     # The adapter decides the defaults; a tiny renderer finds it (~0.1 s) before the real one.
     probe = vsgl.Renderer(width=8, height=8, adapter=adapter) if size is None else None
     renderer = probe or vsgl.Renderer(width=size[0], height=size[1], adapter=adapter)
@@ -259,37 +311,8 @@ def run(
             f"rsm_size^-{RSM_REFERENCE_ORDER:g}; an estimate; taken as deterministic (zero variance) in the debiased error"
         ),
     )
-    configs = []
-    # Each axis for the methods that take its option (the registry's option lists).
-    def axis(m: str, option: str, values):
-        return values if _takes(m, option) else (None,)
-
-    for m in methods:
-        if _takes(m, "num_lights"):
-            for n in lights:
-                for r in rsm_sizes:
-                    for k in axis(m, "kernel", kernels):
-                        for K in axis(m, "K", Ks):
-                            for li in axis(m, "lighting", lightings):
-                                for imp in axis(m, "importance", importances):
-                                    for s in axis(m, "sampling", samplings):
-                                        configs.append((m, n, r, k, K, li, imp, s))
-        elif _takes(m, "rsm_size"):
-            # Without a light count (every texel, or two sums over them): one configuration
-            # per RSM size.
-            for r in rsm_sizes:
-                for li in axis(m, "lighting", lightings):
-                    configs.append((m, None, r, None, None, li, None, None))
-        else:
-            configs.append((m, None, None, None, None, None, None, None))
-    # --option axes, for the methods that take each option; then the plans, which alternate
-    # inside one configuration so both see the same machine state.
-    configs = [(*c, extra) for c in configs for extra in _option_combinations(c[0], options)]
-    # A value the method refuses fails here, naming the option, before the scenes' references
-    # (minutes on a GPU at high spp) are rendered.
-    for m, *_rest, extra in configs:
-        vsgl.check_method_options(m, **dict(extra))
-    configs = [(*c, plan) for c in configs for plan in plans]
+    configs = _configurations(methods=methods, lights=lights, rsm_sizes=rsm_sizes, kernels=kernels, Ks=Ks, lightings=lightings,
+                              importances=importances, samplings=samplings, options=options, plans=plans)
     # Per row (by its index in report.rows): its SeedErrors, for the equal-time comparisons.
     seed_stats: dict[int, metrics.SeedErrors] = {}
     for scene_name in scenes:
