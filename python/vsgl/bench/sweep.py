@@ -119,6 +119,14 @@ def _resolve_defaults(given: dict[str, Any], cpu: bool) -> tuple[dict[str, Any],
     return used, scaled
 
 
+def _core_check(axis: str, **options: Any) -> None:
+    """`vsgl.check_method_options("vsgl", **options)`, its error prefixed with the sweep's `axis`."""
+    try:
+        vsgl.check_method_options("vsgl", **options)
+    except vsgl.ArgumentError as e:
+        raise ValueError(f"{axis}: {e}") from e
+
+
 def _check_arguments(*, frames, warmup_seconds, reference, reference_strategy, methods, plans, seeds, Ks, lightings, importances, importance_interleave, samplings, options, sequence) -> None:
     """The sweep's own arguments (ranges and choices of method options are the core's: each is
     handed to `vsgl.check_method_options`, so this holds no second copy of them)."""
@@ -142,29 +150,18 @@ def _check_arguments(*, frames, warmup_seconds, reference, reference_strategy, m
         raise ValueError("seeds: expected at least one seed")
     if not Ks:
         raise ValueError("Ks: expected kernel masses K (or None for the default), got none")
-    for K in Ks:
-        if K is not None:
-            try:
-                vsgl.check_method_options("vsgl", K=K)
-            except vsgl.ArgumentError as e:
-                raise ValueError(f"Ks: {e}") from e
     if not lightings:
         raise ValueError("lightings: expected SG lighting forms of vsgl (or None for the default), got none")
-    for lighting in lightings:
-        if lighting is not None:
-            # The core's option spec is the one list of forms (vsgl.method_options("vsgl")).
-            try:
-                vsgl.check_method_options("vsgl", lighting=lighting)
-            except vsgl.ArgumentError as e:
-                raise ValueError(f"lightings: {e}") from e
+    # The core's option specs are the one list of ranges and forms (vsgl.method_options("vsgl")).
+    for axis, option, values in (("Ks", "K", Ks), ("lightings", "lighting", lightings)):
+        for value in values:
+            if value is not None:
+                _core_check(axis, **{option: value})
     known_importances = _choices("importance")
     if not importances or any(i not in known_importances for i in importances):
         raise ValueError(f"importances: expected a non-empty list of {', '.join(map(repr, known_importances))}, got {list(importances)}")
     if importance_interleave is not None:
-        try:
-            vsgl.check_method_options("vsgl", importance="brsm", importance_interleave=importance_interleave)
-        except vsgl.ArgumentError as e:
-            raise ValueError(f"importance_interleave: {e}") from e
+        _core_check("importance_interleave", importance="brsm", importance_interleave=importance_interleave)
     if not samplings or any(s not in (None, *SAMPLINGS) for s in samplings):
         raise ValueError(f"samplings: expected values from {', '.join(SAMPLINGS)} (or None for the default), got {list(samplings)}")
     for name, values in options.items():
