@@ -9,7 +9,9 @@
 // are ordered by key and, among equal keys, by their order in the input: the same sort every run
 // (no atomics decide an order), and the sums over a sorted run are the same floats every frame.
 // The scatter's rank is a loop over the block's earlier pairs (≤ BLOCK − 1 iterations), which
-// stays well inside lavapipe's cap on a shader invocation's loop iterations (65535 in all).
+// stays well inside lavapipe's cap on a shader invocation's loop iterations (65535 in all); the
+// scan's one workgroup walks 2·⌈count/BLOCK⌉ entries per thread, inside the cap up to 8.4M pairs
+// (a 2048² RSM: lavapipe's 128 MiB storage binding limit refuses a 4096² RSM before that).
 
 struct SortParams {
     // Pairs to sort.
