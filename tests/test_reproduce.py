@@ -35,3 +35,22 @@ def test_reproduce_prints_every_table_with_the_papers_numbers_ratios_and_errors(
 def test_reproduce_refuses_an_unknown_table():
     with pytest.raises(SystemExit):
         reproduce.main(["--tables", "tok17"])
+
+
+@pytest.mark.gpu
+def test_reproduce_warms_the_clock_as_the_bench_does_and_says_when_it_stayed_cold(capsys, monkeypatch):
+    from vsgl import bench
+
+    from test_bench import _FakeClock
+
+    monkeypatch.setattr(bench, "CLOCK_WARM_MAX_EXTRA_S", 0.3)
+    args = ["--tables", "poster", "--size", "24x16", "--rsm", "32", "--frames", "1"]
+    # A clock that is warm after a few reads: the warm-up renders until then, so the timed
+    # frames' clocks read warm and nothing is said.
+    monkeypatch.setattr(bench, "_clock_for", lambda cpu: _FakeClock(warm_after=4))
+    assert reproduce.main(args) == 0
+    assert "ran cold" not in capsys.readouterr().err
+    # A clock that never warms: the table is still printed, and says so.
+    monkeypatch.setattr(bench, "_clock_for", lambda cpu: _FakeClock(warm_after=None))
+    assert reproduce.main(args) == 0
+    assert "SM clock 360-360 of 1980 MHz" in capsys.readouterr().err

@@ -7,7 +7,6 @@ import functools
 import pathlib
 import statistics
 import sys
-import time
 from typing import Any
 
 import numpy as np
@@ -18,7 +17,7 @@ from vsgl import metrics
 from .output import write
 from .reference import MIN_RSM, RSM_REFERENCE_ORDER, _ReferenceRender, _scene_reference
 from .report import TRUST_FACTOR, Report, Row, _equal_time, _plan_ratios
-from .timing import CLOCK_WARM_MAX_EXTRA_S, _clock_for, _quartiles
+from .timing import _clock_for, _quartiles, warm_up
 
 
 @functools.lru_cache(maxsize=None)
@@ -363,13 +362,8 @@ def run(
             # frames back to back, and the errors only after them: a second of CPU work for the
             # metrics between seeds let an H200 fall back to 360–900 MHz, which made some rows of
             # a sweep 2–7x slower than their neighbours.
-            warm_frames = 0
-            t_end = time.perf_counter() + report.warmup_seconds
             quiet = {k: v for k, v in settings.items() if k != "aovs"}
-            while time.perf_counter() < t_end or (
-                    sm_clock is not None and not sm_clock.warm(sm_clock.read()) and time.perf_counter() < t_end + CLOCK_WARM_MAX_EXTRA_S):
-                renderer.render(scene, method=method, aovs=[], **quiet)
-                warm_frames += 1
+            warm_frames = warm_up(lambda: renderer.render(scene, method=method, aovs=[], **quiet), report.warmup_seconds, sm_clock)
             clocks: list[int] = []
             seed_frames: list[Any] = []
             for seed in run_seeds:

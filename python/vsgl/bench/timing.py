@@ -3,6 +3,8 @@
 from __future__ import annotations
 
 import statistics
+import time
+from typing import Callable
 
 
 def _quartiles(v: list[float]) -> tuple[float, float]:
@@ -45,3 +47,17 @@ def _sm_clock_reader() -> _SmClock | None:
         return _SmClock(lambda: int(pynvml.nvmlDeviceGetClockInfo(handle, pynvml.NVML_CLOCK_SM)), max_mhz)
     except Exception:  # not installed, no NVIDIA driver, no device: clocks are not reported
         return None
+
+
+def warm_up(render: Callable[[], object], seconds: float, sm_clock: _SmClock | None) -> int:
+    """Sustained load before timing: `render()` back to back (nothing read back) for `seconds`,
+    and where `sm_clock` reads the SM clock, on until it is warm (at most CLOCK_WARM_MAX_EXTRA_S
+    more), so no frame is timed on a GPU that has not left its idle clock (docs/error.md, cold
+    clocks). Returns the frames rendered."""
+    frames = 0
+    t_end = time.perf_counter() + seconds
+    while time.perf_counter() < t_end or (
+            sm_clock is not None and not sm_clock.warm(sm_clock.read()) and time.perf_counter() < t_end + CLOCK_WARM_MAX_EXTRA_S):
+        render()
+        frames += 1
+    return frames
