@@ -10,7 +10,8 @@ configurations of a table alternated frame by frame), the ratios that compare ac
 (each column over the table's baseline), and the error column the papers lack: each
 configuration's mean indirect light over the every-texel reference of the same RSM and its block
 error (4×4 blocks, relative RMS) against it. The reference is the sum over every RSM texel that
-the virtual lights stand for, so its own error against that target is 0.
+the virtual lights stand for, so its own error against that target is 0; a stochastic
+configuration's error is the mean over 3 seeds.
 
 On a CPU adapter (lavapipe) absolute times mean nothing: only the ratios are printed, and the
 defaults shrink (``--size``, ``--rsm``) so the run takes a few minutes."""
@@ -105,6 +106,8 @@ def _medians(frames: list[dict[str, float]]) -> dict[str, float]:
     return {n: statistics.median(f.get(n, 0.0) for f in frames) for n in names}
 
 
+#: Seeds each stochastic configuration's error is averaged over.
+ERROR_SEEDS = 3
 #: Seconds of back-to-back frames before a table's timed frames on a GPU (the bench's default;
 #: on a GPU the warm-up also goes on until NVML reads a warm SM clock, where it can).
 WARMUP_SECONDS = 1.0
@@ -116,6 +119,7 @@ def _measure(renderer, scene, configs: Sequence[tuple[str, dict[str, Any]]], pas
     frames until the SM clock is warm on a GPU), then `frames` frames alternated across them,
     then one frame with AOVs for the error against the reference of the same RSM (its virtual
     lights shadowed by ray tracing when the configurations shadow theirs)."""
+    import vsgl
     from vsgl.bench.timing import _clock_for, warm_up
     from vsgl.metrics import block_rmse
 
@@ -142,14 +146,18 @@ def _measure(renderer, scene, configs: Sequence[tuple[str, dict[str, Any]]], pas
             print(f"  note: SM clock {min(clocks)}-{max(clocks)} of {clock.max_mhz} MHz before/after the timed frames: some ran cold", file=sys.stderr)
     out = []
     for (label, kw), times in zip(configs, timed):
-        f = renderer.render(scene, aovs=aovs, **kw)
+        # The error of a stochastic configuration is the mean over ERROR_SEEDS seeds: one seed's
+        # frame at small N is noise as much as bias.
+        seeds = range(ERROR_SEEDS) if "seed" in vsgl.method_options(kw["method"]) else [None]
+        frames_ = [renderer.render(scene, aovs=aovs, **kw, **({} if seed is None else {"seed": seed})) for seed in seeds]
+        f = frames_[0]
         wanted = passes(label)
         totals = [sum(t.get(p, 0.0) for p in wanted) for t in times]
-        indirect = f.aov("indirect_diffuse").astype(np.float64) + f.aov("indirect_specular")
+        indirect = [g.aov("indirect_diffuse").astype(np.float64) + g.aov("indirect_specular") for g in frames_]
         out.append(Measured(
             label=label, timings=_medians(times), total_ms=statistics.median(totals),
-            diffuse=float(f.aov("indirect_diffuse").mean()) / ref_diffuse if ref_diffuse > 0 else float("nan"),
-            block=block_rmse(indirect, ref_indirect, block=4) if np.any(ref_indirect) else float("nan"),
+            diffuse=float(np.mean([g.aov("indirect_diffuse").mean() for g in frames_])) / ref_diffuse if ref_diffuse > 0 else float("nan"),
+            block=float(np.mean([block_rmse(i, ref_indirect, block=4) for i in indirect])) if np.any(ref_indirect) else float("nan"),
             memory=dict(f.memory_bytes), dispatches=f.settings.get("kmeans_dispatches"),
         ))
     return out
@@ -237,6 +245,9 @@ def main(argv: list[str] | None = None) -> int:
     p.add_argument("--rsm", type=int, default=None, help="RSM side (default: the papers' 256 / 512 on a GPU, 64 on a CPU)")
     p.add_argument("--frames", type=int, default=None, help="timed frames per configuration (default: 20 on a GPU, 3 on a CPU)")
     p.add_argument("--tables", type=str, default="tok15,tok16,poster", help="which tables: tok15, tok16, poster (comma-separated)")
+    p.add_argument("--scene", type=str, default=None,
+                   help="the scene of the 2015 and 2016 tables: a built-in, a corpus scene (e.g. flight_helmet) or a glTF file "
+                        "(default: glossy_cornell); the poster's table keeps the diffuse Cornell box, its LDDE setting")
     p.add_argument("--adapter", type=str, default=None, help="adapter name filter (as for render)")
     a = p.parse_args(argv)
     tables = [t.strip() for t in a.tables.split(",") if t.strip()]
@@ -252,18 +263,21 @@ def main(argv: list[str] | None = None) -> int:
     frames = a.frames if a.frames is not None else (3 if cpu else 20)
     if frames < 1:
         p.error(f"--frames: must be >= 1, got {frames}")
+    from vsgl.bench.sweep import _scene
+
+    scene_name = a.scene or "glossy_cornell"
     renderer = vsgl.Renderer(width=w, height=h, adapter=a.adapter)
-    print(f"adapter: {renderer.adapter['name']} ({renderer.adapter['device_type']}), {w}x{h}, median of {frames} frames after 2 warm-up, "
-          "configurations alternated")
+    print(f"adapter: {renderer.adapter['name']} ({renderer.adapter['device_type']}), {w}x{h}, scene {scene_name}, median of {frames} frames "
+          "after the warm-up, configurations alternated")
     if cpu:
         print("CPU adapter: absolute times are meaningless; only the ratios (within a table) are printed")
     for table in tables:
         if table == "tok15":
             rsm = a.rsm or (64 if cpu else 256)
-            print("\n" + tok15_table1(renderer, vsgl.scenes.glossy_cornell(), rsm, 1024 if not cpu else 256, 4096 if not cpu else 256, frames, cpu))
+            print("\n" + tok15_table1(renderer, _scene(scene_name), rsm, 1024 if not cpu else 256, 4096 if not cpu else 256, frames, cpu))
         elif table == "tok16":
             rsm = a.rsm or (64 if cpu else 512)
-            print("\n" + tok16_table1(renderer, vsgl.scenes.glossy_cornell(), rsm, 1024 if not cpu else 256, 2048 if not cpu else 256, frames, cpu))
+            print("\n" + tok16_table1(renderer, _scene(scene_name), rsm, 1024 if not cpu else 256, 2048 if not cpu else 256, frames, cpu))
         else:
             rsm = a.rsm or (64 if cpu else 128)
             print("\n" + poster_table1(renderer, vsgl.scenes.builtin_scene("diffuse_cornell"), rsm, frames, cpu))
