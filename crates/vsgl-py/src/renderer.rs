@@ -42,11 +42,20 @@ impl PyRenderer {
     }
     #[getter]
     fn width(&self) -> u32 {
-        self.inner.width
+        self.inner.width()
     }
     #[getter]
     fn height(&self) -> u32 {
-        self.inner.height
+        self.inner.height()
+    }
+    /// Renders the next frames at `width` × `height` (each 1 to the adapter's largest 2D
+    /// texture), keeping the device, the compiled passes and the scene upload: a live view
+    /// resizes its renderer instead of opening a new one, which would compile every pass
+    /// again. Frames already submitted keep their size.
+    fn resize(&self, width: IntArg, height: IntArg) -> PyResult<()> {
+        let width = width.in_range("width", 1, 16384)?;
+        let height = height.in_range("height", 1, 16384)?;
+        self.inner.resize(width, height).map_err(to_py)
     }
     /// Frees the GPU copy of the last scene rendered. The renderer keeps it while the scene's
     /// geometry and the camera position are unchanged, so repeated frames skip the upload
@@ -148,7 +157,7 @@ impl PyRenderer {
         Ok(PyFrameSequence { renderer: self.inner.clone(), frames: frames.unbind(), opts, state: std::sync::Mutex::new(state) })
     }
     fn __repr__(&self) -> String {
-        format!("Renderer(width={}, height={}, adapter={:?})", self.inner.width, self.inner.height, self.inner.gpu.adapter.name)
+        format!("Renderer(width={}, height={}, adapter={:?})", self.inner.width(), self.inner.height(), self.inner.gpu.adapter.name)
     }
 }
 

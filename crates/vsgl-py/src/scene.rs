@@ -226,6 +226,12 @@ impl PyScene {
     fn set_time(&mut self, #[pyo3(from_py_with = crate::args::float)] t: f64) -> PyResult<()> {
         Arc::make_mut(&mut self.inner).set_time(t).map_err(to_py)
     }
+    /// The camera `render` uses when given `camera=None`: the file's first camera, else one
+    /// that frames the scene's bounds from the front (+Z) and above. ArgumentError for a scene
+    /// with neither cameras nor geometry.
+    fn default_camera(&self) -> PyResult<PyCamera> {
+        Ok(PyCamera { inner: vsgl_core::renderer::default_camera(&self.inner).map_err(to_py)? })
+    }
     #[getter]
     fn cameras(&self) -> Vec<PyCamera> {
         self.inner.cameras.iter().map(|c| PyCamera { inner: *c }).collect()

@@ -34,8 +34,9 @@ const TIMER_CAPACITY: u32 = 2048;
 
 pub struct Renderer {
     pub gpu: Arc<Gpu>,
-    pub width: u32,
-    pub height: u32,
+    /// Width and height of the frames rendered from now on ([`Self::resize`] changes them;
+    /// a frame reads them once, when it is recorded).
+    size: Mutex<(u32, u32)>,
     /// Every pass a frame has needed so far, created on first use.
     passes: PassCache,
     /// The last scene uploaded and what it was uploaded from: reused while the key matches.
@@ -131,12 +132,7 @@ impl SceneUploadKey {
 
 impl Renderer {
     pub fn new(gpu: Arc<Gpu>, width: u32, height: u32) -> Result<Self> {
-        let max = gpu.limits.max_texture_dimension_2d;
-        for (name, v) in [("width", width), ("height", height)] {
-            if v == 0 || v > max {
-                return Err(Error::invalid(name, format!("must be in 1..={max} on this adapter, got {v}")));
-            }
-        }
+        check_size(&gpu, width, height)?;
         let passes = PassCache::new(gpu.clone());
         // The passes of every frame, so a broken install fails here rather than at the first
         // render; the methods' passes are created when a frame first needs them.
@@ -147,7 +143,32 @@ impl Renderer {
             passes.get::<DirectPass>()?;
             Ok(())
         })?;
-        Ok(Self { gpu, width, height, passes, scene_cache: Mutex::new(None), frame_state: Mutex::default(), readback_slots: Mutex::default(), in_flight: Default::default() })
+        Ok(Self { gpu, size: Mutex::new((width, height)), passes, scene_cache: Mutex::new(None), frame_state: Mutex::default(), readback_slots: Mutex::default(), in_flight: Default::default() })
+    }
+
+    /// Width of the frames rendered from now on.
+    pub fn width(&self) -> u32 {
+        self.size().0
+    }
+
+    /// Height of the frames rendered from now on.
+    pub fn height(&self) -> u32 {
+        self.size().1
+    }
+
+    /// (width, height) of the frames rendered from now on.
+    pub fn size(&self) -> (u32, u32) {
+        *self.size.lock().unwrap_or_else(|e| e.into_inner())
+    }
+
+    /// Renders the next frames at `width` × `height`, keeping the device, the compiled passes
+    /// and the scene upload (a live view's window is resized many times; a new renderer would
+    /// compile every pass again). Frames already submitted keep their own size; the frame
+    /// targets of the old size are dropped as any target no frame asks for.
+    pub fn resize(&self, width: u32, height: u32) -> Result<()> {
+        check_size(&self.gpu, width, height)?;
+        *self.size.lock().unwrap_or_else(|e| e.into_inner()) = (width, height);
+        Ok(())
     }
 
     /// Renders one frame: [`Self::submit`] then [`Self::finish`].
@@ -162,7 +183,7 @@ impl Renderer {
         // The method parses its options and resolves the defaults that depend on others.
         let method = (info.configure)(&mut options)?;
         method.check(&self.gpu)?;
-        let camera = match camera.or(scene.cameras.first()) {
+        let camera = match camera {
             Some(c) => *c,
             None => default_camera(scene)?,
         };
@@ -286,7 +307,7 @@ impl Renderer {
     /// submits it.
     fn render_inner(&self, job: &FrameJob<'_>, slot: &mut ReadbackSlot) -> Result<Recorded> {
         let (gpu, scene, camera, info) = (&*self.gpu, job.scene, job.camera, job.info);
-        let (w, h) = (self.width, self.height);
+        let (w, h) = self.size();
         let plan = Plan::new(scene, job.opts.plan == PlanMode::Full);
         let feat = plan.features;
         let mut skipped: Vec<(String, String)> = plan.skipped.clone();
@@ -498,9 +519,24 @@ fn default_shadow_size() -> u32 {
     }
 }
 
-/// A camera that frames the scene bounds when the scene has none: from the front (+Z) and
-/// above, so flat scenes such as a ground plane are not seen edge-on.
+/// Frame sizes from 1 to the adapter's largest 2D texture, by name.
+fn check_size(gpu: &Gpu, width: u32, height: u32) -> Result<()> {
+    let max = gpu.limits.max_texture_dimension_2d;
+    for (name, v) in [("width", width), ("height", height)] {
+        if v == 0 || v > max {
+            return Err(Error::invalid(name, format!("must be in 1..={max} on this adapter, got {v}")));
+        }
+    }
+    Ok(())
+}
+
+/// The camera a frame without one uses: the scene's first camera, else one that frames the
+/// scene bounds from the front (+Z) and above, so flat scenes such as a ground plane are not
+/// seen edge-on.
 pub fn default_camera(scene: &Scene) -> Result<Camera> {
+    if let Some(c) = scene.cameras.first() {
+        return Ok(*c);
+    }
     let b = scene.bounds();
     if b.is_empty() {
         return Err(Error::invalid("camera", "the scene has no camera and no geometry to frame; pass camera="));
