@@ -79,12 +79,31 @@ __all__ = [
     "method_info",
     "method_options",
     "scenes",
+    "view",
 ]
 
 # The submodules beyond `scenes` load on first use, so `import vsgl` stays light (bench pulls in
 # statistics and plotting helpers) while `vsgl.metrics.rmse(...)` works without an import of
 # its own (PEP 562).
-_LAZY_SUBMODULES = ("bench", "lightspec", "metrics", "reproduce", "stability", "video")
+_LAZY_SUBMODULES = ("bench", "camera_control", "lightspec", "metrics", "reproduce", "scene_edit", "stability", "video", "view_session")
+
+VIEW_EXTRA_HINT = "pip install 'vsgl[view]'"
+
+
+def view(scene: Scene, method: str = "vsgl", **kwargs):
+    """A live view in Jupyter: the frame, a status line and a settings panel.
+
+    ``vsgl.view(scene, "vsgl", num_lights=1024)``, or ``compare=["vpl", "vsgl"]`` for two methods
+    either side of a movable divider. Keywords: ``renderer`` (a ``Renderer`` to draw with; one is
+    made otherwise), ``size=(640, 360)``, ``camera`` (the scene's default camera when None),
+    ``aov="ldr"``, ``exposure=1.0``, ``seed=0``; the rest are the methods' options, checked as
+    ``render`` checks them. Mouse and keys: ``vsgl.camera_control`` and ``vsgl.scene_edit``.
+    Needs the notebook extra (``pip install 'vsgl[view]'``: jupyter_rfb, ipywidgets)."""
+    try:
+        from vsgl.notebook_view import view as _view
+    except ImportError as e:
+        raise ImportError(f"vsgl.view needs the notebook extra: {VIEW_EXTRA_HINT} ({e})") from e
+    return _view(scene, method, **kwargs)
 
 
 def __getattr__(name: str):

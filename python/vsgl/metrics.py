@@ -105,14 +105,15 @@ def block_rmse(x: np.ndarray, ref: np.ndarray, block: int = 8) -> float:
     return rel_rmse(block_means(x, int(block)), block_means(ref, int(block)))
 
 
-def _srgb(x: np.ndarray) -> np.ndarray:
+def srgb_encode(x: np.ndarray) -> np.ndarray:
+    """Linear values clamped to [0, 1] and sRGB-encoded (as PNGs and the ``ldr`` AOV are)."""
     x = np.clip(np.asarray(x, np.float64), 0.0, 1.0)
     return np.where(x <= 0.0031308, 12.92 * x, 1.055 * x ** (1 / 2.4) - 0.055)
 
 
 def _display_luma(a: np.ndarray) -> np.ndarray:
     """Tone-mapped luma: clamp + sRGB per channel (as PNGs are written), then Rec. 709 weights."""
-    t = _srgb(a)
+    t = srgb_encode(a)
     if t.ndim == 2:
         return t
     if t.shape[2] == 1:
@@ -162,7 +163,7 @@ def flip(x: np.ndarray, ref: np.ndarray) -> float | None:
         import flip_evaluator  # type: ignore[import-not-found]
     except ImportError:
         return None
-    _, mean_error, _ = flip_evaluator.evaluate(_srgb(ref).astype(np.float32), _srgb(x).astype(np.float32), "LDR")
+    _, mean_error, _ = flip_evaluator.evaluate(srgb_encode(ref).astype(np.float32), srgb_encode(x).astype(np.float32), "LDR")
     return float(mean_error)
 
 
