@@ -81,6 +81,10 @@ def test_bad_arguments_are_rejected(tmp_path):
         bench.run(methods=["photon"], size=(8, 8), out=None, progress=False)
     with pytest.raises(ValueError, match="reference"):
         bench.run(reference="oracle", size=(8, 8), out=None, progress=False)
+    # A seed count where the seeds are asked for (a TypeError from len() before).
+    for seeds in (2, "01", (0, 1.5)):
+        with pytest.raises(ValueError, match=r"seeds: expected a list of integer seeds, e\.g\. \(0, 1\)"):
+            bench.run(seeds=seeds, size=(8, 8), out=None, progress=False)
 
 
 def test_pruned_and_full_plans_are_timed_side_by_side_with_equal_error(tmp_path, renderer):

@@ -145,6 +145,9 @@ def _check_arguments(*, frames, warmup_seconds, reference, reference_strategy, m
     bad_plans = [p for p in plans if p not in ("auto", "full")]
     if bad_plans or not plans:
         raise ValueError(f"plans: expected a non-empty list of \"auto\" and \"full\", got {list(plans)}")
+    if seeds is not None and (isinstance(seeds, (str, bytes)) or not hasattr(seeds, "__len__")
+                              or not all(isinstance(x, int) and not isinstance(x, bool) for x in seeds)):
+        raise ValueError(f"seeds: expected a list of integer seeds, e.g. (0, 1), got {seeds!r}")
     if seeds is not None and len(seeds) < 1:
         raise ValueError("seeds: expected at least one seed")
     if not Ks:
