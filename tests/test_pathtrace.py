@@ -199,6 +199,18 @@ def test_pathtrace_frame_reports_what_ran(renderer):
     np.testing.assert_array_equal(full.aov("image"), f.aov("image"))
 
 
+def test_the_frame_that_builds_the_bvh_says_its_time_and_size(renderer):
+    scene = vsgl.scenes.glossy_cornell()
+    built = renderer.render(scene, method="pathtrace", strategy="camera", spp=1, aovs=[])
+    assert "bvh_build" in built.passes
+    assert built.settings["bvh_build_ms"] > 0
+    # 48 bytes a leaf-ordered triangle, and 32 a node (at most 2n - 1 nodes for n triangles).
+    assert 48 < built.settings["bvh_bytes_per_triangle"] < 48 + 2 * 32
+    reused = renderer.render(scene, method="pathtrace", strategy="camera", spp=1, aovs=[])
+    assert "bvh_build" in reused.skipped
+    assert "bvh_build_ms" not in reused.settings and "bvh_bytes_per_triangle" not in reused.settings
+
+
 # ------------------------------------------------------------------------------------------
 # strategy="bidirectional": light tracing + camera paths by MIS
 # ------------------------------------------------------------------------------------------

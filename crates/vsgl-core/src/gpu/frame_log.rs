@@ -19,6 +19,9 @@ pub struct FrameLog {
     pub passes: Vec<String>,
     /// Bind groups the frame had to make (0 when every one was kept from an earlier frame).
     pub bind_groups_created: u64,
+    /// What CPU work of the frame measured about itself (a BVH build's time and size), for
+    /// `frame.settings`, in the order noted.
+    pub settings: Vec<(String, crate::Setting)>,
 }
 
 thread_local! {
@@ -71,6 +74,15 @@ pub fn note_pass(name: &str) {
         if !log.passes.iter().any(|p| p == name) {
             log.passes.push(name.to_string());
         }
+    });
+}
+
+/// Notes a `frame.settings` row measured by CPU work of the frame (a no-op outside
+/// [`log_frame`]); a second note of the same name replaces the first.
+pub fn note_setting(name: &str, value: crate::Setting) {
+    with_frame_log(|log| match log.settings.iter_mut().find(|(n, _)| n == name) {
+        Some(row) => row.1 = value,
+        None => log.settings.push((name.to_string(), value)),
     });
 }
 

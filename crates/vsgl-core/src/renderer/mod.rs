@@ -255,6 +255,7 @@ impl Renderer {
         settings.push(("bind_groups_created".into(), log.bind_groups_created.into()));
         settings.push(("frames_in_flight".into(), frames_in_flight.into()));
         settings.push(("readback_ms".into(), readback_ms.into()));
+        settings.extend(log.settings.iter().cloned());
         Ok(Frame {
             aovs: aovs.float,
             ldr: aovs.ldr,

@@ -4,6 +4,9 @@
 //! Builder: top-down binned SAH [Wald 2007, "On fast Construction of SAH-based Bounding Volume
 //! Hierarchies", §3: centroid bins, cost `A_L·N_L + A_R·N_R`], over all three axes, with an
 //! object-median fallback that bounds the depth by [`BVH_MAX_DEPTH`] (the GPU traversal stack).
+//! Subtrees of at least [`PARALLEL_MIN_PRIMS`] triangles are built on rayon's threads (Wald
+//! 2007, §4: the two halves of a split are independent) and spliced in the order one thread
+//! would have laid them out, so the hierarchy is the same bytes on any number of threads.
 //! No BVH crate is used: `bvh` 0.13 needs Rust 1.90 and nalgebra, `obvhs` 0.4 a second glam
 //! (≥ 0.33 beside the workspace's 0.30) and Rust 1.88, both above this workspace's 1.87.
 //!
@@ -24,6 +27,9 @@ pub const BVH_MAX_DEPTH: usize = 64;
 pub const BVH_MAX_LEAF: usize = 4;
 /// Centroid bins per axis (Wald 2007 uses 16–32; 16 is within 1% of the full sweep there).
 const SAH_BINS: usize = 16;
+/// Subtrees with at least this many triangles build their two halves in parallel; below it one
+/// thread builds the whole subtree (splitting smaller ones costs more than it saves).
+pub const PARALLEL_MIN_PRIMS: usize = 1 << 14;
 /// Cost of a box test relative to a triangle test, in the SAH leaf-or-split decision.
 const SAH_TRAVERSAL_COST: f64 = 1.0;
 
@@ -108,8 +114,15 @@ fn ceil_log2(x: usize) -> usize {
 impl Bvh {
     /// Builds the hierarchy over `triangles` (indices into the slice become the triangle ids).
     pub fn build(triangles: &[Triangle]) -> Self {
+        Self::build_with(triangles, PARALLEL_MIN_PRIMS)
+    }
+
+    /// [`Self::build`] with subtrees of at least `parallel_min` triangles split across threads
+    /// (`usize::MAX`: one thread). The result does not depend on it.
+    pub fn build_with(triangles: &[Triangle], parallel_min: usize) -> Self {
+        use rayon::prelude::*;
         let mut prims: Vec<Prim> = triangles
-            .iter()
+            .par_iter()
             .enumerate()
             .map(|(i, t)| {
                 let mut b = Aabb::EMPTY;
@@ -120,39 +133,13 @@ impl Bvh {
                 Prim { bounds: b, centroid, index: i as u32 }
             })
             .collect();
-        let mut nodes: Vec<BvhNodeRaw> = Vec::with_capacity(2 * prims.len().max(1));
-        let empty = BvhNodeRaw { min: [0.0; 3], a: 0, max: [0.0; 3], b: BVH_LEAF };
-        nodes.push(empty);
-        let mut depth = 0;
-        if !prims.is_empty() {
-            // Explicit work list of (node, first prim, prim count, level): no recursion limit.
-            let mut work = vec![(0usize, 0usize, prims.len(), 0usize)];
-            while let Some((node, first, count, level)) = work.pop() {
-                depth = depth.max(level);
-                let slice = &mut prims[first..first + count];
-                let mut bounds = Aabb::EMPTY;
-                for p in slice.iter() {
-                    bounds.grow(&p.bounds);
-                }
-                let split = choose_split(slice, &bounds, level);
-                match split {
-                    None => {
-                        nodes[node] = BvhNodeRaw { min: bounds.min, a: first as u32, max: bounds.max, b: BVH_LEAF | count as u32 };
-                    }
-                    Some(left_count) => {
-                        let l = nodes.len();
-                        nodes.push(empty);
-                        nodes.push(empty);
-                        nodes[node] = BvhNodeRaw { min: bounds.min, a: l as u32, max: bounds.max, b: (l + 1) as u32 };
-                        // Right first so the left subtree is laid out right after its parent.
-                        work.push((l + 1, first + left_count, count - left_count, level + 1));
-                        work.push((l, first, left_count, level + 1));
-                    }
-                }
-            }
-        }
+        let (nodes, depth) = if prims.is_empty() {
+            (vec![BvhNodeRaw { min: [0.0; 3], a: 0, max: [0.0; 3], b: BVH_LEAF }], 0)
+        } else {
+            build_subtree(&mut prims, 0, 0, parallel_min.max(2))
+        };
         let tris = prims
-            .iter()
+            .par_iter()
             .map(|p| {
                 let t = &triangles[p.index as usize];
                 BvhTriangleRaw { v0: t[0], id: p.index, v1: t[1], _pad0: 0, v2: t[2], _pad1: 0 }
@@ -205,22 +192,94 @@ impl Bvh {
     }
 }
 
+/// The subtree over `prims` (the slice starting at triangle `first` of the leaf order), its
+/// root at level `level`: its nodes with the root first and child indices into this vector,
+/// laid out as one thread's work list lays them out (a node's two children side by side when
+/// it is split, then the left child's subtree, then the right's), and its deepest level.
+fn build_subtree(prims: &mut [Prim], first: usize, level: usize, parallel_min: usize) -> (Vec<BvhNodeRaw>, usize) {
+    if prims.len() < parallel_min {
+        return build_sequential(prims, first, level);
+    }
+    let bounds = bounds_of(prims);
+    let Some(left_count) = choose_split(prims, &bounds, level, true) else {
+        let leaf = BvhNodeRaw { min: bounds.min, a: first as u32, max: bounds.max, b: BVH_LEAF | prims.len() as u32 };
+        return (vec![leaf], level);
+    };
+    let (left, right) = prims.split_at_mut(left_count);
+    let ((l, l_depth), (r, r_depth)) = rayon::join(
+        || build_subtree(left, first, level + 1, parallel_min),
+        || build_subtree(right, first + left_count, level + 1, parallel_min),
+    );
+    // [root, left root, right root, below the left root, below the right root]: a child's
+    // index i > 0 into its own vector moves to 3 + (i - 1) (+ the left's rest, on the right).
+    let mut nodes = Vec::with_capacity(l.len() + r.len() + 1);
+    nodes.push(BvhNodeRaw { min: bounds.min, a: 1, max: bounds.max, b: 2 });
+    let shift = |n: &BvhNodeRaw, base: u32| {
+        if n.b & BVH_LEAF != 0 {
+            *n
+        } else {
+            BvhNodeRaw { a: n.a - 1 + base, b: n.b - 1 + base, ..*n }
+        }
+    };
+    let (l_base, r_base) = (3, 3 + (l.len() - 1) as u32);
+    nodes.push(shift(&l[0], l_base));
+    nodes.push(shift(&r[0], r_base));
+    nodes.extend(l[1..].iter().map(|n| shift(n, l_base)));
+    nodes.extend(r[1..].iter().map(|n| shift(n, r_base)));
+    (nodes, l_depth.max(r_depth))
+}
+
+fn bounds_of(prims: &[Prim]) -> Aabb {
+    let mut bounds = Aabb::EMPTY;
+    for p in prims {
+        bounds.grow(&p.bounds);
+    }
+    bounds
+}
+
+/// [`build_subtree`] on one thread, with an explicit work list (no recursion limit).
+fn build_sequential(prims: &mut [Prim], first: usize, level: usize) -> (Vec<BvhNodeRaw>, usize) {
+    let empty = BvhNodeRaw { min: [0.0; 3], a: 0, max: [0.0; 3], b: BVH_LEAF };
+    let mut nodes: Vec<BvhNodeRaw> = Vec::with_capacity(2 * prims.len().max(1));
+    nodes.push(empty);
+    let mut depth = level;
+    // (node, first prim in `prims`, prim count, level)
+    let mut work = vec![(0usize, 0usize, prims.len(), level)];
+    while let Some((node, start, count, lvl)) = work.pop() {
+        depth = depth.max(lvl);
+        let slice = &mut prims[start..start + count];
+        let bounds = bounds_of(slice);
+        match choose_split(slice, &bounds, lvl, false) {
+            None => {
+                nodes[node] = BvhNodeRaw { min: bounds.min, a: (first + start) as u32, max: bounds.max, b: BVH_LEAF | count as u32 };
+            }
+            Some(left_count) => {
+                let l = nodes.len();
+                nodes.push(empty);
+                nodes.push(empty);
+                nodes[node] = BvhNodeRaw { min: bounds.min, a: l as u32, max: bounds.max, b: (l + 1) as u32 };
+                // Right first so the left subtree is laid out right after its parent.
+                work.push((l + 1, start + left_count, count - left_count, lvl + 1));
+                work.push((l, start, left_count, lvl + 1));
+            }
+        }
+    }
+    (nodes, depth)
+}
+
 /// Where to split a node's primitives (count on the left after partitioning in place), or
 /// `None` for a leaf.
-fn choose_split(prims: &mut [Prim], bounds: &Aabb, level: usize) -> Option<usize> {
+/// `parallel`: bin on all threads (the top levels, which one thread would otherwise scan alone;
+/// bounds and counts are min/max and integer sums, so the order of partial results cannot
+/// change them).
+fn choose_split(prims: &mut [Prim], bounds: &Aabb, level: usize, parallel: bool) -> Option<usize> {
     let n = prims.len();
     if n <= 1 {
         return None;
     }
     // Depth guard: a balanced subtree of the rest needs ceil(log2(n / leaf)) more levels.
     let must_balance = level + ceil_log2(n.div_ceil(BVH_MAX_LEAF)) + 1 >= BVH_MAX_DEPTH;
-    let mut cbounds = [[f64::INFINITY; 3], [f64::NEG_INFINITY; 3]];
-    for p in prims.iter() {
-        for (k, &c) in p.centroid.iter().enumerate() {
-            cbounds[0][k] = cbounds[0][k].min(c);
-            cbounds[1][k] = cbounds[1][k].max(c);
-        }
-    }
+    let cbounds = centroid_bounds(prims, parallel);
     let extent = [0, 1, 2].map(|k| cbounds[1][k] - cbounds[0][k]);
     let widest = (0..3).max_by(|&a, &b| extent[a].total_cmp(&extent[b])).unwrap_or(0);
     if !must_balance {
@@ -232,12 +291,7 @@ fn choose_split(prims: &mut [Prim], bounds: &Aabb, level: usize) -> Option<usize
             }
             let scale = SAH_BINS as f64 / extent[axis];
             let bin_of = |c: f64| (((c - cbounds[0][axis]) * scale) as usize).min(SAH_BINS - 1);
-            let mut bins = [(Aabb::EMPTY, 0usize); SAH_BINS];
-            for p in prims.iter() {
-                let b = &mut bins[bin_of(p.centroid[axis])];
-                b.0.grow(&p.bounds);
-                b.1 += 1;
-            }
+            let bins = bin_prims(prims, axis, &bin_of, parallel);
             // Sweep from the right for suffix areas, then from the left.
             let mut right_area = [0.0f64; SAH_BINS];
             let mut right_count = [0usize; SAH_BINS];
@@ -285,6 +339,53 @@ fn choose_split(prims: &mut [Prim], bounds: &Aabb, level: usize) -> Option<usize
     let mid = n / 2;
     prims.select_nth_unstable_by(mid, |a, b| a.centroid[widest].total_cmp(&b.centroid[widest]));
     Some(mid)
+}
+
+type Bins = [(Aabb, usize); SAH_BINS];
+
+/// Each bin's bounds and count of `prims` along `axis` (`bin_of` a centroid coordinate's bin).
+fn bin_prims(prims: &[Prim], axis: usize, bin_of: &(impl Fn(f64) -> usize + Sync), parallel: bool) -> Bins {
+    let add = |mut bins: Bins, p: &Prim| {
+        let b = &mut bins[bin_of(p.centroid[axis])];
+        b.0.grow(&p.bounds);
+        b.1 += 1;
+        bins
+    };
+    let empty = [(Aabb::EMPTY, 0usize); SAH_BINS];
+    if !parallel {
+        return prims.iter().fold(empty, add);
+    }
+    use rayon::prelude::*;
+    prims.par_iter().fold(|| empty, add).reduce(
+        || empty,
+        |mut a, b| {
+            for (x, y) in a.iter_mut().zip(b.iter()) {
+                x.0.grow(&y.0);
+                x.1 += y.1;
+            }
+            a
+        },
+    )
+}
+
+/// [min, max] of the centroids of `prims`, per axis.
+fn centroid_bounds(prims: &[Prim], parallel: bool) -> [[f64; 3]; 2] {
+    let add = |mut b: [[f64; 3]; 2], p: &Prim| {
+        for (k, &c) in p.centroid.iter().enumerate() {
+            b[0][k] = b[0][k].min(c);
+            b[1][k] = b[1][k].max(c);
+        }
+        b
+    };
+    let empty = [[f64::INFINITY; 3], [f64::NEG_INFINITY; 3]];
+    if !parallel {
+        return prims.iter().fold(empty, add);
+    }
+    use rayon::prelude::*;
+    prims.par_iter().fold(|| empty, add).reduce(
+        || empty,
+        |a, b| [[0, 1, 2].map(|k| a[0][k].min(b[0][k])), [0, 1, 2].map(|k| a[1][k].max(b[1][k]))],
+    )
 }
 
 /// Stable-enough in-place partition; returns how many satisfy `pred` (moved to the front).
@@ -431,6 +532,26 @@ mod tests {
             }
         }
         assert_eq!(reached, tris.len());
+    }
+
+    #[test]
+    fn parallel_builds_lay_out_the_same_bytes_as_one_thread() {
+        let mut rng = SplitMix64(0x51_7CC1_B727_220A);
+        let soup = random_soup(&mut rng, 3000, 1.0, 0.0);
+        let same = vec![[[0.5f32, 0.5, 0.5], [0.5, 0.5, 0.6], [0.5, 0.6, 0.5]]; 300];
+        // Subtrees split across threads also sum their bins on several threads.
+        let large = random_soup(&mut rng, 2 * PARALLEL_MIN_PRIMS + 5, 1.0, 0.0);
+        for tris in [soup, same, large] {
+            let one = Bvh::build_with(&tris, usize::MAX);
+            check_structure(&one, &tris);
+            // Down to splitting every node of two or more triangles across threads.
+            for parallel_min in [2, 7, 64, 1000] {
+                let many = Bvh::build_with(&tris, parallel_min);
+                assert_eq!(many.nodes, one.nodes, "parallel_min {parallel_min}: nodes");
+                assert_eq!(many.triangles, one.triangles, "parallel_min {parallel_min}: triangles");
+                assert_eq!(many.depth, one.depth);
+            }
+        }
     }
 
     #[test]

@@ -166,8 +166,15 @@ impl GpuScene {
                 "the BVH has {} triangles but the uploaded scene {}", triangles.len(), self.triangle_count
             )));
         }
+        let started = std::time::Instant::now();
         let built = bvh::Bvh::build(&triangles);
         let tri_bytes = built.triangle_bytes();
+        // The frame that builds it says what it cost (CPU wall time, all threads of the build)
+        // and how large it is per triangle (nodes and leaf-ordered triangles).
+        let build_ms = started.elapsed().as_secs_f64() * 1e3;
+        let bytes = (tri_bytes.len() + built.node_bytes().len()) as f64;
+        crate::gpu::frame_log::note_setting("bvh_build_ms", build_ms.into());
+        crate::gpu::frame_log::note_setting("bvh_bytes_per_triangle", (bytes / triangles.len().max(1) as f64).into());
         let max = gpu.limits.max_storage_buffer_binding_size;
         if tri_bytes.len() as u64 > max || built.node_bytes().len() as u64 > max {
             return Err(Error::invalid("scene", format!(
