@@ -7,6 +7,7 @@ import functools
 import pathlib
 import statistics
 import sys
+from dataclasses import dataclass
 from typing import Any
 
 import numpy as np
@@ -314,136 +315,23 @@ def run(
                               importances=importances, samplings=samplings, options=options, plans=plans)
     # Per row (by its index in report.rows): its SeedErrors, for the equal-time comparisons.
     seed_stats: dict[int, metrics.SeedErrors] = {}
+    shared = SweepSettings(interleave=interleave, vpl_interleave=vpl_interleave, visibility=visibility,
+                           importance_interleave=importance_interleave, seeds=tuple(seeds), frames=frames, warmup=warmup,
+                           warmup_seconds=report.warmup_seconds, sequence=sequence, scene_lights=scene_lights,
+                           add_lights=tuple(add_lights))
     for scene_name in scenes:
         scene = _lit_scene(scene_name, scene_lights, add_lights)
-        motion = None
+        motion, truth_frames = None, None
         if sequence:
             motion, truth_frames = _sequence_truth(renderer, scene_name, scene_lights, add_lights, sequence, reference_rsm)
             report.sequence_motion[scene_name] = motion
         ref = _scene_reference(renderer, scene, scene_name, (w, h), reference, ref_settings, cache_dir, progress, report)
         ref_error = report.reference_rel_error[scene_name]
-        ref_has_light = bool(np.any(ref.indirect != 0))
         bar = _progress(len(configs), progress)
-        for method, n, rsm, kernel, K, lighting, importance, sampling, extra, plan in configs:
-            settings: dict[str, Any] = {"plan": plan, **dict(extra)}
-            if sampling is not None:
-                settings["sampling"] = sampling
-            # Metropolis chains start afresh for each configuration (they are kept from frame to
-            # frame of the renderer otherwise), so rows do not depend on their order.
-            renderer.reset_chains()
-            if n is not None:
-                settings["num_lights"] = n
-            if rsm is not None:
-                settings["rsm_size"] = rsm
-            if kernel is not None:
-                settings.update(kernel=kernel, interleave=interleave)
-            if K is not None:
-                settings["K"] = float(K)
-            if lighting is not None:
-                settings["lighting"] = lighting
-            if importance == "brsm":
-                # The default, "rsm", is left unsaid so the sweep's rsm rows render as before.
-                settings["importance"] = importance
-                if importance_interleave is not None:
-                    settings["importance_interleave"] = importance_interleave
-            if kernel is None and _takes(method, "interleave"):
-                # VPLs: 1: every VPL at every pixel (the baseline); 8: the papers'
-                # equal-footing comparison, interleaved and denoised like the VSGLs.
-                settings["interleave"] = vpl_interleave
-            if _takes(method, "visibility") and visibility != "none":
-                settings["visibility"] = visibility
-            run_seeds = seeds if _stochastic(method) else (0,)
-            # Read back only what the errors need (readback is most of the wall time).
-            settings["aovs"] = ["image", "indirect"] if _makes_indirect(method) else ["image"]
-            totals: list[float] = []
-            per_pass: dict[str, list[float]] = {}
-            errs: dict[str, list[float]] = {"rmse_indirect": [], "rmse_image": [], "relmse_indirect": [], "relmse_image": [], "flip": [], "ssim": []}
-            indirects: list[np.ndarray] = []
-            # Sustained load first: frames back to back (nothing read back) until the GPU has left
-            # its idle clock (docs/error.md, cold clocks): `warmup_seconds`, and where NVML reads the SM
-            # clock, on until it is warm (at most CLOCK_WARM_MAX_EXTRA_S more). Then every seed's
-            # frames back to back, and the errors only after them: a second of CPU work for the
-            # metrics between seeds let an H200 fall back to 360–900 MHz, which made some rows of
-            # a sweep 2–7x slower than their neighbours.
-            quiet = {k: v for k, v in settings.items() if k != "aovs"}
-            warm_frames = warm_up(lambda: renderer.render(scene, method=method, aovs=[], **quiet), report.warmup_seconds, sm_clock)
-            clocks: list[int] = []
-            seed_frames: list[Any] = []
-            for seed in run_seeds:
-                if _stochastic(method):
-                    settings["seed"] = seed
-                if sampling == "metropolis":
-                    renderer.reset_chains()
-                    for j in range(METROPOLIS_BURN_IN):
-                        renderer.render(scene, method=method, aovs=[], **{**quiet, "seed": (seed + 1) * 1_000_003 + j})
-                for _ in range(warmup):
-                    renderer.render(scene, method=method, **settings)
-                if sm_clock is not None:
-                    clocks.append(sm_clock.read())
-                frame = None
-                for _ in range(frames):
-                    frame = renderer.render(scene, method=method, **settings)
-                    totals.append(frame.timings_ms["total"])
-                    for k2, v in frame.timings_ms.items():
-                        if k2 != "total":
-                            per_pass.setdefault(k2, []).append(v)
-                if sm_clock is not None:
-                    clocks.append(sm_clock.read())
-                seed_frames.append(frame)
-            for frame in seed_frames:
-                indirect = frame.aov("indirect") if "indirect" in frame.aovs else np.zeros_like(ref.indirect)
-                indirects.append(indirect)
-                errs["rmse_indirect"].append(metrics.rmse(indirect, ref.indirect))
-                errs["rmse_image"].append(metrics.rmse(frame.image, ref.image))
-                errs["relmse_indirect"].append(metrics.relmse(indirect, ref.indirect))
-                errs["relmse_image"].append(metrics.relmse(frame.image, ref.image))
-                errs["ssim"].append(metrics.ssim(frame.image, ref.image))
-                f = metrics.flip(frame.image, ref.image)
-                if f is not None:
-                    errs["flip"].append(f)
-            row = Row(
-                scene=scene_name,
-                method=method,
-                num_lights=n,
-                rsm_size=rsm,
-                kernel=kernel,
-                K=K,
-                lighting=lighting,
-                importance=importance,
-                sampling=sampling,
-                options=dict(extra) or None,
-                seeds=len(run_seeds),
-                total_ms_median=statistics.median(totals),
-                total_ms_min=min(totals),
-                total_ms_max=max(totals),
-                passes_ms={k2: statistics.median(v) for k2, v in per_pass.items()},
-                total_ms_q1=_quartiles(totals)[0],
-                total_ms_q3=_quartiles(totals)[1],
-                passes_iqr_ms={k2: _quartiles(v) for k2, v in per_pass.items()},
-                warmup_frames=warm_frames,
-                sm_clock_mhz=(min(clocks), max(clocks)) if clocks else None,
-                rmse_indirect=float(np.mean(errs["rmse_indirect"])),
-                rmse_indirect_std=float(np.std(errs["rmse_indirect"])),
-                rmse_image=float(np.mean(errs["rmse_image"])),
-                relmse_indirect=float(np.mean(errs["relmse_indirect"])),
-                relmse_image=float(np.mean(errs["relmse_image"])),
-                flip_image=float(np.mean(errs["flip"])) if errs["flip"] else None,
-                plan=plan,
-                ssim_image=float(np.mean(errs["ssim"])),
-                reference_rel_error=ref_error,
-            )
-            if clocks and not sm_clock.warm(min(clocks)):
-                # Its times are not comparable with warm rows: said in the row, not hidden.
-                row.notes.append(f"clock cold ({min(clocks)}-{max(clocks)} of {sm_clock.max_mhz} MHz)")
-            if ref_has_light:
-                _trust(row, indirects, ref, _stochastic(method), seed_stats, len(report.rows))
-            if sequence:
-                seq = _sequence_frames(renderer, scene_name, scene_lights, add_lights, sequence, method, settings)
-                row.flicker_indirect = metrics.flicker(seq, truth_frames) if np.any(truth_frames != 0) else None
-            if all(np.array_equal(x, ref.indirect) for x in indirects):
-                # Bit for bit the reference (same method and settings): it cannot judge itself,
-                # and it does not compete in equal_time.
-                row.notes.append("the reference itself")
+        for config in configs:
+            row, stats = measure_configuration(renderer, scene_name, scene, ref, ref_error, config, shared, sm_clock, truth_frames)
+            if stats is not None:
+                seed_stats[len(report.rows)] = stats
             report.rows.append(row)
             bar.update(1)
         bar.close()
@@ -452,6 +340,156 @@ def run(
     if out is not None:
         write(report, out)
     return report
+
+
+@dataclass(frozen=True)
+class SweepSettings:
+    """What every configuration of a sweep shares, besides its scene and reference: enough to
+    measure one configuration anywhere (in this process, or as a task on a cluster node)."""
+
+    interleave: int
+    vpl_interleave: int
+    visibility: str
+    importance_interleave: int | None
+    seeds: tuple[int, ...]
+    frames: int
+    warmup: int
+    warmup_seconds: float
+    sequence: int
+    scene_lights: bool
+    add_lights: tuple = ()
+
+
+def measure_configuration(renderer, scene_name: str, scene, ref: _ReferenceRender, ref_error: float | None, config: tuple,
+                          run: SweepSettings, sm_clock=None, truth_frames: np.ndarray | None = None) -> tuple[Row, "metrics.SeedErrors | None"]:
+    """One row of the sweep: ``config`` (an entry of ``_configurations``) rendered on ``scene``
+    against its reference, timed after the warm-up, with its errors; and its per-seed errors
+    for the equal-time comparison (None where the reference has no indirect light)."""
+    method, n, rsm, kernel, K, lighting, importance, sampling, extra, plan = config
+    interleave, vpl_interleave, visibility = run.interleave, run.vpl_interleave, run.visibility
+    importance_interleave, seeds, frames, warmup = run.importance_interleave, run.seeds, run.frames, run.warmup
+    ref_has_light = bool(np.any(ref.indirect != 0))
+    stats = None
+    settings: dict[str, Any] = {"plan": plan, **dict(extra)}
+    if sampling is not None:
+        settings["sampling"] = sampling
+    # Metropolis chains start afresh for each configuration (they are kept from frame to
+    # frame of the renderer otherwise), so rows do not depend on their order.
+    renderer.reset_chains()
+    if n is not None:
+        settings["num_lights"] = n
+    if rsm is not None:
+        settings["rsm_size"] = rsm
+    if kernel is not None:
+        settings.update(kernel=kernel, interleave=interleave)
+    if K is not None:
+        settings["K"] = float(K)
+    if lighting is not None:
+        settings["lighting"] = lighting
+    if importance == "brsm":
+        # The default, "rsm", is left unsaid so the sweep's rsm rows render as before.
+        settings["importance"] = importance
+        if importance_interleave is not None:
+            settings["importance_interleave"] = importance_interleave
+    if kernel is None and _takes(method, "interleave"):
+        # VPLs: 1: every VPL at every pixel (the baseline); 8: the papers'
+        # equal-footing comparison, interleaved and denoised like the VSGLs.
+        settings["interleave"] = vpl_interleave
+    if _takes(method, "visibility") and visibility != "none":
+        settings["visibility"] = visibility
+    run_seeds = seeds if _stochastic(method) else (0,)
+    # Read back only what the errors need (readback is most of the wall time).
+    settings["aovs"] = ["image", "indirect"] if _makes_indirect(method) else ["image"]
+    totals: list[float] = []
+    per_pass: dict[str, list[float]] = {}
+    errs: dict[str, list[float]] = {"rmse_indirect": [], "rmse_image": [], "relmse_indirect": [], "relmse_image": [], "flip": [], "ssim": []}
+    indirects: list[np.ndarray] = []
+    # Sustained load first: frames back to back (nothing read back) until the GPU has left
+    # its idle clock (docs/error.md, cold clocks): `warmup_seconds`, and where NVML reads the SM
+    # clock, on until it is warm (at most CLOCK_WARM_MAX_EXTRA_S more). Then every seed's
+    # frames back to back, and the errors only after them: a second of CPU work for the
+    # metrics between seeds let an H200 fall back to 360–900 MHz, which made some rows of
+    # a sweep 2–7x slower than their neighbours.
+    quiet = {k: v for k, v in settings.items() if k != "aovs"}
+    warm_frames = warm_up(lambda: renderer.render(scene, method=method, aovs=[], **quiet), run.warmup_seconds, sm_clock)
+    clocks: list[int] = []
+    seed_frames: list[Any] = []
+    for seed in run_seeds:
+        if _stochastic(method):
+            settings["seed"] = seed
+        if sampling == "metropolis":
+            renderer.reset_chains()
+            for j in range(METROPOLIS_BURN_IN):
+                renderer.render(scene, method=method, aovs=[], **{**quiet, "seed": (seed + 1) * 1_000_003 + j})
+        for _ in range(warmup):
+            renderer.render(scene, method=method, **settings)
+        if sm_clock is not None:
+            clocks.append(sm_clock.read())
+        frame = None
+        for _ in range(frames):
+            frame = renderer.render(scene, method=method, **settings)
+            totals.append(frame.timings_ms["total"])
+            for k2, v in frame.timings_ms.items():
+                if k2 != "total":
+                    per_pass.setdefault(k2, []).append(v)
+        if sm_clock is not None:
+            clocks.append(sm_clock.read())
+        seed_frames.append(frame)
+    for frame in seed_frames:
+        indirect = frame.aov("indirect") if "indirect" in frame.aovs else np.zeros_like(ref.indirect)
+        indirects.append(indirect)
+        errs["rmse_indirect"].append(metrics.rmse(indirect, ref.indirect))
+        errs["rmse_image"].append(metrics.rmse(frame.image, ref.image))
+        errs["relmse_indirect"].append(metrics.relmse(indirect, ref.indirect))
+        errs["relmse_image"].append(metrics.relmse(frame.image, ref.image))
+        errs["ssim"].append(metrics.ssim(frame.image, ref.image))
+        f = metrics.flip(frame.image, ref.image)
+        if f is not None:
+            errs["flip"].append(f)
+    row = Row(
+        scene=scene_name,
+        method=method,
+        num_lights=n,
+        rsm_size=rsm,
+        kernel=kernel,
+        K=K,
+        lighting=lighting,
+        importance=importance,
+        sampling=sampling,
+        options=dict(extra) or None,
+        seeds=len(run_seeds),
+        total_ms_median=statistics.median(totals),
+        total_ms_min=min(totals),
+        total_ms_max=max(totals),
+        passes_ms={k2: statistics.median(v) for k2, v in per_pass.items()},
+        total_ms_q1=_quartiles(totals)[0],
+        total_ms_q3=_quartiles(totals)[1],
+        passes_iqr_ms={k2: _quartiles(v) for k2, v in per_pass.items()},
+        warmup_frames=warm_frames,
+        sm_clock_mhz=(min(clocks), max(clocks)) if clocks else None,
+        rmse_indirect=float(np.mean(errs["rmse_indirect"])),
+        rmse_indirect_std=float(np.std(errs["rmse_indirect"])),
+        rmse_image=float(np.mean(errs["rmse_image"])),
+        relmse_indirect=float(np.mean(errs["relmse_indirect"])),
+        relmse_image=float(np.mean(errs["relmse_image"])),
+        flip_image=float(np.mean(errs["flip"])) if errs["flip"] else None,
+        plan=plan,
+        ssim_image=float(np.mean(errs["ssim"])),
+        reference_rel_error=ref_error,
+    )
+    if clocks and not sm_clock.warm(min(clocks)):
+        # Its times are not comparable with warm rows: said in the row, not hidden.
+        row.notes.append(f"clock cold ({min(clocks)}-{max(clocks)} of {sm_clock.max_mhz} MHz)")
+    if ref_has_light:
+        stats = _trust(row, indirects, ref, _stochastic(method))
+    if run.sequence:
+        seq = _sequence_frames(renderer, scene_name, run.scene_lights, run.add_lights, run.sequence, method, settings)
+        row.flicker_indirect = metrics.flicker(seq, truth_frames) if np.any(truth_frames != 0) else None
+    if all(np.array_equal(x, ref.indirect) for x in indirects):
+        # Bit for bit the reference (same method and settings): it cannot judge itself,
+        # and it does not compete in equal_time.
+        row.notes.append("the reference itself")
+    return row, stats
 
 
 def _lit_scene(scene_name: str, scene_lights: bool, add_lights) -> vsgl.Scene:
@@ -530,12 +568,12 @@ def _shown(name: str, value: Any) -> str:
     return str(value)
 
 
-def _trust(row: Row, indirects: list[np.ndarray], ref: _ReferenceRender, stochastic: bool, seed_stats: dict, index: int) -> None:
-    """Fills the row's relative error, bias, noise, debiased error and the trust flag."""
+def _trust(row: Row, indirects: list[np.ndarray], ref: _ReferenceRender, stochastic: bool) -> "metrics.SeedErrors":
+    """Fills the row's relative error, bias, noise, debiased error and the trust flag; returns
+    the per-seed errors (for the equal-time comparison)."""
     row.rel_rmse_indirect = float(np.sqrt(np.mean([metrics.rel_rmse(x, ref.indirect) ** 2 for x in indirects])))
     row.block_rmse_indirect = float(np.mean([metrics.block_rmse(x, ref.indirect) for x in indirects]))
     stats = metrics.seed_errors(np.stack(indirects), ref.indirect, ref.indirect_var)
-    seed_stats[index] = stats
     row.bias = stats.bias
     # A deterministic method has no noise; a stochastic one with one seed cannot show its own.
     row.noise = stats.noise if stochastic else 0.0
@@ -544,6 +582,7 @@ def _trust(row: Row, indirects: list[np.ndarray], ref: _ReferenceRender, stochas
     if row.reference_rel_error is not None and not row.rel_rmse_indirect >= TRUST_FACTOR * row.reference_rel_error:
         row.reference_too_noisy = True
         row.notes.append("reference too noisy")
+    return stats
 
 
 # Options that have their own axis or setting in the sweep: --option would fight it.
