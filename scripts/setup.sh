@@ -20,7 +20,7 @@ PYTHON=${PYTHON:-python3}
 # package (tests/test_packaging.py checks this list against the extras).
 .venv/bin/python -m pip install -q "maturin>=1.7,<2" "numpy>=1.21" "pytest>=7" "mypy>=1.8" \
   "pillow>=9" "matplotlib>=3.5" "tqdm>=4.60" "nvidia-ml-py>=12" "imageio>=2.28" "imageio-ffmpeg>=0.4.8" "flip-evaluator>=1.7" \
-  "jupyter_rfb>=0.5" "ipywidgets>=8" "nbclient>=0.7" "nbformat>=5" "ipykernel>=6"
+  "jupyter_rfb>=0.5" "ipywidgets>=8" "nbclient>=0.7" "nbformat>=5" "ipykernel>=6" "ray>=2.9"
 # `maturin develop` installs the extension into .venv (release: lavapipe runs the shaders, but
 # the CPU side — scene upload, readback, glTF parsing — is Rust and benefits from it).
 VIRTUAL_ENV="$PWD/.venv" PATH="$PWD/.venv/bin:$PATH" maturin develop --release -q

@@ -83,6 +83,12 @@ def main(argv: list[str] | None = None) -> int:
     p.add_argument("--sequence", type=int, default=0, metavar="N",
                    help="also render N frames per configuration with a moving light (the scene's animation, else its lights slid "
                         "along x) and report metrics.flicker of indirect against the reference's frames (default: 0, off)")
+    p.add_argument("--cluster", default=None, metavar="ADDRESS",
+                   help="run every reference and configuration as a task on a Ray cluster: auto (the one this machine belongs to), "
+                        "local (one started for this run) or HOST:PORT; results are kept in OUT/cluster and a rerun measures only "
+                        "what is missing (needs pip install 'vsgl[cluster]')")
+    p.add_argument("--cluster-resource", default="GPU", metavar="NAME",
+                   help="the Ray resource each cluster task asks one unit of (default: GPU)")
     a = p.parse_args(argv)
     size = None
     if a.size is not None:
@@ -104,7 +110,8 @@ def main(argv: list[str] | None = None) -> int:
         seeds=None if a.seeds is None else tuple(range(a.seeds)), frames=a.frames, warmup=a.warmup, warmup_seconds=a.warmup_seconds, reference=a.reference, reference_rsm=a.reference_rsm,
         reference_spp=a.reference_spp, reference_strategy=a.reference_strategy, add_lights=add_lights, scene_lights=not a.no_scene_lights, interleave=a.interleave, vpl_interleave=a.vpl_interleave, visibility=a.visibility, plans=tuple(a.plans), adapter=a.adapter, out=a.out, progress=not a.no_progress,
         sequence=a.sequence, Ks=tuple(a.K) if a.K else (None,), lightings=tuple(a.lighting) if a.lighting else (None,), importances=tuple(a.importance), importance_interleave=a.importance_interleave,
-        samplings=tuple(a.sampling) if a.sampling else (None,), options=dict(a.option),
+        samplings=tuple(a.sampling) if a.sampling else (None,), options=dict(a.option), cluster=a.cluster,
+        cluster_gpu_resource=a.cluster_resource,
     )
     print(table(report))
     print(f"wrote     {os.path.join(a.out, 'bench.csv')}, bench.json, bench.txt and plots (with matplotlib)")

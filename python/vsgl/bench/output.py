@@ -14,7 +14,7 @@ CSV_COLUMNS = [
     "scene", "plan", "method", "num_lights", "rsm_size", "kernel", "K", "lighting", "importance", "sampling", "options", "seeds", "total_ms_median", "total_ms_q1", "total_ms_q3", "total_ms_min", "total_ms_max",
     "rmse_indirect", "rmse_indirect_std", "rmse_image", "relmse_indirect", "relmse_image", "flip_image", "rel_rmse_indirect", "bias", "noise",
     "relmse_indirect_debiased", "relmse_indirect_debiased_lo", "relmse_indirect_debiased_hi", "reference_rel_error", "reference_too_noisy",
-    "ssim_image", "block_rmse_indirect", "flicker_indirect", "notes", "passes_ms",
+    "ssim_image", "block_rmse_indirect", "flicker_indirect", "notes", "passes_ms", "adapter",
 ]
 
 

@@ -78,6 +78,9 @@ class Row:
     # (the scene's animation, or its lights slid along x) against the every-texel reference of
     # the same frames; stochastic methods draw seed k in frame k, as a real-time renderer would.
     flicker_indirect: float | None = None
+    # The adapter that rendered and timed this row, where it is not the report's own: a cluster
+    # task's GPU (`bench --cluster`); None in a local sweep.
+    adapter: str | None = None
 
 
 @dataclass
@@ -114,6 +117,10 @@ class Report:
     # Frames of the flicker sequence per configuration (0: not measured) and how it moves.
     sequence: int = 0
     sequence_motion: dict[str, str] = field(default_factory=dict)
+    # `bench --cluster`: the address, the GPU resource each task asked for, and how many
+    # configurations ran now and how many were read back from an earlier, interrupted run's
+    # result folder; empty in a local sweep.
+    cluster: dict[str, Any] = field(default_factory=dict)
 
     def to_json(self) -> dict[str, Any]:
         d = asdict(self)

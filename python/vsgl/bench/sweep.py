@@ -249,12 +249,23 @@ def run(
     samplings=(None,),
     importance_interleave=None,
     options=None,
+    cluster=None,
+    cluster_gpu_resource="GPU",
+    _on_cluster_result=None,
 ) -> Report:
     """Runs the sweep and returns a :class:`Report`; with ``out`` also writes CSV, JSON and plots.
+
+    ``cluster`` ("auto", "local" or HOST:PORT, with ``out``): every reference and configuration
+    runs as a Ray task asking for one ``cluster_gpu_resource``, results are kept in
+    ``out/cluster/`` and a rerun measures only what is missing (``vsgl.bench.cluster``).
 
     Settings left at None take GPU_DEFAULTS, or CPU_DEFAULTS on a CPU adapter (then printed to
     stderr and listed in ``report.scaled_for_cpu``)."""
     options = dict(options or {})
+    if cluster is not None:
+        from .cluster import check_arguments as _check_cluster
+
+        _check_cluster(cluster, out)
     _check_arguments(frames=frames, warmup_seconds=warmup_seconds, reference=reference, reference_strategy=reference_strategy,
                      methods=methods, plans=plans, seeds=seeds, Ks=Ks, lightings=lightings, importances=importances,
                      importance_interleave=importance_interleave, samplings=samplings, options=options, sequence=sequence)
@@ -319,6 +330,14 @@ def run(
                            importance_interleave=importance_interleave, seeds=tuple(seeds), frames=frames, warmup=warmup,
                            warmup_seconds=report.warmup_seconds, sequence=sequence, scene_lights=scene_lights,
                            add_lights=tuple(add_lights))
+    if cluster is not None:
+        # Every reference and configuration as a task on the cluster (vsgl.bench.cluster).
+        from .cluster import sweep_on_cluster
+
+        seed_stats = sweep_on_cluster(report, cluster=cluster, scenes=scenes, configs=configs, shared=shared, size=(w, h), adapter=adapter,
+                                      reference=reference, ref_settings=ref_settings, reference_rsm=reference_rsm, out=out,
+                                      gpu_resource=cluster_gpu_resource, progress=progress, on_result=_on_cluster_result)
+        scenes = ()  # measured there
     for scene_name in scenes:
         scene = _lit_scene(scene_name, scene_lights, add_lights)
         motion, truth_frames = None, None
