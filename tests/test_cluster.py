@@ -93,3 +93,30 @@ def test_cluster_errors_name_what_to_do(tmp_path, monkeypatch):
 def test_a_resource_the_cluster_lacks_is_named(local_cluster, tmp_path):
     with pytest.raises(ValueError, match="no 'GPU' resource"):
         bench.run(cluster=local_cluster, out=tmp_path, **SWEEP)
+
+
+def test_a_task_opens_the_gpu_ray_assigned_it_by_bus_id():
+    from vsgl.bench.cluster import assigned_adapter, nvidia_bus_ids
+
+    smi = "0, 00000000:17:00.0\n1, 00000000:2A:00.0\n"
+    bus = nvidia_bus_ids(smi)
+    assert bus == {"0": "00000000:17:00.0", "1": "00000000:2A:00.0"}
+    assert assigned_adapter(None, [1], bus) == "pci:00000000:2A:00.0"  # not GPU 0, whatever CUDA_VISIBLE_DEVICES says
+    assert assigned_adapter("H200", [1], bus) == "H200"  # the sweep's own choice wins
+    assert assigned_adapter(None, [], bus) is None  # no GPU assigned: the best adapter there is
+    with pytest.raises(RuntimeError, match="GPU 3 assigned by Ray has no PCI bus id"):
+        assigned_adapter(None, [3], bus)
+
+
+def test_renderer_takes_a_pci_bus_id_and_names_the_adapters_it_saw():
+    import vsgl
+
+    seen = vsgl.adapters()
+    assert all({"pci_bus_id", "limits"} <= set(a) for a in seen)
+    assert all(a["limits"]["max_storage_binding_bytes"] > 0 and a["limits"]["max_texture_side"] >= 2048 for a in seen)
+    with pytest.raises(vsgl.NoAdapterError, match=r'no adapter at PCI bus id "0000:ff:1f\.7"; adapters seen: .+'):
+        vsgl.Renderer(8, 8, adapter="pci:0000:ff:1f.7")
+    with_bus = [a for a in seen if a["pci_bus_id"]]
+    if with_bus:  # a GPU machine: its own bus id opens it, in NVML's spelling too
+        bus = with_bus[0]["pci_bus_id"]
+        assert vsgl.Renderer(8, 8, adapter=f"pci:{bus}").adapter["name"] == with_bus[0]["name"]

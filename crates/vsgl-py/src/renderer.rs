@@ -23,7 +23,8 @@ pub(crate) struct PyRenderer {
 #[pymethods]
 impl PyRenderer {
     /// `adapter=None` picks the best adapter (or the `VSGL_ADAPTER` substring); a string picks
-    /// the first adapter whose name contains it.
+    /// the first adapter whose name contains it, or, written `"pci:0000:17:00.0"`, the adapter
+    /// at that PCI bus id (`vsgl.adapters()` lists each one's `pci_bus_id` and limits).
     #[new]
     // The sizes are `IntArg`s (any Python int, range-checked here by name); the text signature
     // shows their defaults, which PyO3 cannot print for a non-literal default.
@@ -207,6 +208,12 @@ pub(crate) fn adapter_dict<'py>(py: Python<'py>, a: &vsgl_core::gpu::AdapterSumm
     d.set_item("driver", &a.driver)?;
     d.set_item("timestamps", a.timestamps)?;
     d.set_item("subgroups", a.subgroups)?;
+    d.set_item("pci_bus_id", &a.pci_bus_id)?;
+    let limits = PyDict::new(py);
+    limits.set_item("max_storage_binding_bytes", a.max_storage_binding_bytes)?;
+    limits.set_item("max_buffer_bytes", a.max_buffer_bytes)?;
+    limits.set_item("max_texture_side", a.max_texture_side)?;
+    d.set_item("limits", limits)?;
     Ok(d)
 }
 

@@ -16,9 +16,11 @@
 - The report is the local sweep's, built from the rows in the same order; each row names the
   adapter that timed it (``Row.adapter``), as times from different GPUs differ.
 
-Not yet (docs/status.md): mapping a task's assigned NVIDIA GPU to its wgpu adapter by PCI bus id
-(Vulkan ignores ``CUDA_VISIBLE_DEVICES``, so a node with several GPUs renders every task on its
-best adapter); today each task takes the adapter ``adapter=`` names, or the best one.
+- The right GPU per task: with ``--cluster-resource GPU`` (the default) Ray assigns each task a
+  GPU; Vulkan ignores ``CUDA_VISIBLE_DEVICES``, so the task finds that GPU's PCI bus id with
+  ``nvidia-smi`` and opens the wgpu adapter at that bus id (``Renderer(adapter="pci:...")``). A
+  task given no GPU (a custom resource, a node without NVIDIA GPUs) takes the node's best adapter,
+  a CPU one where there is no GPU, and its rows say which.
 """
 
 from __future__ import annotations
@@ -38,7 +40,7 @@ CLUSTER_EXTRA_HINT = "pip install 'vsgl[cluster]'"
 # How long the driver waits for a cluster address to answer before giving up.
 CONNECT_TIMEOUT_S = 10.0
 # The result files' format; a file of another version is measured again.
-RESULT_VERSION = 1
+RESULT_VERSION = 2
 
 
 def _ray():
@@ -100,6 +102,46 @@ def _lights(specs: tuple) -> tuple:
     return tuple(KINDS[kind][0](**dict(fields)) for kind, fields in specs)
 
 
+def nvidia_bus_ids(smi_output: str) -> dict[str, str]:
+    """GPU index → PCI bus id from ``nvidia-smi --query-gpu=index,pci.bus_id
+    --format=csv,noheader`` ("0, 00000000:17:00.0" a line)."""
+    out = {}
+    for line in smi_output.splitlines():
+        index, _, bus = (part.strip() for part in line.partition(","))
+        if index and bus:
+            out[index] = bus
+    return out
+
+
+def assigned_adapter(adapter: str | None, gpu_ids: list, bus_ids: dict[str, str]) -> str | None:
+    """The ``Renderer(adapter=...)`` a task uses: the one the sweep names; else the GPU Ray
+    assigned it, by PCI bus id (Vulkan ignores CUDA_VISIBLE_DEVICES, so the index alone would
+    pick the wrong GPU on a node with several); else None, the best adapter there is (a CPU
+    adapter on a node without GPUs, which each row's ``adapter`` then names)."""
+    if adapter is not None:
+        return adapter
+    if not gpu_ids:
+        return None
+    index = str(gpu_ids[0])
+    if index not in bus_ids:
+        raise RuntimeError(f"cluster task: GPU {index} assigned by Ray has no PCI bus id in nvidia-smi's list ({bus_ids or 'empty'})")
+    return f"pci:{bus_ids[index]}"
+
+
+def _task_adapter(adapter: str | None) -> str | None:
+    import subprocess
+
+    import ray
+
+    gpu_ids = ray.get_gpu_ids()
+    bus_ids: dict[str, str] = {}
+    if adapter is None and gpu_ids:
+        smi = subprocess.run(["nvidia-smi", "--query-gpu=index,pci.bus_id", "--format=csv,noheader"], capture_output=True, text=True,
+                             timeout=30, check=True)
+        bus_ids = nvidia_bus_ids(smi.stdout)
+    return assigned_adapter(adapter, gpu_ids, bus_ids)
+
+
 # One renderer per worker process and size: tasks that follow reuse its compiled passes.
 _RENDERERS: dict[tuple, Any] = {}
 
@@ -107,6 +149,7 @@ _RENDERERS: dict[tuple, Any] = {}
 def _renderer(size: tuple[int, int], adapter: str | None):
     import vsgl
 
+    adapter = _task_adapter(adapter)
     key = (tuple(size), adapter)
     if key not in _RENDERERS:
         _RENDERERS[key] = vsgl.Renderer(width=size[0], height=size[1], adapter=adapter)
@@ -132,7 +175,7 @@ def _reference_task(scene_name: str, scene_lights: bool, light_specs: tuple, siz
 
 def _configuration_task(scene_name: str, light_specs: tuple, size, adapter, reference: dict[str, Any], config: tuple,
                         shared) -> tuple:
-    """One configuration measured on a worker: (row, per-seed errors)."""
+    """One configuration measured on a worker: (row, per-seed errors, the adapter's type)."""
     from . import sweep
     from .timing import _clock_for
 
@@ -144,7 +187,7 @@ def _configuration_task(scene_name: str, light_specs: tuple, size, adapter, refe
     row, stats = sweep.measure_configuration(renderer, scene_name, scene, reference["ref"], reference["reference_rel_error"],
                                              config, shared, _clock_for(cpu), reference["truth"])
     row.adapter = renderer.adapter["name"]
-    return row, stats
+    return row, stats, renderer.adapter["device_type"]
 
 
 def _key(*parts: Any) -> str:
@@ -226,11 +269,17 @@ def sweep_on_cluster(report, *, cluster: str, scenes, configs, shared, size, ada
             if on_result is not None:
                 on_result(len(results), len(jobs))
     seed_stats: dict[int, Any] = {}
+    cpu_rows = 0
     for i in range(len(jobs)):
-        row, stats = results[i]
+        row, stats, device_type = results[i]
         if stats is not None:
             seed_stats[len(report.rows)] = stats
         report.rows.append(row)
+        cpu_rows += device_type == "Cpu"
+    if cpu_rows:
+        report.note = (report.note + " " if report.note else "") + (
+            f"Cluster: {cpu_rows} of {len(jobs)} rows were timed on a CPU adapter (no GPU was assigned or found): their times "
+            "compare only with rows of the same adapter.")
     report.cluster = {"address": cluster, "resource": gpu_resource, "ran": len(jobs) - resumed, "resumed": resumed,
                       "adapters": sorted({r.adapter for r in report.rows if r.adapter})}
     return seed_stats

@@ -16,6 +16,13 @@ pub struct AdapterSummary {
     pub timestamps: bool,
     /// wgpu's SUBGROUP feature (subgroup arithmetic in compute shaders).
     pub subgroups: bool,
+    /// PCI bus id as the driver gives it ("0000:17:00.0"); empty where it has none (lavapipe).
+    pub pci_bus_id: String,
+    /// The adapter's own limits, which the device is created with: the largest storage
+    /// binding, the largest buffer, the largest 2D texture side.
+    pub max_storage_binding_bytes: u64,
+    pub max_buffer_bytes: u64,
+    pub max_texture_side: u32,
 }
 
 const INSTALL_HINT: &str = "no usable GPU or CPU adapter was found by wgpu (Vulkan). \
@@ -50,6 +57,10 @@ fn summary(a: &wgpu::Adapter) -> AdapterSummary {
         driver: format!("{} {}", info.driver, info.driver_info).trim().to_string(),
         timestamps: a.features().contains(wgpu::Features::TIMESTAMP_QUERY),
         subgroups: a.features().contains(wgpu::Features::SUBGROUP),
+        pci_bus_id: info.device_pci_bus_id.clone(),
+        max_storage_binding_bytes: a.limits().max_storage_buffer_binding_size,
+        max_buffer_bytes: a.limits().max_buffer_size,
+        max_texture_side: a.limits().max_texture_dimension_2d,
     }
 }
 
@@ -57,6 +68,22 @@ fn ranked_adapters(inst: &wgpu::Instance) -> Vec<wgpu::Adapter> {
     let mut v = pollster::block_on(inst.enumerate_adapters(wgpu::Backends::all()));
     v.sort_by_key(|a| rank(a.get_info().device_type));
     v
+}
+
+/// (domain, bus, device, function) of a PCI bus id written "DOMAIN:BUS:DEVICE.FUNCTION" or
+/// "BUS:DEVICE.FUNCTION" in hexadecimal, any case and zero padding (NVML writes an 8-digit
+/// domain, Vulkan drivers a 4-digit one); None for anything else.
+pub fn parse_pci_bus_id(text: &str) -> Option<(u32, u32, u32, u32)> {
+    let text = text.trim();
+    let (head, function) = text.rsplit_once('.')?;
+    let parts: Vec<&str> = head.split(':').collect();
+    let (domain, bus, device) = match parts.as_slice() {
+        [d, b, v] => (*d, *b, *v),
+        [b, v] => ("0", *b, *v),
+        _ => return None,
+    };
+    let hex = |s: &str| if s.is_empty() || s.len() > 8 { None } else { u32::from_str_radix(s, 16).ok() };
+    Some((hex(domain)?, hex(bus)?, hex(device)?, hex(function)?))
 }
 
 /// Every adapter wgpu sees, best first.
@@ -96,6 +123,15 @@ impl Gpu {
             None => (env, true),
         };
         let adapter = match &filter {
+            Some(f) if f.to_lowercase().starts_with("pci:") => {
+                // A PCI bus id (what NVML and nvidia-smi give a cluster task for its GPU).
+                let wanted = parse_pci_bus_id(&f[4..]);
+                let found = all.into_iter().find(|a| wanted.is_some() && parse_pci_bus_id(&a.get_info().device_pci_bus_id) == wanted);
+                found.ok_or_else(|| {
+                    let seen: Vec<String> = adapters().into_iter().map(|a| format!("{} ({})", a.name, if a.pci_bus_id.is_empty() { "no bus id" } else { &a.pci_bus_id })).collect();
+                    Error::NoAdapter(format!("no adapter at PCI bus id {:?}; adapters seen: {}", &f[4..], if seen.is_empty() { "none".into() } else { seen.join(", ") }))
+                })?
+            }
             Some(f) => {
                 let needle = f.to_lowercase();
                 all.into_iter().find(|a| a.get_info().name.to_lowercase().contains(&needle)).ok_or_else(|| {
@@ -161,5 +197,22 @@ impl Gpu {
             return Err(Error::Validation { context: context.into(), message: e.to_string() });
         }
         r
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::parse_pci_bus_id;
+
+    #[test]
+    fn pci_bus_ids_compare_across_nvml_and_vulkan_spellings() {
+        // NVML / nvidia-smi: 8-digit domain, upper case; Vulkan drivers: 4-digit, lower case.
+        assert_eq!(parse_pci_bus_id("00000000:17:00.0"), parse_pci_bus_id("0000:17:00.0"));
+        assert_eq!(parse_pci_bus_id("00000000:AB:1F.3"), Some((0, 0xab, 0x1f, 3)));
+        assert_eq!(parse_pci_bus_id("ab:1f.3"), Some((0, 0xab, 0x1f, 3)));
+        assert_ne!(parse_pci_bus_id("0000:17:00.0"), parse_pci_bus_id("0000:18:00.0"));
+        for bad in ["", "llvmpipe", "0000:17:00", "0000:zz:00.0", "1:2:3:4.0", "000000000:17:00.0"] {
+            assert_eq!(parse_pci_bus_id(bad), None, "{bad:?}");
+        }
     }
 }
