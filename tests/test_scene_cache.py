@@ -22,6 +22,12 @@ def test_an_unchanged_scene_is_uploaded_once_and_renders_the_same(renderer):
     assert second.settings["scene_upload"] == "reused"
     np.testing.assert_array_equal(second.image, first.image)
     assert second.aov("indirect_diffuse").max() > 0.0
+    # The uploading frame says what the upload cost: its time, and its geometry per triangle
+    # (3 raster vertices of 16 bytes, 4 bytes of material, 12 of indices, and shading vertices
+    # of 64 bytes, at most 3 a triangle).
+    assert first.settings["scene_upload_ms"] > 0
+    assert 3 * 16 + 4 + 12 < first.settings["scene_bytes_per_triangle"] <= 3 * 16 + 4 + 12 + 3 * 64
+    assert "scene_upload_ms" not in second.settings and "scene_bytes_per_triangle" not in second.settings
 
 
 def test_moving_a_node_re_uploads_and_matches_a_fresh_upload(renderer):

@@ -288,7 +288,9 @@ impl Renderer {
                 return Ok((gscene.clone(), true));
             }
         }
+        let started = Instant::now();
         let gscene = Arc::new(GpuScene::upload(&self.gpu, scene)?);
+        crate::gpu::frame_log::note_setting("scene_upload_ms", (started.elapsed().as_secs_f64() * 1e3).into());
         *self.scene_cache.lock().unwrap_or_else(|e| e.into_inner()) = Some((key, gscene.clone()));
         Ok((gscene, false))
     }

@@ -324,6 +324,10 @@ impl GpuScene {
             )));
         }
         let extent = bounds.diagonal();
+        // What the upload costs per triangle in geometry (raster vertices, shading vertices,
+        // indices, per-triangle materials; textures apart), for the frame that uploads it.
+        let geometry = bytes(raster.len(), 16) + bytes(verts.len(), 64) + bytes(indices.len(), 4) + bytes(tri_mat.len(), 4);
+        crate::gpu::frame_log::note_setting("scene_bytes_per_triangle", (geometry as f64 / tri_mat.len().max(1) as f64).into());
         Ok(Self {
             anchor,
             half_size: if bounds.is_empty() { DVec3::NAN } else { 0.5 * (bounds.max - bounds.min) },
