@@ -312,6 +312,20 @@ def test_the_widget_routes_events_and_shows_errors(view_renderer):
     assert "indirect over reference" in view.status_line.value
 
 
+def test_the_widget_draws_its_overlay_into_the_frame(view_renderer):
+    view = vsgl.view(_lit_scene(), "vsgl", renderer=view_renderer, size=SIZE, num_lights=64)
+    shown = view.get_frame()
+    plain = view.session.frame()
+    rows = np.flatnonzero((shown != plain).any(axis=(1, 2)))
+    assert rows.size and rows.min() >= SIZE[1] - 7  # the bottom strip only (5 rows of glyphs and a margin)
+    assert "ms" in view.session.overlay_text()
+    view.refresh_still()
+    view.get_frame()
+    assert "ind/ref" in view.session.overlay_text()
+    off = vsgl.view(_lit_scene(), "vsgl", renderer=view_renderer, size=SIZE, num_lights=64, overlay=False)
+    assert np.array_equal(off.get_frame(), off.session.frame())
+
+
 def test_renderer_resize_keeps_frames_as_a_new_renderer_would(make_renderer):
     scene = vsgl.scenes.cornell_box()
     r = vsgl.Renderer(40, 30)

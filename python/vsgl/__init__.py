@@ -96,7 +96,8 @@ def view(scene: Scene, method: str = "vsgl", **kwargs):
     ``vsgl.view(scene, "vsgl", num_lights=1024)``, or ``compare=["vpl", "vsgl"]`` for two methods
     either side of a movable divider. Keywords: ``renderer`` (a ``Renderer`` to draw with; one is
     made otherwise), ``size=(640, 360)``, ``camera`` (the scene's default camera when None),
-    ``aov="ldr"``, ``exposure=1.0``, ``seed=0``; the rest are the methods' options, checked as
+    ``aov="ldr"``, ``exposure=1.0``, ``seed=0``, ``overlay=True`` (GPU ms, frames per second and,
+    when stopped, the error, drawn into the frame); the rest are the methods' options, checked as
     ``render`` checks them. Mouse and keys: ``vsgl.camera_control`` and ``vsgl.scene_edit``.
     Needs the notebook extra (``pip install 'vsgl[view]'``: jupyter_rfb, ipywidgets)."""
     try:

@@ -40,11 +40,13 @@ class LiveView(RemoteFrameBuffer):
     """A live view of a :class:`ViewSession` (``vsgl.view`` makes one). ``session`` is the
     state; ``panel`` the settings widgets; ``status_line`` the overlay's text widget."""
 
-    def __init__(self, session: ViewSession, **kwargs: Any):
+    def __init__(self, session: ViewSession, overlay: bool = True, **kwargs: Any):
         w, h = session.logical_size
         super().__init__(css_width=f"{int(w)}px", css_height=f"{int(h)}px", **kwargs)
         self.max_buffered_frames = MAX_FRAMES_IN_FLIGHT
         self.session = session
+        # GPU ms, frames per second and (when stopped) the error, drawn into the frame.
+        self.overlay = bool(overlay)
         self.status_line = widgets.HTML(value=self._status_html())
         self.panel = _Panel(self)
         self._still_handle: asyncio.TimerHandle | None = None
@@ -64,7 +66,7 @@ class LiveView(RemoteFrameBuffer):
             self.status_line.value = f"<span style='color:#b00'>{_escape(str(e))}</span>"
             return None
         self.status_line.value = self._status_html()
-        return frame
+        return self.session.with_overlay(frame) if self.overlay else frame
 
     # --- the view stopping -----------------------------------------------------------------
     def _schedule_still(self) -> None:
@@ -159,6 +161,6 @@ class _Panel:
         return out
 
 
-def view(scene: vsgl.Scene, method: str = "vsgl", **kwargs: Any) -> LiveView:
+def view(scene: vsgl.Scene, method: str = "vsgl", overlay: bool = True, **kwargs: Any) -> LiveView:
     """See ``vsgl.view``."""
-    return LiveView(ViewSession(scene, method, **kwargs))
+    return LiveView(ViewSession(scene, method, **kwargs), overlay=overlay)

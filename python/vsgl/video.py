@@ -41,6 +41,7 @@ _GLYPHS: dict[str, tuple[int, ...]] = {
     "2": (6, 1, 2, 4, 7), "3": (6, 1, 2, 1, 6), "4": (5, 5, 7, 1, 1), "5": (7, 4, 6, 1, 6),
     "6": (3, 4, 7, 5, 7), "7": (7, 1, 2, 2, 2), "8": (7, 5, 7, 5, 7), "9": (7, 5, 7, 1, 6),
     "_": (0, 0, 0, 0, 7), "-": (0, 0, 7, 0, 0), " ": (0, 0, 0, 0, 0),
+    ".": (0, 0, 0, 0, 2), ":": (0, 2, 0, 2, 0), "/": (1, 1, 2, 4, 4), "=": (0, 7, 0, 7, 0),
 }
 
 
@@ -52,19 +53,20 @@ def label_box(text: str, height: int) -> tuple[int, int, int]:
     return (5 + 2) * scale, (4 * len(text) + 1) * scale, scale
 
 
-def draw_label(image: np.ndarray, text: str) -> np.ndarray:
+def draw_label(image: np.ndarray, text: str, bottom: bool = False) -> np.ndarray:
     """A copy of the (H, W, 4) uint8 ``image`` with ``text`` in white on a black box in its
-    top-left corner (clipped to the image)."""
+    top-left corner, or its bottom-left one with ``bottom`` (clipped to the image)."""
     out = image.copy()
     box_h, box_w, scale = label_box(text, image.shape[0])
-    out[:box_h, :box_w, :3] = 0
-    out[:box_h, :box_w, 3] = 255
+    top = max(image.shape[0] - box_h, 0) if bottom else 0
+    out[top:top + box_h, :box_w, :3] = 0
+    out[top:top + box_h, :box_w, 3] = 255
     for i, ch in enumerate(text.lower()):
         rows = _GLYPHS.get(ch, (7, 7, 7, 7, 7))
         for r, bits in enumerate(rows):
             for c in range(3):
                 if bits >> (2 - c) & 1:
-                    y0, x0 = (1 + r) * scale, (1 + 4 * i + c) * scale
+                    y0, x0 = top + (1 + r) * scale, (1 + 4 * i + c) * scale
                     out[y0:y0 + scale, x0:x0 + scale, :3] = 255
     return out
 

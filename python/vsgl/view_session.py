@@ -13,8 +13,11 @@ same way, with the event dicts ``vsgl.camera_control`` describes.
   halves and measures the first method's error against the every-texel ``reference`` of the same
   reflective shadow map (what the virtual-light methods estimate): mean indirect light over the
   reference's, and relative RMS of 4×4 block means of the indirect light, as the bench reports.
-- ``status()`` is the overlay's text: GPU milliseconds of the last frame (the sum of the methods
-  shown), frames per second over the last frames, and the error once measured.
+- ``status()`` is the status line's text: the methods, GPU milliseconds of the last frame (the
+  sum of the methods shown), frames per second over the last frames, the size, and the error once
+  measured; ``with_overlay(frame)`` draws the short form (``overlay_text()``) into the frame's
+  bottom-left corner. ``frame()`` itself is only the methods' pixels, so equal views give equal
+  frames.
 """
 
 from __future__ import annotations
@@ -276,6 +279,27 @@ class ViewSession:
             out[:, cut:] = right[..., :3]
         out[:, min(cut, w - 1)] = 255
         return out
+
+    def overlay_text(self) -> str:
+        """The overlay a view draws into the frame's bottom-left corner (``with_overlay``): GPU
+        ms and frames per second of the last frames, and the error once the view has stopped."""
+        parts = [] if self.gpu_ms is None else [f"{self.gpu_ms:.1f} ms"]
+        fps = self.fps()
+        if fps is not None:
+            parts.append(f"{fps:.1f} fps")
+        if self.error is not None:
+            parts.append(f"ind/ref {self.error['mean_over_reference']:.2f} blk {self.error['block_error']:.2f}")
+        return "  ".join(parts)
+
+    def with_overlay(self, image: np.ndarray) -> np.ndarray:
+        """``image`` (a frame of ``frame()``) with ``overlay_text()`` drawn in its bottom-left
+        corner, white on black in the 3×5 font of the comparison labels."""
+        text = self.overlay_text()
+        if not text:
+            return image
+        h, w = image.shape[:2]
+        rgba = np.dstack([image, np.full((h, w, 1), 255, np.uint8)])
+        return np.ascontiguousarray(draw_label(rgba, text, bottom=True)[..., :3])
 
     def fps(self) -> float | None:
         """Frames per second this session renders (render, readback and compositing, the median

@@ -230,15 +230,22 @@ def sweep_on_cluster(report, *, cluster: str, scenes, configs, shared, size, ada
     config_remote = ray.remote(num_cpus=0, **ask)(_configuration_task)
     view = (tuple(size), adapter, reference, tuple(sorted(ref_settings.items())))
     # Per scene: the reference's result, from the folder or a task.
+    # Every missing reference is submitted before any is waited for, so they render side by side.
     references: dict[str, Any] = {}
+    missing: dict[str, tuple[Any, Path]] = {}
     for scene_name in scenes:
         path = folder / f"reference-{_key(scene_name, shared.scene_lights, light_specs, view, shared.sequence)}.pkl"
         value = _load(path)
         if value is None:
-            value = ray.get(ref_remote.remote(scene_name, shared.scene_lights, light_specs, size, adapter, reference, ref_settings,
-                                              shared.sequence, reference_rsm))
-            _store(path, value)
-        references[scene_name] = value
+            missing[scene_name] = (ref_remote.remote(scene_name, shared.scene_lights, light_specs, size, adapter, reference, ref_settings,
+                                                     shared.sequence, reference_rsm), path)
+        else:
+            references[scene_name] = value
+    for scene_name, (task, path) in missing.items():
+        references[scene_name] = ray.get(task)
+        _store(path, references[scene_name])
+    for scene_name in scenes:
+        value = references[scene_name]
         report.reference_ms[scene_name] = value["reference_ms"]
         report.reference_gpu_ms[scene_name] = value["reference_gpu_ms"]
         report.reference_batches[scene_name] = value["reference_batches"]
