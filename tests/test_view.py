@@ -275,6 +275,33 @@ def test_still_measures_the_error_and_refreshes_slow_halves(view_renderer):
     assert ViewSession(scene, "direct", renderer=view_renderer, size=SIZE).measure_error() is None
 
 
+class _CountingRenderer:
+    """The renderer, with its render calls counted by method."""
+
+    def __init__(self, renderer):
+        self._renderer, self.calls = renderer, []
+
+    def render(self, scene, method, **kw):
+        self.calls.append(method)
+        return self._renderer.render(scene, method=method, **kw)
+
+    def __getattr__(self, name):
+        return getattr(self._renderer, name)
+
+
+def test_a_stopped_view_renders_each_method_once(view_renderer):
+    counting = _CountingRenderer(view_renderer)
+    compared = ViewSession(_lit_scene(), compare=["vsgl", "reference"], renderer=counting, size=SIZE, num_lights=64, rsm_size=32)
+    compared.still()
+    assert sorted(counting.calls) == ["reference", "vsgl"] and compared.error is not None
+    counting.calls.clear()
+    alone = ViewSession(_lit_scene(), "vsgl", renderer=counting, size=SIZE, num_lights=64, rsm_size=32)
+    alone.still()
+    assert sorted(counting.calls) == ["reference", "vsgl"]  # the reference only for the error
+    # The error equals the one measured by separate renders.
+    assert alone.error == alone.measure_error()
+
+
 def test_the_widget_keeps_two_frames_in_flight(view_renderer):
     view = vsgl.view(_lit_scene(), "vsgl", renderer=view_renderer, size=SIZE, num_lights=64)
     sent = []

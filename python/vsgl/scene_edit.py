@@ -26,16 +26,20 @@ from vsgl.lightspec import KINDS
 _KIND_OF = {make: kind for kind, (make, _, _) in KINDS.items()}
 
 
+def light_kind(light: Any) -> str:
+    """The type name ``vsgl.lightspec`` gives ``light``: "spot", "point" or "directional"."""
+    return _KIND_OF[type(light)]
+
+
 def light_fields(light: Any) -> dict[str, Any]:
     """Every constructor field of ``light``, by the constructor's keyword names."""
-    kind = _KIND_OF[type(light)]
-    _, required, optional = KINDS[kind]
+    _, required, optional = KINDS[light_kind(light)]
     return {name: getattr(light, name) for name in required + optional}
 
 
 def with_fields(light: Any, **changes: Any) -> Any:
     """A light of ``light``'s type with ``changes`` applied and every other field kept."""
-    make = KINDS[_KIND_OF[type(light)]][0]
+    make = KINDS[light_kind(light)][0]
     return make(**{**light_fields(light), **changes})
 
 

@@ -237,34 +237,51 @@ class ViewSession:
             self._rsm_size = rsm
         return f
 
-    def _method_image(self, method: str, share: Mapping[str, Any], still: bool) -> tuple[np.ndarray, float]:
+    def _method_image(self, method: str, share: Mapping[str, Any], still: bool,
+                      with_indirect: bool = False) -> tuple[np.ndarray, float, np.ndarray | None]:
+        """(display image, GPU ms, the `indirect` AOV when asked for) of one method; a slow
+        method's last image while the view moves."""
         size = (self.renderer.width, self.renderer.height)
         cached = self._slow_cache.get(method)
         if is_slow(method) and not still and cached is not None and cached[0] == size:
-            return cached[1], 0.0
+            return cached[1], 0.0, None
         aov = self.aov if self.aov in display_aovs(method) else "ldr"
         if aov == "ldr" and self.exposure != 1.0:
             aov = "image"  # the GPU's tone map has exposure 1: expose the linear image here
-        f = self._render(method, share, [aov])
+        aovs = [aov] + (["indirect"] if with_indirect and aov != "indirect" else [])
+        f = self._render(method, share, aovs)
         image = to_display(f.aov(aov), aov, self.exposure)
         if is_slow(method):
             self._slow_cache[method] = (size, image)
-        return image, float(f.timings_ms.get("total", 0.0))
+        return image, float(f.timings_ms.get("total", 0.0)), f.aov("indirect") if with_indirect else None
+
+    def _errors_measured(self) -> bool:
+        """Whether the first method has an error to measure (it makes indirect light from an
+        RSM, and is not itself a ground truth)."""
+        return "rsm_size" in vsgl.method_options(self.methods[0]) and not is_slow(self.methods[0])
 
     def frame(self, still: bool = False) -> np.ndarray:
         """The frame the view shows now, (H, W, 3) uint8 at the renderer's size."""
+        return self._frame(still, with_indirect=False)[0]
+
+    def _frame(self, still: bool, with_indirect: bool) -> tuple[np.ndarray, dict[str, np.ndarray]]:
         started = time.perf_counter()
         images: list[np.ndarray] = [np.empty(0, np.uint8)] * len(self.methods)
+        indirects: dict[str, np.ndarray] = {}
         gpu_ms = 0.0
         # Slow methods last: a reference then uses the RSM side the compared method resolved.
         for i in sorted(range(len(self.methods)), key=lambda i: is_slow(self.methods[i])):
-            images[i], ms = self._method_image(self.methods[i], self._shares[i], still)
+            method = self.methods[i]
+            wanted = with_indirect and (i == 0 or method == "reference") and "indirect" in vsgl.method_info(method)["aovs"]
+            images[i], ms, indirect = self._method_image(method, self._shares[i], still, wanted)
+            if indirect is not None:
+                indirects[method] = indirect
             gpu_ms += ms
         out = images[0] if len(images) == 1 else self._composite(images)
         self._frame_seconds.append(time.perf_counter() - started)
         self.gpu_ms = gpu_ms
         self.frames += 1
-        return out
+        return out, indirects
 
     def _composite(self, images: list[np.ndarray]) -> np.ndarray:
         h, w = images[0].shape[:2]
@@ -310,20 +327,28 @@ class ViewSession:
     # --- when the view stops ---------------------------------------------------------------
     def still(self) -> np.ndarray:
         """The view has stopped: refreshes slow methods' halves, measures the error, and
-        returns the frame to show."""
-        self.error = self.measure_error()
-        return self.frame(still=True)
+        returns the frame to show. Each method shown renders once (its image and its indirect
+        light together), and the reference once more only when it is not one of them."""
+        out, indirects = self._frame(True, with_indirect=self._errors_measured())
+        self.error = self._error(indirects)
+        return out
 
     def measure_error(self) -> dict[str, float] | None:
         """The first method's indirect light against the every-texel reference of the same
         reflective shadow map, or None for a method without one (``direct``, ``reference``,
         ``pathtrace``)."""
-        method, share = self.methods[0], self._shares[0]
-        if "rsm_size" not in vsgl.method_options(method) or is_slow(method):
+        return self._error({})
+
+    def _error(self, indirects: Mapping[str, np.ndarray]) -> dict[str, float] | None:
+        if not self._errors_measured():
             return None
-        f = self._render(method, share, ["indirect"])
-        ref = self._render("reference", {}, ["indirect"])
-        x, r = f.aov("indirect"), ref.aov("indirect")
+        method = self.methods[0]
+        x = indirects.get(method)
+        if x is None:
+            x = self._render(method, self._shares[0], ["indirect"]).aov("indirect")
+        r = indirects.get("reference")
+        if r is None:
+            r = self._render("reference", {}, ["indirect"]).aov("indirect")
         ref_mean = float(r.mean())
         if ref_mean <= 0:
             return {"mean_over_reference": float("nan"), "block_error": float("nan")}

@@ -30,17 +30,18 @@ import hashlib
 import pickle
 import socket
 import sys
-import types
 from pathlib import Path
 from typing import Any
 
 import numpy as np
 
+from .reference import book_reference
+
 CLUSTER_EXTRA_HINT = "pip install 'vsgl[cluster]'"
 # How long the driver waits for a cluster address to answer before giving up.
 CONNECT_TIMEOUT_S = 10.0
 # The result files' format; a file of another version is measured again.
-RESULT_VERSION = 2
+RESULT_VERSION = 3
 
 
 def _ray():
@@ -91,9 +92,9 @@ def check_arguments(cluster: Any, out: Any) -> None:
 
 def _light_specs(lights) -> tuple:
     """Lights as (type name, constructor fields): vsgl lights are not picklable, their fields are."""
-    from vsgl.scene_edit import _KIND_OF, light_fields
+    from vsgl.scene_edit import light_fields, light_kind
 
-    return tuple((_KIND_OF[type(light)], tuple(sorted(light_fields(light).items()))) for light in lights)
+    return tuple((light_kind(light), tuple(sorted(light_fields(light).items()))) for light in lights)
 
 
 def _lights(specs: tuple) -> tuple:
@@ -165,9 +166,8 @@ def _reference_task(scene_name: str, scene_lights: bool, light_specs: tuple, siz
     renderer = _renderer(size, adapter)
     lights = _lights(light_specs)
     scene = sweep._lit_scene(scene_name, scene_lights, lights)
-    book = types.SimpleNamespace(reference_ms={}, reference_gpu_ms={}, reference_batches={}, reference_rel_error={})
-    ref = _scene_reference(renderer, scene, scene_name, size, reference, ref_settings, None, False, book)
-    out: dict[str, Any] = {"ref": ref, **{k: getattr(book, k)[scene_name] for k in vars(book)}, "motion": None, "truth": None}
+    ref, book = _scene_reference(renderer, scene, scene_name, size, reference, ref_settings, None, False)
+    out: dict[str, Any] = {"ref": ref, "book": book, "motion": None, "truth": None}
     if sequence:
         out["motion"], out["truth"] = sweep._sequence_truth(renderer, scene_name, scene_lights, lights, sequence, reference_rsm)
     return out
@@ -184,7 +184,7 @@ def _configuration_task(scene_name: str, light_specs: tuple, size, adapter, refe
     shared = dataclasses.replace(shared, add_lights=lights)
     scene = sweep._lit_scene(scene_name, shared.scene_lights, lights)
     cpu = renderer.adapter["device_type"] == "Cpu"
-    row, stats = sweep.measure_configuration(renderer, scene_name, scene, reference["ref"], reference["reference_rel_error"],
+    row, stats = sweep.measure_configuration(renderer, scene_name, scene, reference["ref"], reference["book"].rel_error,
                                              config, shared, _clock_for(cpu), reference["truth"])
     row.adapter = renderer.adapter["name"]
     return row, stats, renderer.adapter["device_type"]
@@ -246,10 +246,7 @@ def sweep_on_cluster(report, *, cluster: str, scenes, configs, shared, size, ada
         _store(path, references[scene_name])
     for scene_name in scenes:
         value = references[scene_name]
-        report.reference_ms[scene_name] = value["reference_ms"]
-        report.reference_gpu_ms[scene_name] = value["reference_gpu_ms"]
-        report.reference_batches[scene_name] = value["reference_batches"]
-        report.reference_rel_error[scene_name] = value["reference_rel_error"]
+        book_reference(report, scene_name, value["book"])
         if value["motion"] is not None:
             report.sequence_motion[scene_name] = value["motion"]
     # Every configuration of every scene: from the folder, else a task.

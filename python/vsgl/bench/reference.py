@@ -131,7 +131,27 @@ def _reference_progress(label: str, enabled: bool):
     return show, close
 
 
-def _scene_reference(renderer, scene, scene_name, size, reference, ref_settings, cache_dir, progress, report) -> _ReferenceRender:
+@dataclass
+class ReferenceBook:
+    """What a scene's reference cost and its own error estimate, as the report lists them per
+    scene (``book_reference``): wall and GPU milliseconds and batches over every render it took
+    (its own error needs a second one), and its relative error (None without indirect light)."""
+
+    wall_ms: float
+    gpu_ms: float
+    batches: int
+    rel_error: float | None
+
+
+def book_reference(report, scene_name: str, book: ReferenceBook) -> None:
+    """Writes ``book`` into the report's per-scene reference columns."""
+    report.reference_ms[scene_name] = book.wall_ms
+    report.reference_gpu_ms[scene_name] = book.gpu_ms
+    report.reference_batches[scene_name] = book.batches
+    report.reference_rel_error[scene_name] = book.rel_error
+
+
+def _scene_reference(renderer, scene, scene_name, size, reference, ref_settings, cache_dir, progress) -> tuple[_ReferenceRender, ReferenceBook]:
     """The scene's reference (showing its own progress), its cost, and its own error estimate."""
     show, close = _reference_progress(f"{scene_name}: {reference}", progress)
     if progress:
@@ -140,14 +160,12 @@ def _scene_reference(renderer, scene, scene_name, size, reference, ref_settings,
         ref = _reference(renderer, scene, size, reference, ref_settings, cache_dir, show)
     finally:
         close()
-    report.reference_ms[scene_name] = ref.wall_ms
-    report.reference_gpu_ms[scene_name] = ref.gpu_ms
-    report.reference_batches[scene_name] = ref.batches
+    book = ReferenceBook(wall_ms=ref.wall_ms, gpu_ms=ref.gpu_ms, batches=ref.batches, rel_error=None)
     scale = float(np.mean(ref.indirect.astype(np.float64) ** 2))
     if scale == 0.0:
-        report.reference_rel_error[scene_name] = None  # no indirect light: nothing to be relative to
+        pass  # no indirect light: nothing to be relative to
     elif ref.indirect_var is not None:  # pathtrace: its stderr²
-        report.reference_rel_error[scene_name] = float(np.sqrt(np.mean(ref.indirect_var) / scale))
+        book.rel_error = float(np.sqrt(np.mean(ref.indirect_var) / scale))
     else:
         n = ref_settings["rsm_size"]
         coarser = n // 2 >= MIN_RSM
@@ -157,8 +175,8 @@ def _scene_reference(renderer, scene, scene_name, size, reference, ref_settings,
             other = _reference(renderer, scene, size, reference, other_settings, cache_dir, show)
         finally:
             close()
-        report.reference_ms[scene_name] += other.wall_ms
-        report.reference_gpu_ms[scene_name] += other.gpu_ms
-        report.reference_batches[scene_name] += other.batches
-        report.reference_rel_error[scene_name] = _rsm_reference_error(ref.indirect, other.indirect, coarser)
-    return ref
+        book.wall_ms += other.wall_ms
+        book.gpu_ms += other.gpu_ms
+        book.batches += other.batches
+        book.rel_error = _rsm_reference_error(ref.indirect, other.indirect, coarser)
+    return ref, book

@@ -14,9 +14,10 @@ import numpy as np
 
 import vsgl
 from vsgl import metrics
+from vsgl.scene_edit import with_fields
 
 from .output import write
-from .reference import MIN_RSM, RSM_REFERENCE_ORDER, _ReferenceRender, _scene_reference
+from .reference import MIN_RSM, RSM_REFERENCE_ORDER, _ReferenceRender, _scene_reference, book_reference
 from .report import TRUST_FACTOR, Report, Row, _equal_time, _plan_ratios
 from .timing import _clock_for, _quartiles, warm_up
 
@@ -344,7 +345,8 @@ def run(
         if sequence:
             motion, truth_frames = _sequence_truth(renderer, scene_name, scene_lights, add_lights, sequence, reference_rsm)
             report.sequence_motion[scene_name] = motion
-        ref = _scene_reference(renderer, scene, scene_name, (w, h), reference, ref_settings, cache_dir, progress, report)
+        ref, book = _scene_reference(renderer, scene, scene_name, (w, h), reference, ref_settings, cache_dir, progress)
+        book_reference(report, scene_name, book)
         ref_error = report.reference_rel_error[scene_name]
         bar = _progress(len(configs), progress)
         for config in configs:
@@ -534,17 +536,8 @@ def _sequence_changes(scene: vsgl.Scene, frames: int) -> tuple[str, list[dict[st
     changes = []
     for k in range(frames):
         dx = span * (k / (frames - 1) - 0.5)
-        moved = []
-        for light in scene.lights:
-            if isinstance(light, vsgl.SpotLight):
-                x, y, z = light.position
-                moved.append(vsgl.SpotLight(position=(x + dx, y, z), direction=light.direction, intensity=light.intensity,
-                                            color=light.color, inner_cone_deg=light.inner_cone_deg, outer_cone_deg=light.outer_cone_deg))
-            elif isinstance(light, vsgl.PointLight):
-                x, y, z = light.position
-                moved.append(vsgl.PointLight(position=(x + dx, y, z), intensity=light.intensity, color=light.color))
-            else:
-                moved.append(light)
+        moved = [with_fields(light, position=(light.position[0] + dx, *light.position[1:])) if hasattr(light, "position") else light
+                 for light in scene.lights]
         changes.append({"lights": moved})
     return f"lights slid {span:.3g} along +x", changes
 
