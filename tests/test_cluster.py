@@ -91,8 +91,17 @@ def test_cluster_errors_name_what_to_do(tmp_path, monkeypatch):
 @pytest.mark.gpu
 @pytest.mark.slow
 def test_a_resource_the_cluster_lacks_is_named(local_cluster, tmp_path):
-    with pytest.raises(ValueError, match="no 'GPU' resource"):
-        bench.run(cluster=local_cluster, out=tmp_path, **SWEEP)
+    with pytest.raises(ValueError, match="no 'gpu_node' resource to schedule tasks on .*CPU"):
+        bench.run(cluster=local_cluster, cluster_gpu_resource="gpu_node", out=tmp_path, **SWEEP)
+
+
+@pytest.mark.gpu
+@pytest.mark.slow
+def test_a_cluster_without_gpus_runs_on_cpu_adapters_and_says_so(local_cluster, local_report, tmp_path):
+    # The default resource, GPU, on a cluster that has none (this one): a CPU a task.
+    report = bench.run(cluster=local_cluster, out=tmp_path, **SWEEP)
+    assert "offers no GPU" in report.note
+    assert same_rows_but_timing(local_report, report) == []
 
 
 def test_a_task_opens_the_gpu_ray_assigned_it_by_bus_id():

@@ -216,7 +216,13 @@ def sweep_on_cluster(report, *, cluster: str, scenes, configs, shared, size, ada
     check_arguments(cluster, out)
     ray = connect(cluster)
     available = ray.cluster_resources().get(gpu_resource, 0)
-    if available < 1:
+    # A cluster without GPUs (a laptop's `--cluster local`, CI): with the default resource the
+    # tasks take one CPU each and render on the node's CPU adapter, and the report says so.
+    cpu_only = gpu_resource == "GPU" and available < 1
+    if cpu_only:
+        report.note = (report.note + " " if report.note else "") + (
+            "Cluster: it offers no GPU, so each task took one CPU and its node's CPU adapter.")
+    elif available < 1:
         raise ValueError(f"cluster {cluster}: no {gpu_resource!r} resource to schedule tasks on (the cluster has "
                          f"{', '.join(sorted(ray.cluster_resources())) or 'nothing'}); pass cluster_gpu_resource= "
                          f"(--cluster-resource) naming the one its GPU nodes offer")
@@ -225,9 +231,14 @@ def sweep_on_cluster(report, *, cluster: str, scenes, configs, shared, size, ada
     light_specs = _light_specs(shared.add_lights)
     plain = dataclasses.replace(shared, add_lights=())
     # One unit of the GPU resource per task (Ray names its own GPUs with num_gpus).
-    ask: dict[str, Any] = {"num_gpus": 1} if gpu_resource == "GPU" else {"resources": {gpu_resource: 1}}
-    ref_remote = ray.remote(num_cpus=0, **ask)(_reference_task)
-    config_remote = ray.remote(num_cpus=0, **ask)(_configuration_task)
+    if cpu_only:
+        ask: dict[str, Any] = {"num_cpus": 1}
+    elif gpu_resource == "GPU":
+        ask = {"num_cpus": 0, "num_gpus": 1}
+    else:
+        ask = {"num_cpus": 0, "resources": {gpu_resource: 1}}
+    ref_remote = ray.remote(**ask)(_reference_task)
+    config_remote = ray.remote(**ask)(_configuration_task)
     view = (tuple(size), adapter, reference, tuple(sorted(ref_settings.items())))
     # Per scene: the reference's result, from the folder or a task.
     # Every missing reference is submitted before any is waited for, so they render side by side.
@@ -280,7 +291,7 @@ def sweep_on_cluster(report, *, cluster: str, scenes, configs, shared, size, ada
             seed_stats[len(report.rows)] = stats
         report.rows.append(row)
         cpu_rows += device_type == "Cpu"
-    if cpu_rows:
+    if cpu_rows and not cpu_only:
         report.note = (report.note + " " if report.note else "") + (
             f"Cluster: {cpu_rows} of {len(jobs)} rows were timed on a CPU adapter (no GPU was assigned or found): their times "
             "compare only with rows of the same adapter.")
