@@ -22,6 +22,7 @@ same way, with the event dicts ``vsgl.camera_control`` describes.
 
 from __future__ import annotations
 
+import functools
 import math
 import time
 from collections import deque
@@ -37,11 +38,21 @@ from vsgl.video import draw_label
 
 
 
+@functools.lru_cache(maxsize=None)
+def _info(method: str) -> dict:
+    """The registry's entry, read once per method (a frame asks it several times; 28 µs a read)."""
+    return dict(vsgl.method_info(method))
+
+
+def _takes(method: str, option: str) -> bool:
+    return option in _info(method)["options"]
+
+
 def is_slow(method: str) -> bool:
     """Ground truths (the registry's ``ground_truth``: the every-texel reference, the path
     tracer) take seconds a frame on a CPU adapter: in a comparison they are refreshed when the
     view stops, not on every move."""
-    return bool(vsgl.method_info(method)["ground_truth"])
+    return bool(_info(method)["ground_truth"])
 
 # The controls of the settings panel, where the method takes them (their kinds and ranges come
 # from vsgl.method_info, so the panel never offers a value render would refuse).
@@ -55,7 +66,7 @@ _MAX_SIDE = 4096
 def display_aovs(method: str) -> list[str]:
     """The AOVs a view of ``method`` can show: ``ldr`` (the image tone-mapped on the GPU) first,
     then the method's own."""
-    own = [a for a in vsgl.method_info(method)["aovs"] if a != "ldr"]
+    own = [a for a in _info(method)["aovs"] if a != "ldr"]
     return ["ldr", *own]
 
 
@@ -225,7 +236,7 @@ class ViewSession:
     # --- frames ----------------------------------------------------------------------------
     def _render(self, method: str, share: Mapping[str, Any], aovs: list[str]) -> vsgl.Frame:
         opts = dict(share)
-        if "seed" in vsgl.method_options(method):
+        if _takes(method, "seed"):
             opts.setdefault("seed", self.seed)
         if method == "reference" and self._rsm_size is not None:
             # The every-texel reference of the RSM the compared method uses, which is what
@@ -258,7 +269,7 @@ class ViewSession:
     def _errors_measured(self) -> bool:
         """Whether the first method has an error to measure (it makes indirect light from an
         RSM, and is not itself a ground truth)."""
-        return "rsm_size" in vsgl.method_options(self.methods[0]) and not is_slow(self.methods[0])
+        return _takes(self.methods[0], "rsm_size") and not is_slow(self.methods[0])
 
     def frame(self, still: bool = False) -> np.ndarray:
         """The frame the view shows now, (H, W, 3) uint8 at the renderer's size."""
@@ -272,7 +283,7 @@ class ViewSession:
         # Slow methods last: a reference then uses the RSM side the compared method resolved.
         for i in sorted(range(len(self.methods)), key=lambda i: is_slow(self.methods[i])):
             method = self.methods[i]
-            wanted = with_indirect and (i == 0 or method == "reference") and "indirect" in vsgl.method_info(method)["aovs"]
+            wanted = with_indirect and (i == 0 or method == "reference") and "indirect" in _info(method)["aovs"]
             images[i], ms, indirect = self._method_image(method, self._shares[i], still, wanted)
             if indirect is not None:
                 indirects[method] = indirect
