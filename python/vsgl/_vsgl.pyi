@@ -389,6 +389,8 @@ class _MethodInfo(TypedDict):
     aovs: list[str]
     direct_light: Literal["shadow_mapped", "by_method"]
     ground_truth: bool
+    # Whether emissive surfaces light the scene in it (as area lights), or only show.
+    lit_by_emitters: bool
     stochastic: bool
     # Per option: "type" ("int", "float", "bool", "choice"), its range or "choices", "default", "help".
     options: dict[str, dict[str, Any]]

@@ -35,6 +35,17 @@
 // batches (light_fold); `resolve` adds it to the camera part. The `direct` AOV stays the
 // pixel-centre value in both modes.
 //
+// Emissive triangles are area lights (HAS_EMITTERS; upload/emitters.rs builds their table): a
+// one-sided Lambertian emitter of radiance L_e on the side its vertex normals point to. Each
+// shading point takes one emitter sample per path sample, drawn by power and then uniformly
+// over the triangle's area (density p_z = p_i / A_i), with a shadow ray:
+//   L ≈ f(l, v) ⟨n, l⟩ L_e(z) cos_z / |z − p|² / p_z          (next-event estimation)
+// [Veach 1997, §9.1 / Pharr et al., "Sampling light sources": the area form of the rendering
+// equation]. At the bounce point x this is the emitters' share of L_o(x) above; at the pixel
+// centre it is their direct light, whose running mean (emitted_direct) `resolve` adds to the
+// `direct` AOV. Photons leave emitters too, drawn by power among all lights, from a uniform
+// point, in a cosine-distributed direction, so light tracing and its MIS weights cover them.
+//
 // Entry points: `indirect` (one batch), `direct` (the pixel's direct light with shadow rays, for
 // the `direct` AOV of this method), `light_paths` and `light_fold` (bidirectional: one batch of
 // photons, folded into the light part) and `resolve` (standard error of the mean, per channel).
@@ -70,6 +81,9 @@ struct PathParams {
     // STRATEGY_LIGHT: light tracing alone; STRATEGY_CAMERA (0): camera paths only, from the
     // pixel centre's G-buffer point.
     strategy: u32,
+    // The upload's emissive triangles and their total power π Σ A_i (L_r + L_g + L_b).
+    emitter_count: u32,
+    emitter_power: f32,
 }
 
 @group(0) @binding(0) var<uniform> frame: FrameUniforms;
@@ -103,6 +117,23 @@ struct PathParams {
 @group(0) @binding(22) var<storage, read_write> float_sums: array<atomic<u32>>;
 @group(0) @binding(23) var<storage, read_write> light_mean: array<vec4f>;
 @group(0) @binding(24) var<storage, read_write> light_m2: array<vec4f>;
+// The emitter table (upload/emitters.rs) and the running mean of the emitters' direct light at
+// each pixel centre (rgb).
+@group(0) @binding(25) var<storage, read> emitters: array<EmitterRaw>;
+@group(0) @binding(26) var<storage, read_write> emitted_direct: array<vec4f>;
+
+// Whether the upload has emissive triangles: without, no emitter code runs and no random number
+// is drawn for them, so a scene without emission renders as before emitters existed.
+override HAS_EMITTERS: bool = true;
+
+struct EmitterRaw {
+    triangle: u32,
+    area: f32,
+    // Σ probability up to and including this row (the last is 1).
+    cdf: f32,
+    // Φ_i / ΣΦ.
+    probability: f32,
+}
 
 // What shading needs at a surface point.
 struct Surface {
@@ -203,6 +234,67 @@ fn total_light_power() -> f32 {
     return total;
 }
 
+// What photons are drawn from: the lights' power and the emitters' (HAS_EMITTERS).
+fn photon_power_total() -> f32 {
+    var total = total_light_power();
+    if (HAS_EMITTERS) {
+        total += params.emitter_power;
+    }
+    return total;
+}
+
+// The emitter row whose cdf interval holds u ∈ [0, 1) (binary search: the first cdf > u).
+fn pick_emitter(u: f32) -> u32 {
+    var lo = 0u;
+    var hi = params.emitter_count - 1u;
+    while (lo < hi) {
+        let mid = (lo + hi) / 2u;
+        if (u < emitters[mid].cdf) {
+            hi = mid;
+        } else {
+            lo = mid + 1u;
+        }
+    }
+    return lo;
+}
+
+// A point drawn on the emitters: its emitting side's normal, its radiance and its density
+// per unit area over all emitters (pick probability / area).
+struct EmitterPoint {
+    position: vec3f,
+    normal: vec3f,
+    radiance: vec3f,
+    pdf_area: f32,
+    triangle: u32,
+}
+
+// Draws an emitter by power with u_pick, then a point uniformly over its triangle with
+// (u1, u2): barycentrics (1 − √u1, √u1 (1 − u2), √u1 u2) [Pharr et al., "Sampling a triangle"].
+fn sample_emitter(u_pick: f32, u1: f32, u2: f32) -> EmitterPoint {
+    let e = emitters[pick_emitter(u_pick)];
+    let tri = e.triangle;
+    let a = vertices[indices[3u * tri]];
+    let b = vertices[indices[3u * tri + 1u]];
+    let c = vertices[indices[3u * tri + 2u]];
+    let su = sqrt(u1);
+    let w = vec2f(su * (1.0 - u2), su * u2);
+    let position = lerp_bary3(a.position, b.position, c.position, w) - frame.view_origin.xyz;
+    let ng = safe_normalize(cross(b.position - a.position, c.position - a.position), vec3f(0.0, 1.0, 0.0));
+    // The emitting side is the one the vertex normals point to.
+    let normal = select(-ng, ng, dot(ng, lerp_bary3(a.normal, b.normal, c.normal, w)) >= 0.0);
+    let uv = a.uv + w.x * (b.uv - a.uv) + w.y * (c.uv - a.uv);
+    let radiance = material_emission(materials[triangle_materials[tri]], uv, 0.0);
+    return EmitterPoint(position, normal, radiance, e.probability / max(e.area, FLT_MIN), tri);
+}
+
+// The light strategy's density of x per unit area for a photon from emitter point z (see
+// light_emission_density): the emitters' share of the photons, z's area density, the cosine
+// lobe's cos_z/π and the solid angle's cos_g(x)/d².
+fn emitter_emission_density(z: EmitterPoint, cos_z: f32, x: Surface, l: vec3f, dist: f32) -> f32 {
+    let share = params.emitter_power / max(photon_power_total(), FLT_MIN);
+    return share * z.pdf_area * cos_z * INV_PI * max(dot(x.ng, l), 0.0) / max(dist * dist, FLT_MIN);
+}
+
 // Pdf (solid angle) of a photon's direction from a spot (uniform over the outer cone) or point
 // light (uniform over the sphere).
 fn light_direction_pdf(light: LightRaw) -> f32 {
@@ -273,7 +365,7 @@ fn lights_radiance(s: Surface, v: vec3f, mis: CameraMis) -> vec3f {
     let origin = s.position + s.ng * ray_offset(s.position);
     var total_power = 0.0;
     if (mis.enabled) {
-        total_power = total_light_power();
+        total_power = photon_power_total();
     }
     for (var i = 0u; i < frame.light_count; i++) {
         let light = lights[i];
@@ -316,6 +408,37 @@ fn lights_radiance(s: Surface, v: vec3f, mis: CameraMis) -> vec3f {
 
 fn lerp_bary3(a: vec3f, b: vec3f, c: vec3f, w: vec2f) -> vec3f {
     return a + w.x * (b - a) + w.y * (c - a);
+}
+
+// Light reflected towards v at s from one emitter point drawn with u (next-event estimation,
+// the header's formula), visible through a shadow ray. `mis` as in lights_radiance: the camera
+// strategy drew z with density p_z, the light strategy with emitter_emission_density.
+fn emitters_radiance(s: Surface, v: vec3f, mis: CameraMis, u: vec3f) -> vec3f {
+    let z = sample_emitter(u.x, u.y, u.z);
+    let origin = s.position + s.ng * ray_offset(s.position);
+    let seg = z.position - origin;
+    let dist = length(seg);
+    if (!(dist > 0.0) || !(z.pdf_area > 0.0)) {
+        return vec3f(0.0);
+    }
+    let l = seg / dist;
+    let cos_z = dot(z.normal, -l);
+    let n_dot_l = dot(s.ns, l);
+    if (cos_z <= 0.0 || n_dot_l <= 0.0 || dot(s.ng, l) <= 0.0 || all(z.radiance <= vec3f(0.0))) {
+        return vec3f(0.0);
+    }
+    // Stops short of the emitter by its own offset (its triangle lies at the segment's end).
+    if (bvh_any_hit(Ray(to_scene(origin), l, dist - ray_offset(z.position), s.triangle))) {
+        return vec3f(0.0);
+    }
+    let brdf = s.rd * lambert_brdf_over_rd(s.ns, l) + s.rs * ggx_brdf_over_rs(s.ns, l, v, s.alpha);
+    var weight = 1.0;
+    if (mis.enabled) {
+        let p_light = emitter_emission_density(z, cos_z, s, l, dist) * bsdf_pdf(s, v, l) * mis.cos_gy_x;
+        weight = 1.0 - mis_light_weight(mis.p_cam * z.pdf_area, p_light);
+    }
+    let geometry = n_dot_l * cos_z / (dist * dist * z.pdf_area);
+    return min(brdf * z.radiance * (geometry * weight), vec3f(FLT_MAX));
 }
 
 // The surface a bounce ray hit: position from the barycentrics (not origin + t·dir, which
@@ -371,7 +494,8 @@ fn pixel_surface(pixel: vec2u, index: u32) -> Surface {
 // In bidirectional mode, `v` (the direction from s to the eye) and `p_y` (the image-plane
 // density of s per unit area over the pixel's area, image_per_surface_area / A_pixel) weigh
 // each light's path against the light strategy.
-fn incoming_radiance(s: Surface, l: vec3f, v: vec3f, p_y: f32) -> vec3f {
+// `u_emit`: the random numbers of x's emitter sample (unused without emitters).
+fn incoming_radiance(s: Surface, l: vec3f, v: vec3f, p_y: f32, u_emit: vec3f) -> vec3f {
     let origin = s.position + s.ng * ray_offset(s.position);
     let hit = bvh_closest_hit(Ray(to_scene(origin), l, RAY_T_MAX_EXTENTS * frame.scene_extent, s.triangle));
     if (hit.triangle == BVH_NO_TRIANGLE) {
@@ -382,7 +506,11 @@ fn incoming_radiance(s: Surface, l: vec3f, v: vec3f, p_y: f32) -> vec3f {
     if (params.strategy != STRATEGY_CAMERA) {
         mis = CameraMis(true, p_y * bsdf_pdf(s, l, v) * max(dot(x.ng, -l), 0.0), max(dot(s.ng, l), 0.0));
     }
-    return lights_radiance(x, -l, mis);
+    var radiance = lights_radiance(x, -l, mis);
+    if (HAS_EMITTERS) {
+        radiance = min(radiance + emitters_radiance(x, -l, mis, u_emit), vec3f(FLT_MAX));
+    }
+    return radiance;
 }
 
 @compute @workgroup_size(WORKGROUP, WORKGROUP, 1)
@@ -400,6 +528,9 @@ fn indirect(@builtin(global_invocation_id) gid: vec3u) {
         indirect_diffuse[index] = vec4f(0.0);
         indirect_specular[index] = vec4f(0.0);
         indirect_m2[index] = vec4f(0.0);
+        if (HAS_EMITTERS) {
+            emitted_direct[index] = vec4f(0.0);
+        }
         return;
     }
     // Read only where the centre hit (the jittered rays below replace it otherwise).
@@ -415,8 +546,19 @@ fn indirect(@builtin(global_invocation_id) gid: vec3u) {
     var m2 = vec3f(0.0);
     var sum_d = vec3f(0.0);
     var sum_s = vec3f(0.0);
+    var sum_emitted = vec3f(0.0);
     for (var k = 0u; k < params.batch_samples; k++) {
         var rng = rng_init(index, params.sample_offset + k, params.seed);
+        // The emitters' direct light at the pixel centre, one sample per path sample (drawn
+        // first, so the path's own numbers are those of a scene without emitters, shifted).
+        var u_emit = vec3f(0.0);
+        if (HAS_EMITTERS) {
+            let u_direct = vec3f(rng_uniform(&rng), rng_uniform(&rng), rng_uniform(&rng));
+            if (!centre_missed) {
+                sum_emitted += emitters_radiance(centre, v_centre, NO_MIS, u_direct);
+            }
+            u_emit = vec3f(rng_uniform(&rng), rng_uniform(&rng), rng_uniform(&rng));
+        }
         // The receiver: the pixel centre's G-buffer point, or in bidirectional mode the point a
         // ray through a uniformly jittered position in the pixel hits (p_y: its density per unit
         // area, for the MIS weights; a miss is a zero sample of the pixel's average).
@@ -449,7 +591,7 @@ fn indirect(@builtin(global_invocation_id) gid: vec3u) {
         if (hit_receiver && cos_l > 0.0 && dot(s.ng, l) > 0.0) {
             let pdf = bsdf_pdf(s, l, v);
             if (pdf > 0.0) {
-                let li = incoming_radiance(s, l, v, p_y);
+                let li = incoming_radiance(s, l, v, p_y, u_emit);
                 if (any(li > vec3f(0.0))) {
                     let w = li * (cos_l / pdf);
                     x_d = min(s.rd * INV_PI * w, vec3f(FLT_MAX));
@@ -468,6 +610,16 @@ fn indirect(@builtin(global_invocation_id) gid: vec3u) {
     let n_b = f32(params.batch_samples);
     let mean_d = sum_d / n_b;
     let mean_s = sum_s / n_b;
+    if (HAS_EMITTERS) {
+        // Running mean over batches (the weights of Chan's merge below, without the variance).
+        let batch = min(sum_emitted / n_b, vec3f(FLT_MAX));
+        var merged = batch;
+        if (params.sample_offset > 0u) {
+            let old = emitted_direct[index].rgb;
+            merged = old + (batch - old) * (n_b / (f32(params.sample_offset) + n_b));
+        }
+        emitted_direct[index] = vec4f(merged, 0.0);
+    }
     if (params.sample_offset == 0u) {
         indirect_diffuse[index] = vec4f(mean_d, 0.0);
         indirect_specular[index] = vec4f(mean_s, 0.0);
@@ -516,17 +668,21 @@ const LIGHT_WORKGROUP: u32 = 64u;
 fn light_paths(@builtin(global_invocation_id) gid: vec3u, @builtin(num_workgroups) groups: vec3u) {
     let photon = gid.x + gid.y * groups.x * LIGHT_WORKGROUP;
     let photons = params.batch_samples * frame.size.x * frame.size.y;
-    if (photon >= photons || frame.light_count == 0u) {
+    let emitting = HAS_EMITTERS && params.emitter_count > 0u;
+    if (photon >= photons || (frame.light_count == 0u && !emitting)) {
         return;
     }
     // A stream apart from the camera paths' (those hash (pixel, sample, seed)).
     var rng = rng_init(photon, params.sample_offset, params.seed ^ 0x5bd1e995u);
-    let total = total_light_power();
+    let total = photon_power_total();
     if (!(total > 0.0)) {
         return;
     }
     let u_pick = rng_uniform(&rng) * total;
-    var pick = frame.light_count - 1u;
+    let lights_total = total_light_power();
+    // Past the lights' power the photon leaves an emitter (HAS_EMITTERS).
+    let from_emitter = emitting && u_pick >= lights_total;
+    var pick = max(frame.light_count, 1u) - 1u;
     var acc = 0.0;
     for (var k = 0u; k < frame.light_count; k++) {
         acc += light_power(lights[k]);
@@ -542,7 +698,23 @@ fn light_paths(@builtin(global_invocation_id) gid: vec3u, @builtin(num_workgroup
     var origin: vec3f;
     var dir: vec3f;
     var flux: vec3f;
-    if (light.kind == LIGHT_KIND_DIRECTIONAL) {
+    // The emitter point a photon from an emitter left, and the cosine at it.
+    var z: EmitterPoint;
+    var cos_z = 0.0;
+    var skip = BVH_NO_TRIANGLE;
+    if (from_emitter) {
+        // The rest of u_pick picks the triangle; a point uniformly on it; a cosine-distributed
+        // direction about its emitting side. Flux L_e cos_z / (share · p_z · cos_z/π).
+        let u_e = min((u_pick - lights_total) / max(params.emitter_power, FLT_MIN), 0.99999994);
+        z = sample_emitter(u_e, u1, u2);
+        let local = sample_cosine_hemisphere(rng_uniform(&rng), rng_uniform(&rng));
+        cos_z = local.z;
+        dir = safe_normalize(orthonormal_basis(z.normal) * local, z.normal);
+        origin = z.position + z.normal * ray_offset(z.position);
+        skip = z.triangle;
+        let share = params.emitter_power / total;
+        flux = select(vec3f(0.0), z.radiance * (PI / (share * z.pdf_area)), cos_z > 0.0 && z.pdf_area > 0.0);
+    } else if (light.kind == LIGHT_KIND_DIRECTIONAL) {
         dir = normalize(light.direction);
         let r = directional_disk_radius();
         // The scene's centre (the upload anchor) is at −view_origin in frame space.
@@ -573,7 +745,7 @@ fn light_paths(@builtin(global_invocation_id) gid: vec3u, @builtin(num_workgroup
         return;
     }
     let t_max = length(to_scene(origin)) + RAY_T_MAX_EXTENTS * frame.scene_extent;
-    let hit_x = bvh_closest_hit(Ray(to_scene(origin), dir, t_max, BVH_NO_TRIANGLE));
+    let hit_x = bvh_closest_hit(Ray(to_scene(origin), dir, t_max, skip));
     if (hit_x.triangle == BVH_NO_TRIANGLE) {
         return;
     }
@@ -612,13 +784,13 @@ fn light_paths(@builtin(global_invocation_id) gid: vec3u, @builtin(num_workgroup
     if (dot(y.ng, to_eye) <= 0.0 || dot(y.ns, to_eye) <= 0.0 || cos_sy_x <= 0.0 || cos_gy_x <= 0.0) {
         return;
     }
-    let z = dot(y.position, normalize(frame.cam_forward.xyz));
-    if (z <= 0.0) {
+    let depth = dot(y.position, normalize(frame.cam_forward.xyz));
+    if (depth <= 0.0) {
         return;
     }
     let right = frame.cam_right.xyz;
     let up = frame.cam_up.xyz;
-    let ndc = vec2f(dot(y.position, right) / (dot(right, right) * z), dot(y.position, up) / (dot(up, up) * z));
+    let ndc = vec2f(dot(y.position, right) / (dot(right, right) * depth), dot(y.position, up) / (dot(up, up) * depth));
     if (any(abs(ndc) >= vec2f(1.0))) {
         return;
     }
@@ -632,8 +804,16 @@ fn light_paths(@builtin(global_invocation_id) gid: vec3u, @builtin(num_workgroup
         return;
     }
     let p_y = image_per_surface_area(y.position, y.ng) / pixel_area();
-    let p_cam = p_y * bsdf_pdf(y, to_x, to_eye) * cos_gx_y;
-    let p_light = light_emission_density(light, q, x, to_light, distance(x.position, light.position)) * p_x * cos_gy_x;
+    var p_cam = p_y * bsdf_pdf(y, to_x, to_eye) * cos_gx_y;
+    var density_x: f32;
+    if (from_emitter) {
+        // The camera strategy reaches z by next-event estimation: its density joins p_cam.
+        p_cam *= z.pdf_area;
+        density_x = emitter_emission_density(z, cos_z, x, to_light, distance(x.position, z.position));
+    } else {
+        density_x = light_emission_density(light, q, x, to_light, distance(x.position, light.position));
+    }
+    let p_light = density_x * p_x * cos_gy_x;
     let weight = mis_light_weight(p_cam, p_light);
     if (!(weight > 0.0)) {
         return;
@@ -719,4 +899,8 @@ fn resolve(@builtin(global_invocation_id) gid: vec3u) {
         err = sqrt(err * err + light_var);
     }
     stderr_out[index] = vec4f(min(err, vec3f(FLT_MAX)), 0.0);
+    if (HAS_EMITTERS) {
+        let d = direct_out[index];
+        direct_out[index] = vec4f(min(d.rgb + emitted_direct[index].rgb, vec3f(FLT_MAX)), d.w);
+    }
 }

@@ -65,7 +65,11 @@ impl PyScene {
         d.set_item("features", features)?;
         if s.has_emission {
             // The one place a user reads that emission is not a light (no warning per frame).
-            d.set_item("emission", "emissive surfaces show in the image with their emitted radiance but light no other surface; add lights to light the scene")?;
+            let lit_by: Vec<String> = vsgl_core::methods::REGISTRY.iter().filter(|m| m.lit_by_emitters).map(|m| format!("method=\"{}\"", m.name)).collect();
+            d.set_item("emission", format!(
+                "emissive surfaces show in the image with their emitted radiance; they light other surfaces (as area lights) in {} only, so add lights to light the scene in the other methods",
+                lit_by.join(", ")
+            ))?;
         }
         Ok(d)
     }

@@ -11,6 +11,7 @@ pub const INFO: MethodInfo = MethodInfo {
     indirect: false,
     extra_aovs: &[],
     ground_truth: false,
+    lit_by_emitters: false,
     configure: |_| Ok(Box::new(Direct)),
 };
 

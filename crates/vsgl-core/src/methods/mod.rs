@@ -63,6 +63,8 @@ pub struct MethodInfo {
     /// A converged answer that other methods' error is measured against (`bench --reference`,
     /// the CLI's error line), not an estimate to be judged itself.
     pub ground_truth: bool,
+    /// Whether emissive surfaces light the scene in it as area lights (else they only show).
+    pub lit_by_emitters: bool,
     /// Parses validated options into the method's typed settings, once. It may resolve a
     /// default that depends on other options in place ([`Options::resolve_default`]), so
     /// `frame.settings`, which the frame script makes from these options, shows what ran.

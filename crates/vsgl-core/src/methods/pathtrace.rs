@@ -15,6 +15,7 @@ pub const INFO: MethodInfo = MethodInfo {
     indirect: true,
     extra_aovs: &["stderr"],
     ground_truth: true,
+    lit_by_emitters: true,
     configure: |o| {
         let strategy = o.choice("strategy")?;
         Ok(Box::new(PathTrace { spp: o.u32("spp")?, seed: o.u32("seed")?, time_budget_s: o.f32("time_budget_s")? as f64, strategy }))
@@ -74,6 +75,8 @@ impl Method for PathTrace {
         };
         let out = pass.record(&mut ctx.rec, &input, ctx.indirect, ctx.direct, ctx.size)?;
         ctx.settings.push(("spp_done".into(), out.spp_done.into()));
+        // Emissive triangles sampled as area lights (0: the emitter code is left out).
+        ctx.settings.push(("emitters".into(), ctx.gpu_scene.emitter_count.into()));
         if !out.bvh_built {
             ctx.skip("bvh_build", "the BVH built for this scene upload is reused");
         }

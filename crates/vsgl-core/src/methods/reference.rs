@@ -18,6 +18,7 @@ pub const INFO: MethodInfo = MethodInfo {
     indirect: true,
     extra_aovs: &[],
     ground_truth: true,
+    lit_by_emitters: false,
     configure: |o| Ok(Box::new(Reference::new(o)?)),
 };
 

@@ -31,6 +31,7 @@ pub const INFO: MethodInfo = MethodInfo {
     indirect: true,
     extra_aovs: &[],
     ground_truth: false,
+    lit_by_emitters: false,
     configure: |o| Ok(Box::new(Vpl::new(o)?)),
 };
 

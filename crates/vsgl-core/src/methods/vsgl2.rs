@@ -23,6 +23,7 @@ pub const INFO: MethodInfo = MethodInfo {
     indirect: true,
     extra_aovs: &[],
     ground_truth: false,
+    lit_by_emitters: false,
     configure: |o| Ok(Box::new(Vsgl2::new(o)?)),
 };
 

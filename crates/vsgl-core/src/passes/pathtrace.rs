@@ -43,6 +43,10 @@ struct PathParamsRaw {
     sample_offset: u32,
     batch_samples: u32,
     strategy: u32,
+    /// Emissive triangles in the upload's emitter table, and their total power.
+    emitter_count: u32,
+    emitter_power: f32,
+    _pad: [u32; 2],
 }
 
 /// `strategy=` of `pathtrace` (the shader's STRATEGY_* values).
@@ -133,6 +137,8 @@ fn binding_types() -> Vec<wgpu::BindingType> {
         rw,                                                                           // 22 light_splat
         rw,                                                                           // 23 light_mean
         rw,                                                                           // 24 light_m2
+        ro,                                                                           // 25 emitters
+        rw,                                                                           // 26 emitted_direct
     ]
 }
 
@@ -191,6 +197,10 @@ impl PathTracePass {
         let light_splat = rec.storage("pathtrace_light_splat_buffer", light_bytes(32));
         let light_mean = rec.storage("pathtrace_light_mean_buffer", light_bytes(32));
         let light_m2 = rec.storage("pathtrace_light_m2_buffer", light_bytes(16));
+        // Emissive triangles light the scene: their direct light at each pixel centre is
+        // sampled alongside the bounces, its running mean kept here (a placeholder without).
+        let has_emitters = input.gscene.emitter_count > 0;
+        let emitted_direct = rec.storage("pathtrace_emitted_direct_buffer", if has_emitters { pixels * 16 } else { 16 });
 
         let dispatch = |rec: &mut Recorder<'_>, label: &str, pipeline: &wgpu::ComputePipeline, params: PathParamsRaw, workgroups: (u32, u32, u32)| {
             let uniform = rec.uniform("pathtrace_params_uniform_buffer", &params);
@@ -220,6 +230,8 @@ impl PathTracePass {
                 light_splat.as_entire_binding(),
                 light_mean.as_entire_binding(),
                 light_m2.as_entire_binding(),
+                input.gscene.emitters.as_entire_binding(),
+                emitted_direct.as_entire_binding(),
             ];
             let bind = rec.bind_group("pathtrace_bind_group", PipelineRef::Compute(pipeline), 0, &resources);
             rec.in_debug_group(label, |rec| {
@@ -231,9 +243,26 @@ impl PathTracePass {
             });
         };
 
-        let params = |sample_offset, batch_samples| PathParamsRaw { seed, sample_offset, batch_samples, strategy: input.strategy as u32 };
-        // The three entry points share one shader, so they take the same leave-out flags.
-        let flags = [("HAS_TEXTURES", input.features.textures), ("HAS_NORMAL_MAPS", input.features.normal_maps)];
+        // Power in f32 as the shader sums it (capped: a sum of radiances each at most 1e32
+        // times areas may pass f32's range).
+        let emitter_power = input.gscene.emitter_power.min(f32::MAX as f64) as f32;
+        let params = |sample_offset, batch_samples| PathParamsRaw {
+            seed,
+            sample_offset,
+            batch_samples,
+            strategy: input.strategy as u32,
+            emitter_count: input.gscene.emitter_count,
+            emitter_power,
+            _pad: [0; 2],
+        };
+        // The entry points share one shader, so they take the same leave-out flags. Without
+        // emitters no emitter code runs and no random number is drawn for them: the images of
+        // scenes without emission are the ones the path tracer made before emitters.
+        let flags = [
+            ("HAS_TEXTURES", input.features.textures),
+            ("HAS_NORMAL_MAPS", input.features.normal_maps),
+            ("HAS_EMITTERS", has_emitters),
+        ];
         dispatch(rec, "pathtrace_direct", &self.direct.get(gpu, &flags), params(0, 0), workgroups);
         let indirect_pipeline = &self.indirect.get(gpu, &flags);
         // `frame.passes` names the untextured variant of the bounce pass (timed as `pathtrace`).

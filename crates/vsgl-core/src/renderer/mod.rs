@@ -486,9 +486,17 @@ impl Renderer {
             passes: Vec::new(),
             skipped,
             settings,
-            warnings: if scene.lights.is_empty() && scene_emits {
-                // Not black: emissive surfaces show, but they light nothing else.
-                vec!["the scene has no light: only its emissive surfaces show, and they light no other surface (add a light with scene.add_light, or load a file with KHR_lights_punctual lights)".to_string()]
+            warnings: if scene.lights.is_empty() && scene_emits && info.lit_by_emitters {
+                // Emissive surfaces light the scene in this method: no warning is due.
+                Vec::new()
+            } else if scene.lights.is_empty() && scene_emits {
+                // Not black: emissive surfaces show, but in this method they light nothing else.
+                let lit_by: Vec<String> = crate::methods::REGISTRY.iter().filter(|m| m.lit_by_emitters).map(|m| format!("method=\"{}\"", m.name)).collect();
+                vec![format!(
+                    "the scene has no light: only its emissive surfaces show, and method=\"{}\" lights no other surface with them ({} does; or add a light with scene.add_light, or load a file with KHR_lights_punctual lights)",
+                    info.name,
+                    lit_by.join(", ")
+                )]
             } else if scene.lights.is_empty() {
                 vec!["the scene has no light: the image is black (add one with scene.add_light, or load a file with KHR_lights_punctual lights)".to_string()]
             } else {

@@ -10,6 +10,7 @@
 
 pub mod bvh;
 pub mod convex;
+pub mod emitters;
 pub mod points;
 
 use crate::error::{Error, Result};
@@ -102,6 +103,12 @@ pub struct GpuScene {
     /// Half the sides of the scene bounds around [`Self::anchor`] (NaN without geometry): what a
     /// spot light's RSM is fitted to (`frame::uniforms::fitted_spot_view`).
     pub half_size: DVec3,
+    /// The emissive triangles the path tracer samples as area lights ([`emitters`]; a 16-byte
+    /// placeholder when none emits, then `emitter_count` is 0).
+    pub emitters: wgpu::Buffer,
+    pub emitter_count: u32,
+    /// Their total power, π · Σ area · (L_r + L_g + L_b).
+    pub emitter_power: f64,
     /// The ray tracers' BVH over these very triangles, built on first use and kept with the
     /// upload (a changed geometry re-uploads, and so rebuilds it).
     bvh: std::sync::Mutex<Option<std::sync::Arc<GpuBvh>>>,
@@ -328,7 +335,11 @@ impl GpuScene {
         // indices, per-triangle materials; textures apart), for the frame that uploads it.
         let geometry = bytes(raster.len(), 16) + bytes(verts.len(), 64) + bytes(indices.len(), 4) + bytes(tri_mat.len(), 4);
         crate::gpu::frame_log::note_setting("scene_bytes_per_triangle", (geometry as f64 / tri_mat.len().max(1) as f64).into());
+        let emitter_table = emitters::emitter_table(&verts, &indices, &tri_mat, &scene.materials);
         Ok(Self {
+            emitters: storage(gpu, "scene_emitter_buffer", bytemuck::cast_slice(&emitter_table.rows), wgpu::BufferUsages::empty()),
+            emitter_count: emitter_table.rows.len() as u32,
+            emitter_power: emitter_table.total_power,
             anchor,
             half_size: if bounds.is_empty() { DVec3::NAN } else { 0.5 * (bounds.max - bounds.min) },
             raster_vertex_count: raster.len() as u32,

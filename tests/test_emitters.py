@@ -1,0 +1,118 @@
+"""Emissive surfaces as area lights in the path tracer: the direct light of an emissive square
+against the closed-form form factor, its bounce by every strategy alike, and the leave-out rule
+for scenes without emission (docs/scenes.md, "Emission")."""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+import pytest
+
+import scene_builders as sb
+import vsgl
+
+# The emitter: a unit square at height H over the floor's centre, facing down, radiance L_E.
+H = 1.0
+L_E = 3.0
+FLOOR_ALBEDO = 0.8
+
+
+def _corner_form_factor(x: float, y: float) -> float:
+    """Form factor from a differential area to a parallel rectangle of sides x, y (in units of
+    the height) with one corner straight above it (Howell's catalogue, configuration B-3;
+    odd in each side, so rectangles not over the point follow by inclusion-exclusion)."""
+    ax, ay = math.sqrt(1 + x * x), math.sqrt(1 + y * y)
+    return (x / ax * math.atan(y / ax) + y / ay * math.atan(x / ay)) / (2 * math.pi)
+
+
+def square_irradiance(px: float, pz: float, half: float = 0.5, h: float = H, radiance: float = L_E) -> float:
+    """Irradiance at floor point (px, 0, pz) from a Lambertian square [-half, half]² at height h:
+    E = π L F, F by inclusion-exclusion over the four corner rectangles."""
+    xs = ((half - px) / h, (-half - px) / h)
+    zs = ((half - pz) / h, (-half - pz) / h)
+    f = sum(sx * sz * _corner_form_factor(x, z) for x, sx in zip(xs, (1, -1)) for z, sz in zip(zs, (1, -1)))
+    return math.pi * radiance * f
+
+
+def emitter_over_floor(directory, *, wall: bool = False) -> vsgl.Scene:
+    """A 6 × 6 Lambertian floor (y = 0, albedo 0.8, no specular), a black unit square at y = H
+    facing down that emits L_E, and with ``wall`` a grey wall at z = −1 facing the light."""
+    quads = [
+        dict(corners=[(-3, 0, -3), (-3, 0, 3), (3, 0, 3), (3, 0, -3)], name="floor", base_color=(FLOOR_ALBEDO,) * 3, specular=0.0),
+        dict(corners=[(-0.5, H, -0.5), (0.5, H, -0.5), (0.5, H, 0.5), (-0.5, H, 0.5)], name="glow", base_color=(0.0,) * 3, specular=0.0),
+    ]
+    if wall:
+        quads.append(dict(corners=[(-3, 0, -1), (3, 0, -1), (3, 3, -1), (-3, 3, -1)], name="wall", base_color=(0.6,) * 3, specular=0.0))
+    scene = vsgl.Scene.load(sb.write_quads(directory, quads))
+    scene.set_material("materials[1]", emissive=(L_E, L_E, L_E))
+    return scene
+
+
+# Straight down at the floor's centre from under the emitter (y = H/2): the image is the floor
+# around the centre, where the irradiance is symmetric in x and z (so the image's orientation
+# does not matter).
+FOV_DEG = 60.0
+DOWN = vsgl.Camera.look_at(eye=(0.0, 0.5 * H, 0.0), target=(0.0, 0.0, 0.0), up=(0.0, 0.0, -1.0), fov_y_deg=FOV_DEG)
+
+
+def expected_floor_radiance(size: int) -> np.ndarray:
+    """The floor's reflected direct radiance ρ E / π at each pixel centre of DOWN."""
+    half_width = 0.5 * H * math.tan(math.radians(FOV_DEG) / 2)
+    c = (2 * (np.arange(size) + 0.5) / size - 1) * half_width
+    return np.array([[FLOOR_ALBEDO / math.pi * square_irradiance(x, z) for x in c] for z in c])
+
+
+@pytest.mark.parametrize("strategy", ["camera", "bidirectional"])
+def test_an_emissive_square_lights_the_floor_as_its_form_factor_says(tmp_path, make_renderer, strategy):
+    size = 16
+    scene = emitter_over_floor(tmp_path)
+    f = make_renderer(size, size).render(scene, DOWN, method="pathtrace", spp=256, strategy=strategy, aovs=["direct"])
+    got = f.aov("direct")[..., 0].astype(np.float64)
+    want = expected_floor_radiance(size)
+    # 1% on the image's mean; the per-pixel Monte Carlo error of 256 samples is a few percent.
+    assert got.mean() / want.mean() == pytest.approx(1.0, abs=0.01), (got.mean(), want.mean())
+    assert np.abs(got / want - 1).max() < 0.15
+    # The camera sees the floor only: the direct light is grey, as the emitter and the floor are.
+    np.testing.assert_allclose(f.aov("direct")[..., 1], f.aov("direct")[..., 0], rtol=1e-6)
+
+
+def test_the_emitting_side_is_the_one_the_normals_point_to(tmp_path, make_renderer):
+    # The same square with its vertex normals flipped up: it emits away from the floor, which
+    # stays dark (a one-sided emitter, as a glTF front face and Mitsuba's area emitter).
+    quads = [
+        dict(corners=[(-3, 0, -3), (-3, 0, 3), (3, 0, 3), (3, 0, -3)], name="floor", specular=0.0),
+        dict(corners=[(-0.5, H, -0.5), (-0.5, H, 0.5), (0.5, H, 0.5), (0.5, H, -0.5)], name="glow", base_color=(0.0,) * 3, specular=0.0),
+    ]
+    scene = vsgl.Scene.load(sb.write_quads(tmp_path, quads))
+    scene.set_material("materials[1]", emissive=(L_E, L_E, L_E))
+    f = make_renderer(8, 8).render(scene, DOWN, method="pathtrace", spp=16, strategy="camera", aovs=["direct", "indirect"])
+    assert not f.aov("direct").any() and not f.aov("indirect").any()
+
+
+def test_every_strategy_finds_the_same_bounce_of_an_emitter(tmp_path, make_renderer):
+    # The wall's reflection of the emitter's light onto the floor: camera paths reach it by
+    # next-event estimation at the wall, light tracing by photons from the emitter, and the
+    # bidirectional mix by both with MIS weights. Their means agree within their errors.
+    scene = emitter_over_floor(tmp_path, wall=True)
+    cam = vsgl.Camera.look_at(eye=(0.0, 1.6, 2.5), target=(0.0, 0.3, -0.5), fov_y_deg=60.0)
+    r = make_renderer(16, 16)
+    means, errors = {}, {}
+    for strategy in ("camera", "light", "bidirectional"):
+        f = r.render(scene, cam, method="pathtrace", spp=64, strategy=strategy, aovs=["indirect", "stderr"])
+        ind = f.aov("indirect")
+        means[strategy] = float(ind.mean())
+        errors[strategy] = float(np.sqrt((f.aov("stderr") ** 2).sum()) / ind.size)
+    assert means["camera"] > 0, means
+    for strategy in ("light", "bidirectional"):
+        tolerance = 4 * math.hypot(errors["camera"], errors[strategy]) + 0.01 * means["camera"]
+        assert abs(means[strategy] - means["camera"]) < tolerance, (means, errors)
+
+
+def test_a_scene_without_emission_leaves_the_emitter_code_out(tmp_path, make_renderer):
+    r = make_renderer(8, 8)
+    f = r.render(vsgl.scenes.cornell_box(), method="pathtrace", spp=2, strategy="camera", aovs=["image"])
+    assert f.settings["emitters"] == 0 and "emissive" in f.skipped["emission"]
+    # The emissive square is two triangles, each an emitter.
+    f = r.render(emitter_over_floor(tmp_path), DOWN, method="pathtrace", spp=2, strategy="camera", aovs=["image"])
+    assert f.settings["emitters"] == 2 and "emission" not in f.skipped
