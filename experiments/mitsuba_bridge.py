@@ -314,6 +314,11 @@ def mitsuba_scene(mi, scene, cam, size: int, spp_per_pass: int, camera_roughness
         n = int(sel.sum())
         props = mi.Properties()
         props["bsdf"] = bsdf
+        if any(float(e) > 0.0 for e in m["emissive"]):
+            # An emissive material is a Mitsuba area emitter (one-sided, on the side of the
+            # vertex normals, which the winding fix-up above made the geometric side too): vsgl's
+            # path tracer's emitter model (upload/emitters.rs). Radiance is unit-free.
+            props["emitter"] = mi.load_dict({"type": "area", "radiance": {"type": "rgb", "value": [float(e) for e in m["emissive"]]}})
         mesh = mi.Mesh(f"mat{k}", 3 * n, n, props=props, has_vertex_normals=True, has_vertex_texcoords=False)
         params = mi.traverse(mesh)
         params["vertex_positions"] = mi.Float(pos[sel].reshape(-1).astype(np.float32))

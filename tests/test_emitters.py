@@ -35,12 +35,14 @@ def square_irradiance(px: float, pz: float, half: float = 0.5, h: float = H, rad
     return math.pi * radiance * f
 
 
-def emitter_over_floor(directory, *, wall: bool = False) -> vsgl.Scene:
-    """A 6 × 6 Lambertian floor (y = 0, albedo 0.8, no specular), a black unit square at y = H
-    facing down that emits L_E, and with ``wall`` a grey wall at z = −1 facing the light."""
+def emitter_over_floor(directory, *, wall: bool = False, half: float = 0.5) -> vsgl.Scene:
+    """A 6 × 6 Lambertian floor (y = 0, albedo 0.8, no specular), a black square of side
+    2·``half`` at y = H facing down that emits L_E, and with ``wall`` a grey wall at z = −1
+    facing the light."""
+    e = half
     quads = [
         dict(corners=[(-3, 0, -3), (-3, 0, 3), (3, 0, 3), (3, 0, -3)], name="floor", base_color=(FLOOR_ALBEDO,) * 3, specular=0.0),
-        dict(corners=[(-0.5, H, -0.5), (0.5, H, -0.5), (0.5, H, 0.5), (-0.5, H, 0.5)], name="glow", base_color=(0.0,) * 3, specular=0.0),
+        dict(corners=[(-e, H, -e), (e, H, -e), (e, H, e), (-e, H, e)], name="glow", base_color=(0.0,) * 3, specular=0.0),
     ]
     if wall:
         quads.append(dict(corners=[(-3, 0, -1), (3, 0, -1), (3, 3, -1), (-3, 3, -1)], name="wall", base_color=(0.6,) * 3, specular=0.0))
@@ -93,8 +95,10 @@ def test_the_emitting_side_is_the_one_the_normals_point_to(tmp_path, make_render
 def test_every_strategy_finds_the_same_bounce_of_an_emitter(tmp_path, make_renderer):
     # The wall's reflection of the emitter's light onto the floor: camera paths reach it by
     # next-event estimation at the wall, light tracing by photons from the emitter, and the
-    # bidirectional mix by both with MIS weights. Their means agree within their errors.
-    scene = emitter_over_floor(tmp_path, wall=True)
+    # bidirectional mix by both with MIS weights. Their means agree within their errors. A
+    # small emitter (area 1/4: each triangle's point density 4, not 1) so a density left out of
+    # one side of the MIS weights shows.
+    scene = emitter_over_floor(tmp_path, wall=True, half=0.25)
     cam = vsgl.Camera.look_at(eye=(0.0, 1.6, 2.5), target=(0.0, 0.3, -0.5), fov_y_deg=60.0)
     r = make_renderer(16, 16)
     means, errors = {}, {}
