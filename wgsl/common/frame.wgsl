@@ -44,7 +44,9 @@ struct LightRaw {
     texel_tan: f32,
     // First shadow array layer of the light (a point light has six: CUBE_FACE_* order).
     shadow_layer: u32,
-    // LIGHT_KIND_SPOT, LIGHT_KIND_POINT or LIGHT_KIND_DIRECTIONAL.
+    // LIGHT_KIND_SPOT, LIGHT_KIND_POINT, LIGHT_KIND_DIRECTIONAL or LIGHT_KIND_EMITTER (a
+    // cluster of emissive triangles: a point light whose intensity follows a cosine lobe about
+    // `direction`, the emitting side's normal).
     kind: u32,
     // Near plane of a point light's cube faces (0 for the other kinds).
     shadow_near: f32,
@@ -53,6 +55,12 @@ struct LightRaw {
 const LIGHT_KIND_SPOT: u32 = 0u;
 const LIGHT_KIND_POINT: u32 = 1u;
 const LIGHT_KIND_DIRECTIONAL: u32 = 2u;
+const LIGHT_KIND_EMITTER: u32 = 3u;
+
+// Whether the light's shadow and reflective shadow maps are six cube faces (point, emitter).
+fn light_has_cube_faces(light: LightRaw) -> bool {
+    return light.kind == LIGHT_KIND_POINT || light.kind == LIGHT_KIND_EMITTER;
+}
 
 // A point light's shadow cube faces, in layer order (+X, −X, +Y, −Y, +Z, −Z): the view's
 // forward axis and up vector, as frame/uniforms.rs::CUBE_FACES rasterises them.
@@ -117,12 +125,22 @@ fn light_incidence(light: LightRaw, p: vec3f) -> LightIncidence {
     }
     out.dist = sqrt(dist2);
     out.l = to_light / out.dist;
-    var cone = 1.0;
-    if (light.kind == LIGHT_KIND_SPOT) {
-        cone = spot_cone_attenuation(light, out.l);
-    }
-    out.e = light.intensity * light.color * (cone / dist2);
+    out.e = light.intensity * light.color * (light_lobe(light, out.l) / dist2);
     return out;
+}
+
+// The fraction of a spot, point or emitter light's peak intensity sent towards a point that
+// sees it in direction l (from the point to the light): the glTF smooth cone of a spot light,
+// 1 for a point light, and for an emitter cluster the Lambertian cosine max(n · (−l), 0) of a
+// flat emitter seen from afar (I(ω) = L_e·A·cosθ; upload/emitters.rs).
+fn light_lobe(light: LightRaw, l: vec3f) -> f32 {
+    if (light.kind == LIGHT_KIND_SPOT) {
+        return spot_cone_attenuation(light, l);
+    }
+    if (light.kind == LIGHT_KIND_EMITTER) {
+        return max(dot(light.direction, -l), 0.0);
+    }
+    return 1.0;
 }
 
 struct VertexRaw {

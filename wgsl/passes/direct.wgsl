@@ -51,7 +51,7 @@ fn shadow_visibility(light: LightRaw, p: vec3f, ng: vec3f, l: vec3f, dist: f32) 
     let q = p + ng * offset;
     var ndc: vec3f;
     var layer = light.shadow_layer;
-    if (light.kind == LIGHT_KIND_POINT) {
+    if (light_has_cube_faces(light)) {
         // The cube face by the dominant axis of the light-to-point vector: it is inside that
         // face's 90° frustum, so uv lies in [0, 1]².
         let d = q - light.position;

@@ -48,12 +48,9 @@ fn perspective_texel_flux(xy: vec2u, n: u32) -> vec3f {
     let texel = 2.0 / f32(n);
     let solid_angle = tan2 * texel * texel * cos_theta * cos_theta * cos_theta;
     let to_light = -ray * inv_len;
-    // A point light's RSM is one of its six 90° cube faces (t = 1): no cone.
-    var cone = 1.0;
-    if (light.kind == LIGHT_KIND_SPOT) {
-        cone = spot_cone_attenuation(light, to_light);
-    }
-    return light.intensity * light.color * cone * solid_angle;
+    // A point light's RSM is one of its six 90° cube faces (t = 1): no cone; an emitter
+    // cluster's cube faces take its cosine lobe.
+    return light.intensity * light.color * light_lobe(light, to_light) * solid_angle;
 }
 
 @compute @workgroup_size(WORKGROUP, WORKGROUP, 1)

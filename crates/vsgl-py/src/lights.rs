@@ -124,6 +124,8 @@ pub(crate) fn light_to_py(py: Python<'_>, light: &Light) -> PyResult<Py<PyAny>> 
         Light::Spot(s) => Py::new(py, PySpotLight { inner: *s })?.into_any(),
         Light::Point(p) => Py::new(py, PyPointLight { inner: *p })?.into_any(),
         Light::Directional(d) => Py::new(py, PyDirectionalLight { inner: *d })?.into_any(),
+        // Made per frame from the emissive triangles, never stored in a scene.
+        Light::Emitter(_) => return Err(pyo3::exceptions::PyTypeError::new_err("an emitter cluster is not a scene light")),
     })
 }
 

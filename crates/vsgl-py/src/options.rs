@@ -82,7 +82,7 @@ pub(crate) fn method_info<'py>(py: Python<'py>, name: &str) -> PyResult<Bound<'p
         methods::DirectLight::ByMethod => "by_method",
     })?;
     d.set_item("ground_truth", info.ground_truth)?;
-    d.set_item("lit_by_emitters", info.lit_by_emitters)?;
+    d.set_item("emitters", info.emitter_lighting())?;
     d.set_item("stochastic", info.takes("seed"))?;
     let options = PyDict::new(py);
     for o in info.options() {

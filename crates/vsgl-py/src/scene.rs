@@ -64,12 +64,11 @@ impl PyScene {
         if s.has_emission { features.push("emissive"); }
         d.set_item("features", features)?;
         if s.has_emission {
-            // The one place a user reads that emission is not a light (no warning per frame).
-            let lit_by: Vec<String> = vsgl_core::methods::REGISTRY.iter().filter(|m| m.lit_by_emitters).map(|m| format!("method=\"{}\"", m.name)).collect();
-            d.set_item("emission", format!(
-                "emissive surfaces show in the image with their emitted radiance; they light other surfaces (as area lights) in {} only, so add lights to light the scene in the other methods",
-                lit_by.join(", ")
-            ))?;
+            // How emission lights the scene, said once per scene.
+            d.set_item(
+                "emission",
+                "emissive surfaces show with their emitted radiance and light the scene: as area lights in method=\"pathtrace\", as clusters of lights (option emitter_lights) in the other methods",
+            )?;
         }
         Ok(d)
     }

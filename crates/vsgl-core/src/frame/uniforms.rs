@@ -1,7 +1,7 @@
 //! CPU twins of the per-frame GPU structs in `wgsl/common/frame.wgsl`: the frame uniforms and
 //! one `LightRaw` per light.
 
-use crate::scene::{Camera, DirectionalLight, Light, PointLight, SpotLight};
+use crate::scene::{Camera, DirectionalLight, EmitterLight, Light, PointLight, SpotLight};
 use glam::{DMat4, DVec3, Mat4};
 
 #[repr(C)]
@@ -71,14 +71,14 @@ pub const LIGHT_KIND_SPOT: u32 = 0;
 pub const LIGHT_KIND_POINT: u32 = 1;
 /// `LightRaw::kind` of a directional light.
 pub const LIGHT_KIND_DIRECTIONAL: u32 = 2;
+/// `LightRaw::kind` of an emitter cluster ([`crate::scene::EmitterLight`]): a point light with
+/// a cosine lobe about `LightRaw::direction`.
+pub const LIGHT_KIND_EMITTER: u32 = 3;
 
 /// Shadow map layers a light takes in the shadow array: a cube (six 90° faces) for a point
 /// light, one layer otherwise.
 pub fn shadow_layer_count(light: &Light) -> u32 {
-    match light {
-        Light::Point(_) => 6,
-        Light::Spot(_) | Light::Directional(_) => 1,
-    }
+    if light.has_cube_faces() { 6 } else { 1 }
 }
 
 /// The GPU twins of a scene's lights, with their shadow layers assigned in order (positions
@@ -92,6 +92,7 @@ pub fn light_raws(lights: &[Light], origin: DVec3, anchor: DVec3, extent: f64, s
                 Light::Spot(spot) => spot_light_raw(spot, origin, extent, layer, shadow_size),
                 Light::Point(point) => point_light_raw(point, origin, extent, layer, shadow_size),
                 Light::Directional(dir) => directional_light_raw(dir, anchor - origin, extent, layer, shadow_size),
+                Light::Emitter(emitter) => emitter_light_raw(emitter, origin, extent, layer, shadow_size),
             };
             layer += shadow_layer_count(light);
             raw
@@ -105,7 +106,9 @@ pub fn light_raws(lights: &[Light], origin: DVec3, anchor: DVec3, extent: f64, s
 pub fn shadow_view_projs(light: &Light, anchor: DVec3, extent: f64) -> Vec<Mat4> {
     match light {
         Light::Spot(spot) => vec![light_view_proj(spot, anchor, extent)],
-        Light::Point(point) => (0..6).map(|face| cube_face_view_proj(point.position - anchor, face, extent)).collect(),
+        Light::Point(PointLight { position, .. }) | Light::Emitter(EmitterLight { position, .. }) => {
+            (0..6).map(|face| cube_face_view_proj(*position - anchor, face, extent)).collect()
+        }
         // The anchor is the bounds' centre: relative to it, the centre is at zero.
         Light::Directional(dir) => vec![directional_view_proj(dir, DVec3::ZERO, extent)],
     }
@@ -161,7 +164,21 @@ pub fn views_seeing_scene(light: &Light, anchor: DVec3, extent: f64) -> Vec<bool
         Light::Spot(spot) => vec![sees(spot.position, spot.direction, spot.outer_cone as f64)],
         Light::Point(point) => CUBE_FACES.iter().map(|(forward, _)| sees(point.position, *forward, 2f64.sqrt().atan())).collect(),
         Light::Directional(_) => vec![true],
+        // An emitter lights only the side its normal points to: a face none of whose
+        // directions has a positive cosine with it (the face behind the emitter) sees no light.
+        Light::Emitter(emitter) => CUBE_FACES
+            .iter()
+            .map(|&(forward, up)| sees(emitter.position, forward, 2f64.sqrt().atan()) && cube_face_reaches(forward, up, emitter.normal))
+            .collect(),
     }
+}
+
+/// Whether some direction of the 90° cube face (forward, up) has a positive cosine with
+/// `normal`: the face's directions, unnormalised, fill the square forward ± right ± up, on which
+/// the cosine's sign is linear, so a corner has the largest.
+fn cube_face_reaches(forward: DVec3, up: DVec3, normal: DVec3) -> bool {
+    let right = forward.cross(up);
+    [(1.0, 1.0), (1.0, -1.0), (-1.0, 1.0), (-1.0, -1.0)].iter().any(|&(a, b)| (forward + a * right + b * up).dot(normal) > 0.0)
 }
 
 /// Margin of the directional light's orthographic box over the scene's bounding sphere, so
@@ -278,6 +295,17 @@ pub fn point_light_raw(light: &PointLight, origin: DVec3, extent: f64, layer: u3
     }
 }
 
+/// An emitter cluster: a point light's cube (shadow layers, near plane) with its cosine lobe's
+/// axis in `direction` (`light_lobe` in wgsl/common/frame.wgsl).
+pub fn emitter_light_raw(light: &EmitterLight, origin: DVec3, extent: f64, layer: u32, shadow_size: u32) -> LightRaw {
+    let point = PointLight { position: light.position, intensity: light.intensity, color: light.color };
+    LightRaw {
+        direction: light.normal.normalize().as_vec3().to_array(),
+        kind: LIGHT_KIND_EMITTER,
+        ..point_light_raw(&point, origin, extent, layer, shadow_size)
+    }
+}
+
 /// `centre`: the scene bounds' centre relative to the frame origin.
 pub fn directional_light_raw(light: &DirectionalLight, centre: DVec3, extent: f64, layer: u32, shadow_size: u32) -> LightRaw {
     LightRaw {
@@ -308,7 +336,9 @@ pub fn rsm_views(light: &Light, anchor: DVec3, half_size: DVec3, extent: f64, si
             (RsmFit::Scene, Some((forward, t))) => spot_view_uniforms(spot, forward, t, anchor, extent, size, texture_layer_size),
             _ => light_view_uniforms(spot, anchor, extent, size, texture_layer_size),
         }],
-        Light::Point(point) => (0..6).map(|face| cube_face_view_uniforms(point, face, anchor, extent, size, texture_layer_size)).collect(),
+        Light::Point(PointLight { position, .. }) | Light::Emitter(EmitterLight { position, .. }) => {
+            (0..6).map(|face| cube_face_view_uniforms(*position, face, anchor, extent, size, texture_layer_size)).collect()
+        }
         Light::Directional(dir) => vec![directional_view_uniforms(dir, extent, size, texture_layer_size)],
     }
 }
@@ -373,11 +403,11 @@ impl RsmView {
 /// (tan 45° = 1, so `rsm_flux`'s texel solid angle (2/N)²cos³θ needs no other factor and the
 /// six faces' texels tile the sphere: Σ Δω → 4π). Rasterises anchor-relative vertices like
 /// the shadow cube; positions it writes are relative to the light.
-pub fn cube_face_view_uniforms(light: &PointLight, face: usize, anchor: DVec3, extent: f64, size: u32, texture_layer_size: u32) -> FrameUniforms {
+pub fn cube_face_view_uniforms(position: DVec3, face: usize, anchor: DVec3, extent: f64, size: u32, texture_layer_size: u32) -> FrameUniforms {
     let (forward, up) = CUBE_FACES[face];
     let right = forward.cross(up);
-    let view_proj = cube_face_view_proj(light.position - anchor, face, extent);
-    RsmView { view_proj, right, up, forward, origin: light.position - anchor, orthographic: false }.uniforms(extent, size, texture_layer_size)
+    let view_proj = cube_face_view_proj(position - anchor, face, extent);
+    RsmView { view_proj, right, up, forward, origin: position - anchor, orthographic: false }.uniforms(extent, size, texture_layer_size)
 }
 
 /// How a spot light's RSM frames the scene (`rsm_fit=`).

@@ -6,12 +6,12 @@ use crate::error::Result;
 pub const INFO: MethodInfo = MethodInfo {
     name: "direct",
     summary: "direct light only (shadow-mapped), no indirect light",
-    option_groups: &[&[common::SHADOW_SIZE]],
+    option_groups: &[&[common::SHADOW_SIZE, common::EMITTER_LIGHTS]],
     direct_light: DirectLight::ShadowMapped,
     indirect: false,
     extra_aovs: &[],
     ground_truth: false,
-    lit_by_emitters: false,
+    area_emitters: false,
     configure: |_| Ok(Box::new(Direct)),
 };
 

@@ -22,7 +22,7 @@ pub const INFO: MethodInfo = MethodInfo {
     indirect: true,
     extra_aovs: &[],
     ground_truth: false,
-    lit_by_emitters: false,
+    area_emitters: false,
     configure: |o| Ok(Box::new(Lpv::new(o)?)),
 };
 
@@ -34,6 +34,7 @@ const fn int(name: &'static str, min: i64, max: i64, default: i64, help: &'stati
 
 const OPTIONS: &[OptionSpec] = &[
     common::SHADOW_SIZE,
+    common::EMITTER_LIGHTS,
     // Injection reads every texel once: any side, no pyramid.
     OptionSpec { kind: OptionKind::Int { min: 32, max: 4096, power_of_two: false }, ..common::RSM_SIZE },
     int("lpv_grid", 4, 64, 32, "cells per side of each cascade's grid (the poster compared 32³)"),

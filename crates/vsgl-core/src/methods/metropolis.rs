@@ -12,7 +12,6 @@ use super::FrameContext;
 use crate::error::{Error, Result};
 use crate::passes::vpl_sample::Sampling;
 use crate::passes::metropolis_step::{MetropolisStepPass, StepSettings, STATE_BYTES};
-use crate::scene::Light;
 use glam::DVec3;
 
 /// Probability of the independence move (a fresh draw from the warp) in each step: small, so
@@ -95,7 +94,7 @@ pub struct MetropolisSampling {
 
 impl MetropolisSampling {
     fn key(&self, ctx: &FrameContext<'_>) -> ChainKey {
-        let views = ctx.scene.lights.iter().map(|l| if matches!(l, Light::Point(_)) { 6 } else { 1 }).collect();
+        let views = ctx.light_sources.iter().map(|l| if l.has_cube_faces() { 6 } else { 1 }).collect();
         let g = ctx.gpu_scene;
         let geometry = (g.raster_vertex_count, g.anchor.to_array().map(f64::to_bits), ctx.extent.to_bits());
         ChainKey { method: self.method, space: self.space, importance: self.importance, num_lights: self.num_lights, rsm_size: self.rsm_size, views, geometry }

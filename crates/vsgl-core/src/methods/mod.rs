@@ -63,8 +63,9 @@ pub struct MethodInfo {
     /// A converged answer that other methods' error is measured against (`bench --reference`,
     /// the CLI's error line), not an estimate to be judged itself.
     pub ground_truth: bool,
-    /// Whether emissive surfaces light the scene in it as area lights (else they only show).
-    pub lit_by_emitters: bool,
+    /// Whether it samples emissive triangles as area lights itself (`pathtrace`); else, where it
+    /// takes `emitter_lights`, they light the scene as clusters of lights ([`Self::emitter_lighting`]).
+    pub area_emitters: bool,
     /// Parses validated options into the method's typed settings, once. It may resolve a
     /// default that depends on other options in place ([`Options::resolve_default`]), so
     /// `frame.settings`, which the frame script makes from these options, shows what ran.
@@ -78,6 +79,19 @@ impl MethodInfo {
             "indirect" | "indirect_diffuse" | "indirect_specular" => self.indirect,
             _ if OPTIONAL_AOVS.contains(&name) => self.extra_aovs.contains(&name),
             _ => true,
+        }
+    }
+
+    /// How emissive surfaces light the scene in it: "area" (their triangles sampled as area
+    /// lights), "clusters" (as `emitter_lights` lights with shadow and reflective shadow maps)
+    /// or "none" (they only show).
+    pub fn emitter_lighting(&self) -> &'static str {
+        if self.area_emitters {
+            "area"
+        } else if self.takes("emitter_lights") {
+            "clusters"
+        } else {
+            "none"
         }
     }
 
@@ -198,6 +212,10 @@ pub struct FrameContext<'a> {
     pub features: ShaderFeatures,
     pub size: (u32, u32),
     pub frame_uniforms: &'a wgpu::Buffer,
+    /// The frame's light sources: the scene's lights, then, in the methods that take
+    /// `emitter_lights`, the clusters of its emissive triangles ([`crate::scene::EmitterLight`]).
+    /// `lights` holds their GPU twins in the same order.
+    pub light_sources: &'a [crate::scene::Light],
     /// The lights as the GPU sees them, and the storage buffer holding all of them.
     pub lights: &'a [LightRaw],
     pub light_buffer: &'a wgpu::Buffer,

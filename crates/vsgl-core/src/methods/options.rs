@@ -324,6 +324,15 @@ pub mod common {
     }
 
     pub const SHADOW_SIZE: OptionSpec = int("shadow_size", 16, 8192, 1024, "side of each light's shadow map in texels");
+    /// How many lights the emissive surfaces become in the methods that light with lights'
+    /// shadow and reflective shadow maps (`upload/emitters.rs`, `emitter_lights`).
+    pub const EMITTER_LIGHTS: OptionSpec = int(
+        "emitter_lights",
+        1,
+        64,
+        4,
+        "lights the emissive surfaces become (clusters of emissive triangles, each a point light with a cosine lobe, its shadow and reflective shadow maps a cube's faces; at least one per normal direction that emits); ignored without emissive surfaces",
+    );
     /// The virtual-light budget; the default differs by method: 1024 VSGLs, the papers' own
     /// setting (with 8×8 interleaving, 16 per pixel), chosen on the real-scene corpus
     /// (experiments/vsgl_defaults_on_the_corpus.md); 256 VPLs, `vpl`'s default since it

@@ -15,7 +15,7 @@ pub const INFO: MethodInfo = MethodInfo {
     indirect: true,
     extra_aovs: &["stderr"],
     ground_truth: true,
-    lit_by_emitters: true,
+    area_emitters: true,
     configure: |o| {
         let strategy = o.choice("strategy")?;
         Ok(Box::new(PathTrace { spp: o.u32("spp")?, seed: o.u32("seed")?, time_budget_s: o.f32("time_budget_s")? as f64, strategy }))

@@ -18,12 +18,13 @@ pub const INFO: MethodInfo = MethodInfo {
     indirect: true,
     extra_aovs: &[],
     ground_truth: true,
-    lit_by_emitters: false,
+    area_emitters: false,
     configure: |o| Ok(Box::new(Reference::new(o)?)),
 };
 
 const OPTIONS: &[OptionSpec] = &[
     common::SHADOW_SIZE,
+    common::EMITTER_LIGHTS,
     // A larger default than the sampling methods: the reference must resolve what they miss.
     OptionSpec { default: OptionValue::Int(1024), ..common::RSM_SIZE },
     common::VPL_CLAMP,

@@ -154,7 +154,7 @@ impl RsmPasses {
 /// `light_offset`).
 fn rsm_light(ctx: &FrameContext<'_>, index: usize) -> LightRaw {
     let mut raw = ctx.lights[index];
-    if let Light::Directional(dir) = &ctx.scene.lights[index] {
+    if let Light::Directional(dir) = &ctx.light_sources[index] {
         raw.position = (ctx.gpu_scene.anchor + directional_rsm_origin(dir, ctx.extent) - ctx.origin).as_vec3().to_array();
     }
     raw
@@ -202,12 +202,12 @@ pub fn for_each_light(ctx: &mut FrameContext<'_>, s: &RsmSettings, mut per_light
         return Ok(false);
     }
     let (anchor, half_size, extent, layer_size) = (ctx.gpu_scene.anchor, ctx.gpu_scene.half_size, ctx.extent, ctx.gpu_scene.texture_layer_size);
-    let views: Vec<_> = ctx.scene.lights.iter().map(|l| rsm_views(l, anchor, half_size, extent, s.size, layer_size, s.fit)).collect();
-    if ctx.scene.lights.iter().any(|l| matches!(l, Light::Spot(_))) {
+    let views: Vec<_> = ctx.light_sources.iter().map(|l| rsm_views(l, anchor, half_size, extent, s.size, layer_size, s.fit)).collect();
+    if ctx.light_sources.iter().any(|l| matches!(l, Light::Spot(_))) {
         // Each spot light's RSM frame (`rsm_fit`), for a model of its texels' footprints: per
         // light {forward: [x, y, z], tan: t} (t = tan of the half field of view), or nothing
         // for other lights.
-        let rows: Vec<Setting> = views.iter().zip(&ctx.scene.lights).map(|(v, l)| match l {
+        let rows: Vec<Setting> = views.iter().zip(ctx.light_sources).map(|(v, l)| match l {
             Light::Spot(_) => {
                 let (f, u) = (v[0].cam_forward, v[0].cam_up);
                 let tan = (u[0] * u[0] + u[1] * u[1] + u[2] * u[2]).sqrt();
@@ -226,7 +226,7 @@ pub fn for_each_light(ctx: &mut FrameContext<'_>, s: &RsmSettings, mut per_light
         flux: ctx.passes.get::<RsmFluxPass>()?,
     };
     // Views that miss the scene's bounds reflect nothing: never rendered (nor measured).
-    let seeing: Vec<Vec<bool>> = ctx.scene.lights.iter().map(|l| views_seeing_scene(l, anchor, extent)).collect();
+    let seeing: Vec<Vec<bool>> = ctx.light_sources.iter().map(|l| views_seeing_scene(l, anchor, extent)).collect();
     let view_count = seeing.iter().flatten().filter(|s| **s).count();
     let budgets: Vec<Vec<u32>> = if s.budget > 0 && view_count > 1 && s.sampling {
         let shares = power_budgets(s.budget, &measure_rsm_powers(ctx, &passes, &views, &seeing)?);

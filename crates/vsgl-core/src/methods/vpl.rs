@@ -19,7 +19,7 @@ pub const INFO: MethodInfo = MethodInfo {
     name: "vpl",
     summary: "num_lights virtual point lights importance-sampled from the lights' reflective shadow maps (the papers' baseline)",
     option_groups: &[
-        &[common::SHADOW_SIZE, common::num_lights(256), common::RSM_SIZE],
+        &[common::SHADOW_SIZE, common::EMITTER_LIGHTS, common::num_lights(256), common::RSM_SIZE],
         common::SAMPLING_OPTIONS,
         &[common::VPL_CLAMP, common::interleave(1)],
         common::DENOISE_OPTIONS,
@@ -31,7 +31,7 @@ pub const INFO: MethodInfo = MethodInfo {
     indirect: true,
     extra_aovs: &[],
     ground_truth: false,
-    lit_by_emitters: false,
+    area_emitters: false,
     configure: |o| Ok(Box::new(Vpl::new(o)?)),
 };
 

@@ -33,7 +33,7 @@ pub const INFO: MethodInfo = MethodInfo {
     indirect: true,
     extra_aovs: &[],
     ground_truth: false,
-    lit_by_emitters: false,
+    area_emitters: false,
     configure: |o| Ok(Box::new(Vsgl::new(o)?)),
 };
 
@@ -41,7 +41,7 @@ pub const INFO: MethodInfo = MethodInfo {
 const BLEND_DIFFUSE: BlendDiffuse = BlendDiffuse::ClampedCosine;
 
 const OPTION_GROUPS: &[&[OptionSpec]] = &[
-    &[common::SHADOW_SIZE, common::num_lights(1024), common::RSM_SIZE],
+    &[common::SHADOW_SIZE, common::EMITTER_LIGHTS, common::num_lights(1024), common::RSM_SIZE],
     common::SAMPLING_OPTIONS,
     &[
         OptionSpec {

@@ -23,7 +23,7 @@ pub const INFO: MethodInfo = MethodInfo {
     indirect: true,
     extra_aovs: &[],
     ground_truth: false,
-    lit_by_emitters: false,
+    area_emitters: false,
     configure: |o| Ok(Box::new(Vsgl2::new(o)?)),
 };
 
@@ -35,6 +35,7 @@ const OPTION_GROUPS: &[&[OptionSpec]] = &[OPTIONS, common::VISIBILITY_OPTIONS, c
 
 const OPTIONS: &[OptionSpec] = &[
     common::SHADOW_SIZE,
+    common::EMITTER_LIGHTS,
     // The parallel sum tiles any side; only the mip-based methods need a power of two.
     OptionSpec { kind: OptionKind::Int { min: 32, max: 4096, power_of_two: false }, ..common::RSM_SIZE },
     common::DIFFUSE,

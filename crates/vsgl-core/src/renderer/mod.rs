@@ -20,7 +20,7 @@ use crate::methods::options::ChoiceEnum;
 use crate::methods::{options::common, DirectLight, FrameContext, Method, MethodInfo, OptionValue, Options};
 use crate::passes::{direct::{DirectPass, ShadowMappedLights}, material::{MaterialPass, RasterView}, shadow_map::ShadowMapPass, visibility::VisibilityPass};
 use crate::plan::{Plan, ShaderFeatures};
-use crate::scene::{Camera, Scene};
+use crate::scene::{Camera, Light, Scene};
 use crate::setting::Setting;
 use crate::upload::GpuScene;
 use crate::passes::aov_pack::{AovPackPass, PackSources};
@@ -326,10 +326,21 @@ impl Renderer {
         let origin = camera.eye;
         let (gscene, scene_reused) = self.uploaded_scene(scene)?;
         let (extent, anchor) = (gscene.extent, gscene.anchor);
+        // The frame's lights: the scene's, then its emissive surfaces as clusters of lights in
+        // the methods that light with shadow and reflective shadow maps (`emitter_lights`;
+        // `pathtrace` samples the emissive triangles themselves). Their device needs are
+        // checked again now that the upload has counted the emitters.
+        let mut light_sources = scene.lights.clone();
+        if info.takes("emitter_lights") && gscene.emitter_count > 0 {
+            let emitter_lights = gscene.emitter_lights(job.options.u32("emitter_lights")? as usize);
+            light_sources.extend(emitter_lights.iter().copied().map(Light::Emitter));
+            device_limits::check_lights(&light_sources, shadow_mapped.then_some(shadow_size), &gpu.limits)?;
+        }
         // Methods without shadow maps still fill the lights' shadow fields (with the default).
-        let lights = light_raws(&scene.lights, origin, anchor, extent, shadow_size);
-        // Shadow layers: one per spot or directional light, a cube of six per point light.
-        let shadow_layers: u32 = scene.lights.iter().map(shadow_layer_count).sum();
+        let lights = light_raws(&light_sources, origin, anchor, extent, shadow_size);
+        // Shadow layers: one per spot or directional light, a cube of six per point or
+        // emitter light.
+        let shadow_layers: u32 = light_sources.iter().map(shadow_layer_count).sum();
         let uniforms = frame_uniforms(camera, anchor, (w, h), lights.len() as u32, gscene.texture_layer_size, extent, shadow_size);
 
         // What the renderer keeps from frame to frame: targets, buffers, the timer's queries.
@@ -356,7 +367,7 @@ impl Renderer {
             // Layers whose view misses the scene's bounding sphere are left out (a cube face
             // looking away from the scene, a spot light pointing away: nothing looks them up).
             let mut vps = Vec::new();
-            for (index, light) in scene.lights.iter().enumerate() {
+            for (index, light) in light_sources.iter().enumerate() {
                 let seeing = views_seeing_scene(light, anchor, extent);
                 let faces = seeing.len();
                 for (face, (m, sees)) in shadow_view_projs(light, anchor, extent).into_iter().zip(seeing).enumerate() {
@@ -416,6 +427,7 @@ impl Renderer {
             features: feat,
             size: (w, h),
             frame_uniforms: &frame_buf,
+            light_sources: &light_sources,
             lights: &lights,
             light_buffer: &light_buf,
             visibility: &vis,
@@ -486,18 +498,15 @@ impl Renderer {
             passes: Vec::new(),
             skipped,
             settings,
-            warnings: if scene.lights.is_empty() && scene_emits && info.lit_by_emitters {
-                // Emissive surfaces light the scene in this method: no warning is due.
-                Vec::new()
-            } else if scene.lights.is_empty() && scene_emits {
+            warnings: if scene.lights.is_empty() && scene_emits && info.emitter_lighting() == "none" {
                 // Not black: emissive surfaces show, but in this method they light nothing else.
-                let lit_by: Vec<String> = crate::methods::REGISTRY.iter().filter(|m| m.lit_by_emitters).map(|m| format!("method=\"{}\"", m.name)).collect();
+                let lit_by: Vec<String> = crate::methods::REGISTRY.iter().filter(|m| m.emitter_lighting() != "none").map(|m| format!("method=\"{}\"", m.name)).collect();
                 vec![format!(
-                    "the scene has no light: only its emissive surfaces show, and method=\"{}\" lights no other surface with them ({} does; or add a light with scene.add_light, or load a file with KHR_lights_punctual lights)",
+                    "the scene has no light: only its emissive surfaces show, and method=\"{}\" lights no other surface with them ({} do; or add a light with scene.add_light, or load a file with KHR_lights_punctual lights)",
                     info.name,
                     lit_by.join(", ")
                 )]
-            } else if scene.lights.is_empty() {
+            } else if scene.lights.is_empty() && !scene_emits {
                 vec!["the scene has no light: the image is black (add one with scene.add_light, or load a file with KHR_lights_punctual lights)".to_string()]
             } else {
                 Vec::new()

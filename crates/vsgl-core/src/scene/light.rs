@@ -36,12 +36,35 @@ pub struct DirectionalLight {
     pub color: Vec3,
 }
 
+/// A cluster of emissive triangles as one light (never in `Scene::lights`: a frame of a method
+/// that lights with emitter clusters adds these to the scene's lights, `emitter_lights`). It
+/// shines like a small Lambertian area light seen from afar: radiant intensity
+/// I(ω) = intensity · color · max(normal · ω, 0), the sum of its triangles' L_e·A·cosθ (exact for
+/// a flat cluster, a point approximation in distance). Shadows and reflective shadow maps are a
+/// point light's six cube faces, those behind the emitting side left out.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct EmitterLight {
+    /// World position: the power-weighted centroid of the triangles, moved a little off them
+    /// along `normal` so its own surface does not shadow or reflect it.
+    pub position: DVec3,
+    /// Unit normal of the emitting side (power-weighted mean of the triangles').
+    pub normal: DVec3,
+    /// Peak radiant intensity (along `normal`) per unit colour: Σ L_e·A, its largest channel.
+    pub intensity: f32,
+    pub color: Vec3,
+    /// Emissive area it stands for, and how many patches of it (triangles, or pieces of them).
+    pub area: f64,
+    pub patches: u32,
+}
+
 /// Any light source of a scene.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub enum Light {
     Spot(SpotLight),
     Point(PointLight),
     Directional(DirectionalLight),
+    /// Only in a frame's light list, never in a scene's (see [`EmitterLight`]).
+    Emitter(EmitterLight),
 }
 
 impl Light {
@@ -51,7 +74,14 @@ impl Light {
             Light::Spot(_) => "spot",
             Light::Point(_) => "point",
             Light::Directional(_) => "directional",
+            Light::Emitter(_) => "emitter",
         }
+    }
+
+    /// Whether its shadows and reflective shadow maps are six cube faces (point and emitter
+    /// lights), not one view.
+    pub fn has_cube_faces(&self) -> bool {
+        matches!(self, Light::Point(_) | Light::Emitter(_))
     }
 
     pub fn as_spot(&self) -> Option<&SpotLight> {

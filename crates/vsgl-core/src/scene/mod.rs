@@ -10,7 +10,7 @@ pub mod gltf;
 mod light;
 pub mod limits;
 
-pub use light::{DirectionalLight, Light, PointLight, SpotLight};
+pub use light::{DirectionalLight, EmitterLight, Light, PointLight, SpotLight};
 
 use std::collections::BTreeMap;
 
@@ -466,7 +466,8 @@ impl Scene {
                 }
                 Some(Light::Point(p)) => p.position = position,
                 Some(Light::Directional(d)) => d.direction = direction,
-                None => {}
+                // Emitter clusters are made per frame from the meshes, never attached.
+                Some(Light::Emitter(_)) | None => {}
             }
         }
     }

@@ -12,7 +12,8 @@
 //! above zero (the estimator stays unbiased, only less well matched to dark texels).
 
 use super::VertexRaw;
-use crate::scene::Material;
+use crate::scene::{EmitterLight, Material};
+use glam::{DVec3, Vec3};
 
 /// One emissive triangle (16 bytes; `EmitterRaw` in `wgsl/passes/pathtrace.wgsl`).
 #[repr(C)]
@@ -35,6 +36,19 @@ const _: () = assert!(std::mem::size_of::<EmitterRaw>() == 16);
 pub struct EmitterTable {
     pub rows: Vec<EmitterRaw>,
     pub total_power: f64,
+    /// Per row, what the clusters of the real-time methods are made from.
+    pub triangles: Vec<EmitterTriangle>,
+}
+
+/// One emissive triangle as the emitter clusters see it (upload-anchor-relative, f64).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct EmitterTriangle {
+    pub corners: [DVec3; 3],
+    /// Unit normal of the emitting side (the side the vertex normals point to).
+    pub normal: DVec3,
+    /// L_e · A per channel: the radiant intensity it sends along its normal.
+    pub intensity: DVec3,
+    pub area: f64,
 }
 
 /// The emitter table of an upload's triangles (`indices`: three per triangle into `vertices`,
@@ -43,6 +57,7 @@ pub struct EmitterTable {
 pub fn emitter_table(vertices: &[VertexRaw], indices: &[u32], triangle_materials: &[u32], materials: &[Material]) -> EmitterTable {
     let mut rows = Vec::new();
     let mut powers = Vec::new();
+    let mut triangles = Vec::new();
     for (t, &m) in triangle_materials.iter().enumerate() {
         let Some(material) = materials.get(m as usize).filter(|m| m.has_emission()) else { continue };
         let corner = |k: usize| {
@@ -58,6 +73,14 @@ pub fn emitter_table(vertices: &[VertexRaw], indices: &[u32], triangle_materials
         }
         rows.push(EmitterRaw { triangle: t as u32, area: area as f32, cdf: 0.0, probability: 0.0 });
         powers.push(power);
+        let vertex_normals: DVec3 = (0..3)
+            .filter_map(|k| indices.get(3 * t + k).and_then(|&i| vertices.get(i as usize)))
+            .map(|v| DVec3::new(v.normal[0] as f64, v.normal[1] as f64, v.normal[2] as f64))
+            .sum();
+        let geometric = (b - a).cross(c - a).normalize_or_zero();
+        let normal = if geometric.dot(vertex_normals) >= 0.0 { geometric } else { -geometric };
+        let radiance = DVec3::new(material.emissive[0] as f64, material.emissive[1] as f64, material.emissive[2] as f64).max(DVec3::ZERO);
+        triangles.push(EmitterTriangle { corners: [a, b, c], normal, intensity: radiance * area, area });
     }
     let total_power: f64 = powers.iter().sum();
     let mut running = 0.0;
@@ -70,7 +93,130 @@ pub fn emitter_table(vertices: &[VertexRaw], indices: &[u32], triangle_materials
         // Rounding must not leave a gap above the last row that a u near 1 could fall into.
         last.cdf = 1.0;
     }
-    EmitterTable { rows, total_power }
+    EmitterTable { rows, total_power, triangles }
+}
+
+/// The six normal directions emitter clusters are first split by (a cluster's triangles face
+/// within 90° of one another, so its summed cosine lobes stay close to one lobe).
+fn normal_bin(n: DVec3) -> usize {
+    let a = n.abs();
+    let axis = if a.x >= a.y && a.x >= a.z { 0 } else if a.y >= a.z { 1 } else { 2 };
+    2 * axis + usize::from(n[axis] < 0.0)
+}
+
+/// Patches per light the emissive area is cut into before clustering, so a large emitter of
+/// few triangles (a quad lamp) can still become `budget` lights of a fraction of its size.
+const PATCHES_PER_LIGHT: f64 = 16.0;
+/// Most patches in all: past it, triangles are clustered as they are.
+const MAX_PATCHES: usize = 1 << 16;
+/// Most midpoint subdivisions of one triangle (4⁵ = 1024 patches).
+const MAX_SUBDIVISION: u32 = 5;
+
+/// A piece of an emissive triangle: its centroid, and its share of the triangle's area and
+/// intensity (the normal is the triangle's).
+#[derive(Clone, Copy)]
+struct Patch {
+    centroid: DVec3,
+    normal: DVec3,
+    intensity: DVec3,
+    area: f64,
+}
+
+/// The emissive triangles cut into patches: each triangle into 4^k similar pieces by midpoint
+/// subdivision, k the least that makes its pieces at most total area / (PATCHES_PER_LIGHT ·
+/// budget), unless that passes MAX_PATCHES in all (then every triangle is one patch).
+fn patches(triangles: &[EmitterTriangle], budget: usize) -> Vec<Patch> {
+    let total: f64 = triangles.iter().map(|t| t.area).sum();
+    let target = total / (PATCHES_PER_LIGHT * budget.max(1) as f64);
+    let level = |t: &EmitterTriangle| {
+        let mut k = 0;
+        while k < MAX_SUBDIVISION && t.area / 4f64.powi(k as i32) > target {
+            k += 1;
+        }
+        k
+    };
+    let count: usize = triangles.iter().map(|t| 1usize << (2 * level(t))).sum();
+    let mut out = Vec::with_capacity(count.min(MAX_PATCHES));
+    for t in triangles {
+        let k = if count > MAX_PATCHES { 0 } else { level(t) };
+        let mut pieces = vec![t.corners];
+        for _ in 0..k {
+            pieces = pieces
+                .iter()
+                .flat_map(|&[a, b, c]| {
+                    let (ab, bc, ca) = ((a + b) * 0.5, (b + c) * 0.5, (c + a) * 0.5);
+                    [[a, ab, ca], [ab, b, bc], [ca, bc, c], [ab, bc, ca]]
+                })
+                .collect();
+        }
+        let share = 1.0 / pieces.len() as f64;
+        out.extend(pieces.iter().map(|&[a, b, c]| Patch { centroid: (a + b + c) / 3.0, normal: t.normal, intensity: t.intensity * share, area: t.area * share }));
+    }
+    out
+}
+
+/// The emissive triangles as at most `budget` lights for the real-time methods
+/// ([`EmitterLight`]; positions world-space, `anchor` added back). The triangles are cut into
+/// patches ([`patches`]); first one cluster per normal direction (six bins by the dominant
+/// axis), then, while the budget allows, the cluster whose point approximation errs most — the
+/// largest intensity × squared extent, the first-order error of a point light standing for an
+/// area — is split at the median of its longest side. Deterministic: the same triangles give
+/// the same lights. `offset`: how far each light sits off its patches along its normal.
+pub fn emitter_lights(triangles: &[EmitterTriangle], budget: usize, anchor: DVec3, offset: f64) -> Vec<EmitterLight> {
+    let triangles = patches(triangles, budget);
+    let mut clusters: Vec<Vec<usize>> = vec![Vec::new(); 6];
+    for (i, t) in triangles.iter().enumerate() {
+        clusters[normal_bin(t.normal)].push(i);
+    }
+    clusters.retain(|c| !c.is_empty());
+    let bounds = |c: &[usize]| {
+        c.iter().fold((DVec3::splat(f64::INFINITY), DVec3::splat(f64::NEG_INFINITY)), |(lo, hi), &i| {
+            (lo.min(triangles[i].centroid), hi.max(triangles[i].centroid))
+        })
+    };
+    let error = |c: &[usize]| {
+        let (lo, hi) = bounds(c);
+        let weight: f64 = c.iter().map(|&i| triangles[i].intensity.element_sum()).sum();
+        if c.len() < 2 { -1.0 } else { weight * (hi - lo).length_squared() }
+    };
+    // Every normal direction that emits keeps a light of its own, so a budget below the
+    // number of such directions (at most six) gives that many lights.
+    while clusters.len() < budget.max(1) {
+        let (worst, e) = clusters.iter().enumerate().map(|(k, c)| (k, error(c))).fold((0, -1.0), |a, b| if b.1 > a.1 { b } else { a });
+        if e <= 0.0 {
+            break;
+        }
+        let mut c = std::mem::take(&mut clusters[worst]);
+        let (lo, hi) = bounds(&c);
+        let axis = (hi - lo).max_position();
+        c.sort_by(|&a, &b| triangles[a].centroid[axis].total_cmp(&triangles[b].centroid[axis]).then(a.cmp(&b)));
+        let right = c.split_off(c.len() / 2);
+        clusters[worst] = c;
+        clusters.push(right);
+    }
+    clusters
+        .iter()
+        .filter_map(|c| {
+            let intensity: DVec3 = c.iter().map(|&i| triangles[i].intensity).sum();
+            let weight = intensity.element_sum();
+            if !(weight > 0.0) {
+                return None;
+            }
+            let centroid = c.iter().map(|&i| triangles[i].centroid * triangles[i].intensity.element_sum()).sum::<DVec3>() / weight;
+            let triangles_in = c.len() as u32;
+            let normal = c.iter().map(|&i| triangles[i].normal * triangles[i].intensity.element_sum()).sum::<DVec3>().normalize_or_zero();
+            let normal = if normal == DVec3::ZERO { triangles[c[0]].normal } else { normal };
+            let peak = intensity.max_element();
+            Some(EmitterLight {
+                position: anchor + centroid + normal * offset,
+                normal,
+                intensity: peak as f32,
+                color: (intensity / peak).as_vec3().min(Vec3::ONE),
+                area: c.iter().map(|&i| triangles[i].area).sum(),
+                patches: triangles_in,
+            })
+        })
+        .collect()
 }
 
 #[cfg(test)]
@@ -104,6 +250,52 @@ mod tests {
         assert!((table.rows[0].probability as f64 - 1.5 / 5.5).abs() < 1e-7);
         assert!((table.rows[0].cdf as f64 - 1.5 / 5.5).abs() < 1e-7);
         assert_eq!(table.rows[1].cdf, 1.0);
+    }
+
+    /// A unit square at y = 1 facing down (two triangles), radiance (2, 1, 0).
+    fn unit_square() -> Vec<EmitterTriangle> {
+        let c = [DVec3::new(-0.5, 1.0, -0.5), DVec3::new(0.5, 1.0, -0.5), DVec3::new(0.5, 1.0, 0.5), DVec3::new(-0.5, 1.0, 0.5)];
+        let l = DVec3::new(2.0, 1.0, 0.0);
+        [[c[0], c[1], c[2]], [c[0], c[2], c[3]]]
+            .iter()
+            .map(|&corners| EmitterTriangle { corners, normal: DVec3::NEG_Y, intensity: l * 0.5, area: 0.5 })
+            .collect()
+    }
+
+    #[test]
+    fn emitter_lights_keep_the_intensity_and_split_a_large_emitter_into_quarters() {
+        let anchor = DVec3::new(10.0, 0.0, 0.0);
+        let one = emitter_lights(&unit_square(), 1, anchor, 0.0);
+        assert_eq!(one.len(), 1);
+        assert!((one[0].position - (anchor + DVec3::new(0.0, 1.0, 0.0))).length() < 1e-12, "{:?}", one[0].position);
+        assert_eq!(one[0].normal, DVec3::NEG_Y);
+        // Peak intensity Σ L·A = (2, 1, 0): its largest channel, and the colour relative to it.
+        assert!((one[0].intensity - 2.0).abs() < 1e-6 && (one[0].color - Vec3::new(1.0, 0.5, 0.0)).length() < 1e-6);
+        assert!((one[0].area - 1.0).abs() < 1e-12);
+        // Four lights: the square's quarters (two triangles, cut into patches first), each a
+        // quarter of the intensity at its quarter's centre.
+        let four = emitter_lights(&unit_square(), 4, DVec3::ZERO, 0.0);
+        assert_eq!(four.len(), 4);
+        let mut centres: Vec<(i64, i64)> = four.iter().map(|l| ((l.position.x * 4.0).round() as i64, (l.position.z * 4.0).round() as i64)).collect();
+        centres.sort();
+        assert_eq!(centres, vec![(-1, -1), (-1, 1), (1, -1), (1, 1)]);
+        for l in &four {
+            assert!((l.intensity - 0.5).abs() < 1e-6 && (l.area - 0.25).abs() < 1e-12, "{l:?}");
+            assert!((l.position.x.abs() - 0.25).abs() < 1e-9 && (l.position.z.abs() - 0.25).abs() < 1e-9, "{l:?}");
+        }
+        // Off the surface along the normal by the offset.
+        assert!((emitter_lights(&unit_square(), 1, DVec3::ZERO, 0.01)[0].position.y - 0.99).abs() < 1e-12);
+    }
+
+    #[test]
+    fn emitters_facing_apart_get_a_light_each_whatever_the_budget() {
+        let mut both = unit_square();
+        both.extend(unit_square().iter().map(|t| EmitterTriangle { normal: DVec3::Y, corners: t.corners.map(|p| p - DVec3::Y), ..*t }));
+        let lights = emitter_lights(&both, 1, DVec3::ZERO, 0.0);
+        assert_eq!(lights.len(), 2);
+        let mut normals: Vec<f64> = lights.iter().map(|l| l.normal.y).collect();
+        normals.sort_by(f64::total_cmp);
+        assert_eq!(normals, vec![-1.0, 1.0]);
     }
 
     #[test]

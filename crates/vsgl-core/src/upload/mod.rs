@@ -109,6 +109,10 @@ pub struct GpuScene {
     pub emitter_count: u32,
     /// Their total power, π · Σ area · (L_r + L_g + L_b).
     pub emitter_power: f64,
+    /// The same triangles for the emitter clusters of the real-time methods.
+    emitter_triangles: Vec<emitters::EmitterTriangle>,
+    /// The clusters last asked for, and the budget they were made for.
+    emitter_lights: std::sync::Mutex<Option<(usize, std::sync::Arc<Vec<crate::scene::EmitterLight>>)>>,
     /// The ray tracers' BVH over these very triangles, built on first use and kept with the
     /// upload (a changed geometry re-uploads, and so rebuilds it).
     bvh: std::sync::Mutex<Option<std::sync::Arc<GpuBvh>>>,
@@ -160,6 +164,22 @@ impl GpuScene {
     /// surface on the convex hull); computed once per upload.
     pub fn convex_shell(&self, scene: &Scene) -> bool {
         *self.convex_shell.get_or_init(|| convex::is_convex_shell(&bvh::scene_triangles(scene, self.anchor), self.extent))
+    }
+
+    /// The emissive triangles as at most `budget` lights ([`emitters::emitter_lights`]; at
+    /// least one per normal direction that emits), made now unless the last frame of this
+    /// upload asked for the same budget. Empty without emitters.
+    pub fn emitter_lights(&self, budget: usize) -> std::sync::Arc<Vec<crate::scene::EmitterLight>> {
+        let mut cached = self.emitter_lights.lock().unwrap_or_else(|e| e.into_inner());
+        if let Some((b, lights)) = cached.as_ref().filter(|(b, _)| *b == budget) {
+            debug_assert_eq!(*b, budget);
+            return lights.clone();
+        }
+        // Off the emitting surface by a millionth of the scene, so the light's cube of views
+        // does not meet its own triangles edge-on at the very apex.
+        let lights = std::sync::Arc::new(emitters::emitter_lights(&self.emitter_triangles, budget, self.anchor, 1e-6 * self.extent));
+        *cached = Some((budget, lights.clone()));
+        lights
     }
 
     pub fn bvh(&self, gpu: &Gpu, scene: &Scene) -> Result<(std::sync::Arc<GpuBvh>, bool)> {
@@ -340,6 +360,8 @@ impl GpuScene {
             emitters: storage(gpu, "scene_emitter_buffer", bytemuck::cast_slice(&emitter_table.rows), wgpu::BufferUsages::empty()),
             emitter_count: emitter_table.rows.len() as u32,
             emitter_power: emitter_table.total_power,
+            emitter_triangles: emitter_table.triangles,
+            emitter_lights: Default::default(),
             anchor,
             half_size: if bounds.is_empty() { DVec3::NAN } else { 0.5 * (bounds.max - bounds.min) },
             raster_vertex_count: raster.len() as u32,
