@@ -498,7 +498,9 @@ impl Renderer {
             passes: Vec::new(),
             skipped,
             settings,
-            warnings: if scene.lights.is_empty() && scene_emits && info.emitter_lighting() == "none" {
+            warnings: if scene.lights.is_empty() && scene_emits && gscene.emitters_face_nothing {
+                vec!["the scene has no light, and nothing lies in front of its emissive surfaces (each emits on the side its vertex normals point to): they show but light nothing (flip their normals, or add a light with scene.add_light)".to_string()]
+            } else if scene.lights.is_empty() && scene_emits && info.emitter_lighting() == "none" {
                 // Not black: emissive surfaces show, but in this method they light nothing else.
                 let lit_by: Vec<String> = crate::methods::REGISTRY.iter().filter(|m| m.emitter_lighting() != "none").map(|m| format!("method=\"{}\"", m.name)).collect();
                 vec![format!(

@@ -96,6 +96,23 @@ pub fn emitter_table(vertices: &[VertexRaw], indices: &[u32], triangle_materials
     EmitterTable { rows, total_power, triangles }
 }
 
+/// Whether no emissive triangle faces any part of the box `±half_size` (the scene's bounds
+/// around the upload anchor, in the triangles' coordinates): every corner of the box lies on or
+/// behind each triangle's emitting plane (within `tolerance`), so the emitters light nothing.
+/// Conservative: a corner in front does not prove that geometry is.
+pub fn face_nothing(triangles: &[EmitterTriangle], half_size: DVec3, tolerance: f64) -> bool {
+    if triangles.is_empty() || !half_size.is_finite() {
+        return false;
+    }
+    let corners = (0..8).map(|k| DVec3::new(
+        if k & 1 == 0 { -half_size.x } else { half_size.x },
+        if k & 2 == 0 { -half_size.y } else { half_size.y },
+        if k & 4 == 0 { -half_size.z } else { half_size.z },
+    ));
+    let corners: Vec<DVec3> = corners.collect();
+    triangles.iter().all(|t| corners.iter().all(|&c| (c - t.corners[0]).dot(t.normal) <= tolerance))
+}
+
 /// The six normal directions emitter clusters are first split by (a cluster's triangles face
 /// within 90° of one another, so its summed cosine lobes stay close to one lobe).
 fn normal_bin(n: DVec3) -> usize {
@@ -296,6 +313,18 @@ mod tests {
         let mut normals: Vec<f64> = lights.iter().map(|l| l.normal.y).collect();
         normals.sort_by(f64::total_cmp);
         assert_eq!(normals, vec![-1.0, 1.0]);
+    }
+
+    #[test]
+    fn emitters_that_face_out_of_the_bounds_face_nothing() {
+        // The unit square at y = 1 facing down in a box reaching y = 0 faces the box's floor;
+        // turned up, at the top of a box reaching only y = 1, it faces nothing.
+        let half = DVec3::new(3.0, 0.5, 3.0);
+        let centred: Vec<EmitterTriangle> = unit_square().iter().map(|t| EmitterTriangle { corners: t.corners.map(|p| p - DVec3::new(0.0, 0.5, 0.0)), ..*t }).collect();
+        assert!(!face_nothing(&centred, half, 1e-9));
+        let up: Vec<EmitterTriangle> = centred.iter().map(|t| EmitterTriangle { normal: DVec3::Y, ..*t }).collect();
+        assert!(face_nothing(&up, half, 1e-9));
+        assert!(!face_nothing(&[], half, 1e-9));
     }
 
     #[test]

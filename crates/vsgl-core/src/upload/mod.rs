@@ -111,6 +111,9 @@ pub struct GpuScene {
     pub emitter_power: f64,
     /// The same triangles for the emitter clusters of the real-time methods.
     emitter_triangles: Vec<emitters::EmitterTriangle>,
+    /// Whether there are emitters and none faces any part of the scene's bounds
+    /// ([`emitters::face_nothing`]): they light nothing.
+    pub emitters_face_nothing: bool,
     /// The clusters last asked for, and the budget they were made for.
     emitter_lights: std::sync::Mutex<Option<(usize, std::sync::Arc<Vec<crate::scene::EmitterLight>>)>>,
     /// The ray tracers' BVH over these very triangles, built on first use and kept with the
@@ -360,6 +363,8 @@ impl GpuScene {
             emitters: storage(gpu, "scene_emitter_buffer", bytemuck::cast_slice(&emitter_table.rows), wgpu::BufferUsages::empty()),
             emitter_count: emitter_table.rows.len() as u32,
             emitter_power: emitter_table.total_power,
+            emitters_face_nothing: !bounds.is_empty()
+                && emitters::face_nothing(&emitter_table.triangles, 0.5 * (bounds.max - bounds.min), 1e-6 * extent.max(f64::MIN_POSITIVE)),
             emitter_triangles: emitter_table.triangles,
             emitter_lights: Default::default(),
             anchor,
