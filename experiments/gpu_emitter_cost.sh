@@ -4,7 +4,8 @@
 # ceiling lamp made emissive, frames alternated, median GPU totals), with the default
 # emitter_lights (1) and with 4, after a warm-up minute.
 #
-#   device run (carry .gl .whl, timeout_s 300): <device preamble> bash experiments/gpu_emitter_cost.sh
+#   device run (carry .gl .whl .scenes, timeout_s 300): <device preamble> bash experiments/gpu_emitter_cost.sh
+#   (.scenes: a copy of the shared scene folder, as for gpu_corpus.sh)
 #   locally, at a toy size on lavapipe: SMOKE=1 bash experiments/gpu_emitter_cost.sh
 set -uo pipefail
 source "$(dirname "$0")/gpu_common.sh"  # $FINAL_OUT, $RES, pack, step, require_gpu; cd to the repository root
