@@ -26,7 +26,7 @@ import vsgl
 from vsgl.stability import small_settings
 
 # Rows of frame.settings that name the machine or the run rather than the image.
-UNSTABLE_SETTINGS = {"adapter", "scene_upload", "readback_ms"}
+UNSTABLE_SETTINGS = {"adapter", "scene_upload", "readback_ms", "scene_upload_ms", "bvh_build_ms"}
 
 
 def fingerprint(renderer: vsgl.Renderer, scene_name: str, method: str) -> dict:

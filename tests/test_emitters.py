@@ -196,3 +196,24 @@ def test_the_emitter_lit_cornell_box_in_the_virtual_light_methods(shared_scenes,
     truth = r.render(scene, method="pathtrace", spp=256, aovs=["indirect"]).aov("indirect").mean()
     shadowed = r.render(scene, method="vpl", rsm_size=128, num_lights=4096, visibility="raytrace", aovs=["indirect"]).aov("indirect").mean()
     assert shadowed / truth == pytest.approx(1.0, abs=0.05)
+
+
+def test_an_emitter_past_a_lights_intensity_is_refused_by_name(tmp_path, make_renderer):
+    # Radiance 1e30 (within the loader's 1e32) over a square a million units wide: a cluster
+    # sends 1e42, past f32 and the 1e32 a light may have. The clusters refuse it with the cause
+    # (the frame would otherwise saturate at FLT_MAX); the path tracer, which samples the
+    # radiance itself, renders it.
+    big = 1e6
+    quads = [
+        dict(corners=[(-3 * big, 0, -3 * big), (-3 * big, 0, 3 * big), (3 * big, 0, 3 * big), (3 * big, 0, -3 * big)], name="floor", specular=0.0),
+        dict(corners=[(-0.5 * big, big, -0.5 * big), (0.5 * big, big, -0.5 * big), (0.5 * big, big, 0.5 * big), (-0.5 * big, big, 0.5 * big)],
+             name="glow", base_color=(0.0,) * 3, specular=0.0),
+    ]
+    scene = vsgl.Scene.load(sb.write_quads(tmp_path, quads))
+    scene.set_material("materials[1]", emissive=(1e30, 1e30, 1e30))
+    cam = vsgl.Camera.look_at(eye=(0.0, 0.5 * big, 0.0), target=(0.0, 0.0, 0.0), up=(0.0, 0.0, -1.0), fov_y_deg=60.0)
+    r = make_renderer(8, 8)
+    with pytest.raises(vsgl.VsglError, match=r"emissive surfaces: a cluster .* past the 1e32 a light may have"):
+        r.render(scene, cam, method="vsgl", num_lights=64, rsm_size=32)
+    f = r.render(scene, cam, method="pathtrace", spp=8, strategy="camera", aovs=["direct"])
+    assert np.isfinite(f.aov("direct")).all() and f.aov("direct").max() < 1e30
