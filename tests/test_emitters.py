@@ -129,23 +129,24 @@ def test_a_scene_without_emission_leaves_the_emitter_code_out(tmp_path, make_ren
 
 # --- The other methods: emissive surfaces as clusters of lights (option emitter_lights) -------
 
-def test_emitter_lights_approach_the_form_factor_as_they_grow(tmp_path, make_renderer):
-    # Each cluster is a point light with a cosine lobe: at a receiver as far from the unit
-    # square as it is wide (the hardest case short of touching), one light overshoots the
-    # form factor by a third (1/h² against the solid angle's), and cutting the square into
-    # more clusters converges on it (measured: 1.27, 1.05, 1.011 of it on average at 1, 4 and
-    # 16 lights; a midpoint rule's error).
+def test_emitter_lights_light_the_floor_as_the_form_factor_says(tmp_path, make_renderer):
+    # Each cluster is shadowed like a point light but lit from its patches: its direct light is
+    # a 64-point midpoint rule over its area. At a receiver as far from the unit square as it
+    # is wide (the hardest case short of touching) one light is within 0.3% of the form factor
+    # (the cluster's centre alone, a point light, was 1.27 of it on average). The issue's
+    # bounds: `reference` within 1%, `vsgl` (interleave 1) within 5%.
     size = 16
     scene = emitter_over_floor(tmp_path)
-    want = expected_floor_radiance(size).mean()
+    want = expected_floor_radiance(size)
     r = make_renderer(size, size)
-    ratio = {b: r.render(scene, DOWN, method="direct", emitter_lights=b, aovs=["direct"]).aov("direct")[..., 0].mean() / want
-             for b in (1, 4, 16)}
-    assert ratio[1] > 1.2 and 1.0 < ratio[4] < 1.06 and 1.0 < ratio[16] < 1.02, ratio
-    # vsgl's direct light is the same (shadow-mapped, from the same lights; the default is 1).
-    f = r.render(scene, DOWN, method="vsgl", interleave=1, denoise=False, aovs=["direct"])
-    assert f.aov("direct")[..., 0].mean() / want == pytest.approx(ratio[1], rel=1e-6)
-    assert f.settings["emitter_lights"] == 1
+    for method, kw in (("direct", {}), ("reference", dict(rsm_size=32)), ("vsgl", dict(interleave=1, denoise=False))):
+        for lights in (1, 4, 16):
+            f = r.render(scene, DOWN, method=method, emitter_lights=lights, aovs=["direct"], **kw)
+            got = f.aov("direct")[..., 0].astype(np.float64)
+            assert got.mean() / want.mean() == pytest.approx(1.0, abs=0.01), (method, lights, got.mean() / want.mean())
+            assert np.abs(got / want - 1).max() < 0.02, (method, lights)
+    assert f.settings["emitter_lights"] == 16
+    assert r.render(scene, DOWN, method="vsgl", aovs=[]).settings["emitter_lights"] == 1
 
 
 def test_a_punctual_light_and_an_emitter_add_up(tmp_path, make_renderer):

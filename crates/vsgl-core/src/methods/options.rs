@@ -327,15 +327,14 @@ pub mod common {
     /// How many lights the emissive surfaces become in the methods that light with lights'
     /// shadow and reflective shadow maps (`upload/emitters.rs`, `emitter_lights`). Default 1, a
     /// point light's cost (experiments/emitter_cost.md): on the shared CornellBox lit by its
-    /// ceiling its direct light is 1.007 of the path tracer's (4 lights: 1.004, with softer
-    /// shadows: block error 0.039 → 0.010, at four times the cost); raise it where receivers
-    /// are within a few emitter widths.
+    /// ceiling its direct light is 1.004 of the path tracer's (4 lights: 1.001, with softer
+    /// shadows: block error 0.024 → 0.0075, at four times the cost).
     pub const EMITTER_LIGHTS: OptionSpec = int(
         "emitter_lights",
         1,
         64,
         1,
-        "lights the emissive surfaces become (clusters of emissive triangles, each a point light with a cosine lobe, its shadow and reflective shadow maps a cube's faces; at least one per normal direction that emits); ignored without emissive surfaces",
+        "lights the emissive surfaces become (clusters of emissive triangles, each with a point light's cube of shadow and reflective shadow maps and a cosine lobe, its direct light summed over 64 points of its area; at least one per normal direction that emits; more give softer shadows); ignored without emissive surfaces",
     );
     /// The virtual-light budget; the default differs by method: 1024 VSGLs, the papers' own
     /// setting (with 8×8 interleaving, 16 per pixel), chosen on the real-scene corpus

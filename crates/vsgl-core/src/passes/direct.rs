@@ -14,6 +14,27 @@ pub struct ShadowMappedLights<'a> {
     pub lights: &'a wgpu::Buffer,
     /// Their shadow maps (one layer per spot or directional light, six per point light).
     pub shadow_maps: &'a wgpu::TextureView,
+    /// The points the emitter lights' direct light is summed over (`EmitterQuadrature` in
+    /// direct.wgsl, [`emitter_quadrature_bytes`]), and whether the frame has emitter lights (else
+    /// the sum is compiled out and the buffer a placeholder).
+    pub emitter_points: &'a wgpu::Buffer,
+    pub has_emitter_lights: bool,
+}
+
+/// The bytes of direct.wgsl's `EmitterQuadrature`: the index of the frame's first emitter
+/// light and the points per light, then each point relative to the frame origin with its share
+/// of its light's intensity (`upload::emitters::EmitterClusters::points`).
+pub fn emitter_quadrature_bytes(first_light: u32, points: &[(glam::DVec3, f32)], origin: glam::DVec3) -> Vec<u8> {
+    let per_light = crate::upload::emitters::POINTS_PER_LIGHT as u32;
+    let mut bytes: Vec<u8> = bytemuck::cast_slice(&[first_light, per_light, 0, 0]).to_vec();
+    for &(p, w) in points {
+        let r = (p - origin).as_vec3();
+        bytes.extend_from_slice(bytemuck::cast_slice(&[r.x, r.y, r.z, w]));
+    }
+    if points.is_empty() {
+        bytes.extend_from_slice(&[0u8; 16]);
+    }
+    bytes
 }
 
 pub struct DirectPass {
@@ -47,10 +68,12 @@ impl DirectPass {
         out: &wgpu::Buffer,
         features: ShaderFeatures,
     ) {
-        let ShadowMappedLights { lights, shadow_maps } = *lit;
+        let ShadowMappedLights { lights, shadow_maps, emitter_points, has_emitter_lights } = *lit;
         let size = gbuffer.size;
         let gpu = rec.gpu;
-        let pipeline = &self.pipelines.get(gpu, &features.specular_flags());
+        let mut flags = features.specular_flags().to_vec();
+        flags.push(("HAS_EMITTER_LIGHTS", has_emitter_lights));
+        let pipeline = &self.pipelines.get(gpu, &flags);
         let frame_bind = rec.bind_group("direct_frame_bind_group", PipelineRef::Compute(pipeline), 0, &[frame_uniforms.as_entire_binding()]);
         let pass_resources = [
             lights.as_entire_binding(),
@@ -61,6 +84,7 @@ impl DirectPass {
             gbuffer.geo_normal.as_entire_binding(),
             gbuffer.base_color.as_entire_binding(),
             out.as_entire_binding(),
+            emitter_points.as_entire_binding(),
         ];
         let pass_bind = rec.bind_group("direct_pass_bind_group", PipelineRef::Compute(pipeline), 1, &pass_resources);
         rec.in_debug_group("direct", |rec| {

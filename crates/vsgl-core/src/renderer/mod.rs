@@ -18,7 +18,7 @@ use crate::gpu::frame_log::{log_frame, FrameLog};
 use crate::gpu::{kept_staging_buffer, read_staging, FrameResources, Gpu, PassCache, PassTimer, Recorder};
 use crate::methods::options::ChoiceEnum;
 use crate::methods::{options::common, DirectLight, FrameContext, Method, MethodInfo, OptionValue, Options};
-use crate::passes::{direct::{DirectPass, ShadowMappedLights}, material::{MaterialPass, RasterView}, shadow_map::ShadowMapPass, visibility::VisibilityPass};
+use crate::passes::{direct::{emitter_quadrature_bytes, DirectPass, ShadowMappedLights}, material::{MaterialPass, RasterView}, shadow_map::ShadowMapPass, visibility::VisibilityPass};
 use crate::plan::{Plan, ShaderFeatures};
 use crate::scene::{Camera, Light, Scene};
 use crate::setting::Setting;
@@ -331,8 +331,13 @@ impl Renderer {
         // `pathtrace` samples the emissive triangles themselves). Their device needs are
         // checked again now that the upload has counted the emitters.
         let mut light_sources = scene.lights.clone();
-        if info.takes("emitter_lights") && gscene.emitter_count > 0 {
-            let emitter_lights = gscene.emitter_lights(job.options.u32("emitter_lights")? as usize);
+        let emitter_clusters = if info.takes("emitter_lights") && gscene.emitter_count > 0 {
+            gscene.emitter_lights(job.options.u32("emitter_lights")? as usize)
+        } else {
+            std::sync::Arc::new(crate::upload::emitters::EmitterClusters::default())
+        };
+        if !emitter_clusters.lights.is_empty() {
+            let emitter_lights = &emitter_clusters.lights;
             // A cluster's intensity Σ L_e·A is bounded like a light's: radiance (≤ 1e32) times a
             // large enough area passes f32's range, and the frame would saturate, not fail.
             if let Some(bad) = emitter_lights.iter().find(|l| !(l.intensity.is_finite() && l.intensity as f64 <= crate::scene::limits::MAX_INTENSITY)) {
@@ -414,7 +419,15 @@ impl Renderer {
                 dimension: Some(wgpu::TextureViewDimension::D2Array),
                 ..Default::default()
             });
-            self.passes.get::<DirectPass>()?.record(&mut rec, &frame_buf, &ShadowMappedLights { lights: &light_buf, shadow_maps: &shadow_view }, &gbuffer, &direct_out, feat);
+            let first_emitter_light = scene.lights.len() as u32;
+            let emitter_points = rec.storage_init("emitter_point_buffer", &emitter_quadrature_bytes(first_emitter_light, &emitter_clusters.points, origin));
+            let lit = ShadowMappedLights {
+                lights: &light_buf,
+                shadow_maps: &shadow_view,
+                emitter_points: &emitter_points,
+                has_emitter_lights: !emitter_clusters.lights.is_empty(),
+            };
+            self.passes.get::<DirectPass>()?.record(&mut rec, &frame_buf, &lit, &gbuffer, &direct_out, feat);
         }
 
         // Indirect targets; without specular materials the specular one is never bound for

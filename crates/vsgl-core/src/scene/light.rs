@@ -41,7 +41,8 @@ pub struct DirectionalLight {
 /// shines like a small Lambertian area light seen from afar: radiant intensity
 /// I(ω) = intensity · color · max(normal · ω, 0), the sum of its triangles' L_e·A·cosθ (exact for
 /// a flat cluster, a point approximation in distance). Shadows and reflective shadow maps are a
-/// point light's six cube faces, those behind the emitting side left out.
+/// point light's six cube faces, those behind the emitting side left out; its direct light is
+/// summed over points of its patches (`upload::emitters::EmitterClusters::points`).
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct EmitterLight {
     /// World position: the power-weighted centroid of the triangles, moved a little off them

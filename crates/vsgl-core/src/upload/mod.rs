@@ -115,7 +115,7 @@ pub struct GpuScene {
     /// ([`emitters::face_nothing`]): they light nothing.
     pub emitters_face_nothing: bool,
     /// The clusters last asked for, and the budget they were made for.
-    emitter_lights: std::sync::Mutex<Option<(usize, std::sync::Arc<Vec<crate::scene::EmitterLight>>)>>,
+    emitter_lights: std::sync::Mutex<Option<(usize, std::sync::Arc<emitters::EmitterClusters>)>>,
     /// The ray tracers' BVH over these very triangles, built on first use and kept with the
     /// upload (a changed geometry re-uploads, and so rebuilds it).
     bvh: std::sync::Mutex<Option<std::sync::Arc<GpuBvh>>>,
@@ -172,7 +172,7 @@ impl GpuScene {
     /// The emissive triangles as at most `budget` lights ([`emitters::emitter_lights`]; at
     /// least one per normal direction that emits), made now unless the last frame of this
     /// upload asked for the same budget. Empty without emitters.
-    pub fn emitter_lights(&self, budget: usize) -> std::sync::Arc<Vec<crate::scene::EmitterLight>> {
+    pub fn emitter_lights(&self, budget: usize) -> std::sync::Arc<emitters::EmitterClusters> {
         let mut cached = self.emitter_lights.lock().unwrap_or_else(|e| e.into_inner());
         if let Some((b, lights)) = cached.as_ref().filter(|(b, _)| *b == budget) {
             debug_assert_eq!(*b, budget);
