@@ -332,7 +332,7 @@ impl Renderer {
         // checked again now that the upload has counted the emitters.
         let mut light_sources = scene.lights.clone();
         let emitter_clusters = if info.takes("emitter_lights") && gscene.emitter_count > 0 {
-            gscene.emitter_lights(job.options.u32("emitter_lights")? as usize)
+            gscene.emitter_lights(scene, job.options.u32("emitter_lights")? as usize)
         } else {
             std::sync::Arc::new(crate::upload::emitters::EmitterClusters::default())
         };

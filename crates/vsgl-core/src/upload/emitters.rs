@@ -12,7 +12,7 @@
 //! above zero (the estimator stays unbiased, only less well matched to dark texels).
 
 use super::VertexRaw;
-use crate::scene::{EmitterLight, Material};
+use crate::scene::{EmitterLight, Material, Texture, UvTransform};
 use glam::{DVec3, Vec3};
 
 /// One emissive triangle (16 bytes; `EmitterRaw` in `wgsl/passes/pathtrace.wgsl`).
@@ -46,9 +46,33 @@ pub struct EmitterTriangle {
     pub corners: [DVec3; 3],
     /// Unit normal of the emitting side (the side the vertex normals point to).
     pub normal: DVec3,
-    /// L_e · A per channel: the radiant intensity it sends along its normal.
+    /// L_e · A per channel with the emissive factor (the texture, if any, multiplies it at each
+    /// patch: [`EmitterTriangle::texture`]): the radiant intensity it sends along its normal.
     pub intensity: DVec3,
     pub area: f64,
+    /// The corners' texture coordinates, and the material's emissive texture (an index into the
+    /// scene's textures) with its transform.
+    pub uvs: [[f32; 2]; 3],
+    pub texture: Option<(usize, UvTransform)>,
+}
+
+/// The emissive texture's linear colour at `uv` (nearest texel, wrapping; sRGB decoded as the
+/// GPU's colour textures are), or 1 without a texture.
+fn emissive_texel(textures: &[Texture], texture: Option<(usize, UvTransform)>, uv: [f32; 2]) -> DVec3 {
+    let Some((index, transform)) = texture else { return DVec3::ONE };
+    let Some(t) = textures.get(index) else { return DVec3::ONE };
+    let uv = transform.apply(uv);
+    let (w, h) = (t.width.max(1), t.height.max(1));
+    let wrap = |x: f32, n: u32| (((x - x.floor()) * n as f32) as u32).min(n - 1);
+    let i = 4 * (wrap(uv[1], h) as usize * w as usize + wrap(uv[0], w) as usize);
+    let decode = |c: u8| {
+        let c = c as f64 / 255.0;
+        if c <= 0.04045 { c / 12.92 } else { ((c + 0.055) / 1.055).powf(2.4) }
+    };
+    match t.rgba8.get(i..i + 3) {
+        Some(rgb) => DVec3::new(decode(rgb[0]), decode(rgb[1]), decode(rgb[2])),
+        None => DVec3::ONE,
+    }
 }
 
 /// The emitter table of an upload's triangles (`indices`: three per triangle into `vertices`,
@@ -80,7 +104,9 @@ pub fn emitter_table(vertices: &[VertexRaw], indices: &[u32], triangle_materials
         let geometric = (b - a).cross(c - a).normalize_or_zero();
         let normal = if geometric.dot(vertex_normals) >= 0.0 { geometric } else { -geometric };
         let radiance = DVec3::new(material.emissive[0] as f64, material.emissive[1] as f64, material.emissive[2] as f64).max(DVec3::ZERO);
-        triangles.push(EmitterTriangle { corners: [a, b, c], normal, intensity: radiance * area, area });
+        let uvs = [0, 1, 2].map(|k| indices.get(3 * t + k).and_then(|&i| vertices.get(i as usize)).map_or([0.0; 2], |v| v.uv));
+        let texture = material.emissive_texture.map(|i| (i, material.emissive_uv));
+        triangles.push(EmitterTriangle { corners: [a, b, c], normal, intensity: radiance * area, area, uvs, texture });
     }
     let total_power: f64 = powers.iter().sum();
     let mut running = 0.0;
@@ -142,8 +168,10 @@ struct Patch {
 
 /// The emissive triangles cut into patches: each triangle into 4^k similar pieces by midpoint
 /// subdivision, k the least that makes its pieces at most total area / (PATCHES_PER_LIGHT ·
-/// budget), unless that passes MAX_PATCHES in all (then every triangle is one patch).
-fn patches(triangles: &[EmitterTriangle], budget: usize) -> Vec<Patch> {
+/// budget), unless that passes MAX_PATCHES in all (then every triangle is one patch). A
+/// patch's intensity is its share of the triangle's times the emissive texture at its
+/// centroid (a midpoint rule over the texture too).
+fn patches(triangles: &[EmitterTriangle], textures: &[Texture], budget: usize) -> Vec<Patch> {
     let total: f64 = triangles.iter().map(|t| t.area).sum();
     let target = total / (PATCHES_PER_LIGHT * budget.max(1) as f64);
     let level = |t: &EmitterTriangle| {
@@ -157,7 +185,8 @@ fn patches(triangles: &[EmitterTriangle], budget: usize) -> Vec<Patch> {
     let mut out = Vec::with_capacity(count.min(MAX_PATCHES));
     for t in triangles {
         let k = if count > MAX_PATCHES { 0 } else { level(t) };
-        let mut pieces = vec![t.corners];
+        // Barycentric corners of each piece: positions and texture coordinates follow them.
+        let mut pieces = vec![[DVec3::X, DVec3::Y, DVec3::Z]];
         for _ in 0..k {
             pieces = pieces
                 .iter()
@@ -168,7 +197,13 @@ fn patches(triangles: &[EmitterTriangle], budget: usize) -> Vec<Patch> {
                 .collect();
         }
         let share = 1.0 / pieces.len() as f64;
-        out.extend(pieces.iter().map(|&[a, b, c]| Patch { centroid: (a + b + c) / 3.0, normal: t.normal, intensity: t.intensity * share, area: t.area * share }));
+        out.extend(pieces.iter().map(|&[a, b, c]| {
+            let w = (a + b + c) / 3.0;
+            let centroid = t.corners[0] * w.x + t.corners[1] * w.y + t.corners[2] * w.z;
+            let uv = [0, 1].map(|j| (t.uvs[0][j] as f64 * w.x + t.uvs[1][j] as f64 * w.y + t.uvs[2][j] as f64 * w.z) as f32);
+            let texel = if t.texture.is_some() { emissive_texel(textures, t.texture, uv) } else { DVec3::ONE };
+            Patch { centroid, normal: t.normal, intensity: t.intensity * texel * share, area: t.area * share }
+        }));
     }
     out
 }
@@ -228,8 +263,8 @@ pub struct EmitterClusters {
 /// the bins are split up to the budget ([`split_clusters`]). Each light's own patches are then
 /// split into [`POINTS_PER_LIGHT`] points for its direct light. `offset`: how far each light
 /// sits off its patches along its normal.
-pub fn emitter_lights(triangles: &[EmitterTriangle], budget: usize, anchor: DVec3, offset: f64) -> EmitterClusters {
-    let patches = patches(triangles, budget);
+pub fn emitter_lights(triangles: &[EmitterTriangle], textures: &[Texture], budget: usize, anchor: DVec3, offset: f64) -> EmitterClusters {
+    let patches = patches(triangles, textures, budget);
     let mut bins: Vec<Vec<usize>> = vec![Vec::new(); 6];
     for (i, t) in patches.iter().enumerate() {
         bins[normal_bin(t.normal)].push(i);
@@ -311,14 +346,14 @@ mod tests {
         let l = DVec3::new(2.0, 1.0, 0.0);
         [[c[0], c[1], c[2]], [c[0], c[2], c[3]]]
             .iter()
-            .map(|&corners| EmitterTriangle { corners, normal: DVec3::NEG_Y, intensity: l * 0.5, area: 0.5 })
+            .map(|&corners| EmitterTriangle { corners, normal: DVec3::NEG_Y, intensity: l * 0.5, area: 0.5, uvs: [[0.0; 2]; 3], texture: None })
             .collect()
     }
 
     #[test]
     fn emitter_lights_keep_the_intensity_and_split_a_large_emitter_into_quarters() {
         let anchor = DVec3::new(10.0, 0.0, 0.0);
-        let one = emitter_lights(&unit_square(), 1, anchor, 0.0).lights;
+        let one = emitter_lights(&unit_square(), &[], 1, anchor, 0.0).lights;
         assert_eq!(one.len(), 1);
         assert!((one[0].position - (anchor + DVec3::new(0.0, 1.0, 0.0))).length() < 1e-12, "{:?}", one[0].position);
         assert_eq!(one[0].normal, DVec3::NEG_Y);
@@ -327,7 +362,7 @@ mod tests {
         assert!((one[0].area - 1.0).abs() < 1e-12);
         // Four lights: the square's quarters (two triangles, cut into patches first), each a
         // quarter of the intensity at its quarter's centre.
-        let four = emitter_lights(&unit_square(), 4, DVec3::ZERO, 0.0).lights;
+        let four = emitter_lights(&unit_square(), &[], 4, DVec3::ZERO, 0.0).lights;
         assert_eq!(four.len(), 4);
         let mut centres: Vec<(i64, i64)> = four.iter().map(|l| ((l.position.x * 4.0).round() as i64, (l.position.z * 4.0).round() as i64)).collect();
         centres.sort();
@@ -337,12 +372,12 @@ mod tests {
             assert!((l.position.x.abs() - 0.25).abs() < 1e-9 && (l.position.z.abs() - 0.25).abs() < 1e-9, "{l:?}");
         }
         // Off the surface along the normal by the offset.
-        assert!((emitter_lights(&unit_square(), 1, DVec3::ZERO, 0.01).lights[0].position.y - 0.99).abs() < 1e-12);
+        assert!((emitter_lights(&unit_square(), &[], 1, DVec3::ZERO, 0.01).lights[0].position.y - 0.99).abs() < 1e-12);
     }
 
     #[test]
     fn each_light_has_its_points_spread_over_its_area_with_shares_adding_up() {
-        let clusters = emitter_lights(&unit_square(), 1, DVec3::ZERO, 0.0);
+        let clusters = emitter_lights(&unit_square(), &[], 1, DVec3::ZERO, 0.0);
         assert_eq!(clusters.points.len(), POINTS_PER_LIGHT);
         let total: f64 = clusters.points.iter().map(|&(_, w)| w as f64).sum();
         assert!((total - 1.0).abs() < 1e-6, "{total}");
@@ -356,10 +391,27 @@ mod tests {
     }
 
     #[test]
+    fn an_emissive_texture_weighs_the_patches() {
+        // Left half of the texture white, right half black (u = x + 1/2): the light keeps half
+        // the factor's intensity, centred on the lit half.
+        let texture = Texture { name: "half".into(), width: 2, height: 1, rgba8: vec![255, 255, 255, 255, 0, 0, 0, 255], usage: crate::scene::TextureUsage::Color };
+        let uv = |p: DVec3| [(p.x + 0.5) as f32, (p.z + 0.5) as f32];
+        let textured: Vec<EmitterTriangle> = unit_square()
+            .iter()
+            .map(|t| EmitterTriangle { uvs: t.corners.map(uv), texture: Some((0, UvTransform::IDENTITY)), ..*t })
+            .collect();
+        let c = emitter_lights(&textured, &[texture], 1, DVec3::ZERO, 0.0);
+        let light = c.lights[0];
+        assert!((light.intensity - 1.0).abs() < 1e-3, "{light:?}");
+        assert!((light.position.x + 0.25).abs() < 1e-3 && light.position.z.abs() < 1e-3, "{light:?}");
+        assert!(c.points.iter().all(|&(p, w)| w == 0.0 || p.x < 0.0));
+    }
+
+    #[test]
     fn emitters_facing_apart_get_a_light_each_whatever_the_budget() {
         let mut both = unit_square();
         both.extend(unit_square().iter().map(|t| EmitterTriangle { normal: DVec3::Y, corners: t.corners.map(|p| p - DVec3::Y), ..*t }));
-        let lights = emitter_lights(&both, 1, DVec3::ZERO, 0.0).lights;
+        let lights = emitter_lights(&both, &[], 1, DVec3::ZERO, 0.0).lights;
         assert_eq!(lights.len(), 2);
         let mut normals: Vec<f64> = lights.iter().map(|l| l.normal.y).collect();
         normals.sort_by(f64::total_cmp);

@@ -172,7 +172,8 @@ impl GpuScene {
     /// The emissive triangles as at most `budget` lights ([`emitters::emitter_lights`]; at
     /// least one per normal direction that emits), made now unless the last frame of this
     /// upload asked for the same budget. Empty without emitters.
-    pub fn emitter_lights(&self, budget: usize) -> std::sync::Arc<emitters::EmitterClusters> {
+    /// `scene` must be what the upload was made from (its emissive textures are sampled).
+    pub fn emitter_lights(&self, scene: &Scene, budget: usize) -> std::sync::Arc<emitters::EmitterClusters> {
         let mut cached = self.emitter_lights.lock().unwrap_or_else(|e| e.into_inner());
         if let Some((b, lights)) = cached.as_ref().filter(|(b, _)| *b == budget) {
             debug_assert_eq!(*b, budget);
@@ -180,7 +181,7 @@ impl GpuScene {
         }
         // Off the emitting surface by a millionth of the scene, so the light's cube of views
         // does not meet its own triangles edge-on at the very apex.
-        let lights = std::sync::Arc::new(emitters::emitter_lights(&self.emitter_triangles, budget, self.anchor, 1e-6 * self.extent));
+        let lights = std::sync::Arc::new(emitters::emitter_lights(&self.emitter_triangles, &scene.textures, budget, self.anchor, 1e-6 * self.extent));
         *cached = Some((budget, lights.clone()));
         lights
     }
