@@ -338,13 +338,11 @@ impl Renderer {
         };
         if !emitter_clusters.lights.is_empty() {
             let emitter_lights = &emitter_clusters.lights;
-            // A cluster's intensity Σ L_e·A is bounded like a light's: radiance (≤ 1e32) times a
-            // large enough area passes f32's range, and the frame would saturate, not fail.
-            if let Some(bad) = emitter_lights.iter().find(|l| !(l.intensity.is_finite() && l.intensity as f64 <= crate::scene::limits::MAX_INTENSITY)) {
-                return Err(Error::invalid("scene", format!(
-                    "emissive surfaces: a cluster of {:.3e} square units sends a peak intensity (radiance × area) of {:.3e}, past the {:.0e} a light may have (scene/limits.rs); lower the emission, or the scene's length unit",
-                    bad.area, bad.intensity, crate::scene::limits::MAX_INTENSITY
-                )));
+            // A cluster's intensity Σ L_e·A is bounded like a light's (the same check): radiance
+            // (≤ 1e32) times a large enough area passes f32's range, and the frame would
+            // saturate, not fail.
+            for light in emitter_lights.iter() {
+                crate::scene::limits::intensity("emissive surfaces", "candela: a cluster's radiance × area; lower the emission or the scene's length unit", light.intensity as f64)?;
             }
             light_sources.extend(emitter_lights.iter().copied().map(Light::Emitter));
             device_limits::check_lights(&light_sources, shadow_mapped.then_some(shadow_size), &gpu.limits)?;
