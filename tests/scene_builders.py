@@ -205,3 +205,24 @@ def columns_before_wall(directory: pathlib.Path):
     scene = vsgl.Scene.load(write_quads(directory, quads + [wall], name="columns_before_wall.gltf"))
     scene.lights = [vsgl.SpotLight(position=(1.5, 1.5, 0.0), direction=(-1.0, -0.45, 0.0), intensity=10.0, inner_cone_deg=50, outer_cone_deg=60)]
     return scene, vsgl.Camera.look_at(eye=(1.8, 2.2, 0.0), target=(-0.5, 0.0, 0.0), fov_y_deg=60)
+
+
+# Looks at the floor of glossy_floor_under_small_emitter where the emitter's mirror image lies
+# (the eye's ray to the image at y = −1 meets the floor at z = 1.25).
+GLOSSY_FLOOR_VIEW = vsgl.Camera.look_at(eye=(0.0, 0.6, 2.0), target=(0.0, 0.0, 0.6), up=(0.0, 1.0, 0.0), fov_y_deg=50.0)
+
+
+def glossy_floor_under_small_emitter(directory: pathlib.Path, roughness: float) -> vsgl.Scene:
+    """A 6 × 6 metal floor (base colour 0.9, the given roughness) under a 0.2 × 0.2 square at
+    y = 1 facing down that emits 20, with a grey Lambertian wall at z = −1 facing the light:
+    a small emitter's reflection in a glossy lobe (next-event estimation's hard case) and the
+    wall's bounce of it."""
+    e = 0.1
+    quads = [
+        dict(corners=[(-3, 0, -3), (-3, 0, 3), (3, 0, 3), (3, 0, -3)], name="floor", base_color=(0.9,) * 3, metallic=1.0, roughness=roughness),
+        dict(corners=[(-e, 1, -e), (e, 1, -e), (e, 1, e), (-e, 1, e)], name="glow", base_color=(0.0,) * 3, specular=0.0),
+        dict(corners=[(-3, 0, -1), (3, 0, -1), (3, 3, -1), (-3, 3, -1)], name="wall", base_color=(0.6,) * 3, specular=0.0),
+    ]
+    scene = vsgl.Scene.load(write_quads(directory, quads, name=f"glossy_floor_{roughness}.gltf"))
+    scene.set_material("materials[1]", emissive=(20.0, 20.0, 20.0))
+    return scene
