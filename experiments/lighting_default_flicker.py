@@ -5,8 +5,10 @@ vpl with interleave 8 (vsgl's per-pixel share of the lights), vsgl's defaults, a
 interleave 1 and no denoiser; with --variant, any labelled option sets (method=vpl for VPLs),
 the first the one the others are compared with.
 
-The truth is the every-texel reference at --reference-rsm (512 by default). Its own flicker
-error is printed first: the flicker of the reference at half that RSM against it (a finite RSM's
+Two truths, both every-texel references: the converged one at --reference-rsm (512 by default),
+what a viewer compares a frame with, and the reference of the methods' own RSM (256², the
+default of vpl and vsgl), what their virtual lights estimate. The converged truth's own flicker
+error is printed first: the flicker of the reference at half its RSM against it (a finite RSM's
 reference on glossy receivers is a sum of point-light highlights that crawl as the scene moves;
 at RSM 128² on glossy_cornell that error, 2.4, exceeds vsgl's whole flicker). One sequence's
 flicker is heavy-tailed (a single VPL next to a receiver can dominate it), so each variant runs
@@ -61,19 +63,24 @@ def main() -> int:
                 frames.append(r.render(scene, method=method, aovs=["indirect"], **kw).aov("indirect"))
             return np.stack(frames)
 
-        truth = sequence("reference", rsm_size=a.reference_rsm)
+        own_rsm = vsgl.method_options("vsgl")["rsm_size"]
+        truths = {"converged": sequence("reference", rsm_size=a.reference_rsm)}
         half = sequence("reference", rsm_size=a.reference_rsm // 2)
-        print(f"{name} ({a.size}x{a.size}, {a.frames} frames, {a.seed_sets} seed sets; truth: reference at RSM "
+        truths["same RSM"] = half if a.reference_rsm // 2 == own_rsm else sequence("reference", rsm_size=own_rsm)
+        print(f"{name} ({a.size}x{a.size}, {a.frames} frames, {a.seed_sets} seed sets; converged truth: reference at RSM "
               f"{a.reference_rsm}^2, whose own flicker error is below that of RSM {a.reference_rsm // 2}^2 against it, "
-              f"{flicker(half, truth):.3f})")
-        medians = {}
+              f"{flicker(half, truths['converged']):.3f}; same-RSM truth: reference at RSM {own_rsm}^2)")
+        medians = {t: {} for t in truths}
         for label, (method, kw) in runs.items():
-            values = [flicker(sequence(method, j, num_lights=1024, **kw), truth) for j in range(a.seed_sets)]
-            medians[label] = float(np.median(values))
-            print(f"  {label}: median {medians[label]:.3f}, range {min(values):.3f}-{max(values):.3f} "
-                  f"({', '.join(f'{v:.3f}' for v in values)})", flush=True)
-        first = next(iter(medians))
-        print("  " + ", ".join(f"{first} / {k} {medians[first] / v:.1f}x" for k, v in medians.items() if k != first))
+            frames = [sequence(method, j, num_lights=1024, **kw) for j in range(a.seed_sets)]
+            for t, truth in truths.items():
+                values = [flicker(x, truth) for x in frames]
+                medians[t][label] = float(np.median(values))
+                print(f"  {label} against the {t} truth: median {medians[t][label]:.3f}, range {min(values):.3f}-{max(values):.3f} "
+                      f"({', '.join(f'{v:.3f}' for v in values)})", flush=True)
+        for t, m in medians.items():
+            first = next(iter(m))
+            print(f"  {t}: " + ", ".join(f"{first} / {k} {m[first] / v:.1f}x" for k, v in m.items() if k != first))
     return 0
 
 

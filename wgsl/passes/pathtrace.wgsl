@@ -42,9 +42,9 @@
 //   L ≈ f(l, v) ⟨n, l⟩ L_e(z) cos_z / |z − p|² / p_z          (next-event estimation)
 // [Veach 1997, §9.1 / Pharr et al., "Sampling light sources": the area form of the rendering
 // equation]. Each shading point also traces one ray drawn from its BSDF and counts the emitter
-// it hits, f ⟨n, l⟩ L_e / p_bsdf; the two camera strategies are combined by the balance
+// it hits, f ⟨n, l⟩ L_e / p_bsdf; the two camera strategies are combined by the power
 // heuristic over z's density per unit area, p_z against p_bsdf cos_z / |z − p|² [Veach 1997,
-// §9.2] (emitter_camera_weight): next-event estimation wins on rough surfaces and large
+// §9.2.3] (emitter_camera_weight): next-event estimation wins on rough surfaces and large
 // emitters, BSDF sampling in glossy lobes narrower than the emitter's solid angle. At the
 // bounce point x this is the emitters' share of L_o(x) above; at the pixel centre it is their
 // direct light, whose running mean (emitted_direct) `resolve` adds to the `direct` AOV.
