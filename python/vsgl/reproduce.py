@@ -84,7 +84,7 @@ TOK16_PASSES: dict[str, tuple[str, ...]] = {
 #: frame targets are left out on both sides alike).
 POSTER_TABLE1: list[tuple[str, float, float, dict[str, Any], tuple[str, ...], tuple[str, ...]]] = [
     ("VSGL", 0.492, 204e3, dict(method="vsgl2"), ("vsgl2_reduce", "vsgl_shading"), ("vsgl2_",)),
-    ("LPV", 2.232, 1984e3, dict(method="lpv", lpv_grid=32, lpv_cascades=4), ("lpv_inject", "lpv_geometry", "lpv_propagate", "lpv_lookup"), ("lpv_",)),
+    ("LPV", 2.232, 1984e3, dict(method="lpv", lpv_grid=32, lpv_cascades=4), ("lpv_inject", "lpv_geometry", "lpv_geometry_merge", "lpv_propagate", "lpv_lookup"), ("lpv_",)),
 ]
 
 

@@ -7,8 +7,9 @@
 use super::rsm_lights::{check_rsm_size, for_each_light, RsmSettings};
 use super::{options::common, DirectLight, FrameContext, Method, MethodInfo, OptionKind, OptionSpec, OptionValue, Options};
 use crate::error::Result;
-use crate::frame::lpv::{grid_raw, place_cascades, Cascade, LpvVolumes, MAX_CASCADES};
+use crate::frame::lpv::{grid_raw, place_cascades, Cascade, LpvVolumes, GEOMETRY_CELL_BYTES, MAX_CASCADES};
 use crate::passes::lpv_geometry::LpvGeometryPass;
+use crate::passes::lpv_geometry_merge::LpvGeometryMergePass;
 use crate::passes::lpv_inject::LpvInjectPass;
 use crate::passes::lpv_lookup::LpvLookupPass;
 use crate::passes::lpv_propagate::LpvPropagatePass;
@@ -106,13 +107,34 @@ impl Method for Lpv {
         let cascades = place_cascades(anchor, half_size, ctx.origin, self.side, self.cascades);
         let grid = ctx.rec.uniform("lpv_grid_uniform_buffer", &grid_raw(&cascades, ctx.origin, self.side));
         let volumes = LpvVolumes::new(&mut ctx.rec, self.side, self.cascades, occlusion);
+        // With several lights each one's surfels go to a volume of their own, folded into the
+        // frame's by `lpv_geometry_merge` once its last RSM (cube face) is in: every light sees
+        // the same occluders again, and a sum would block once per light.
+        let merge = occlusion && ctx.light_sources.len() > 1;
+        let geometry_cells = (LpvVolumes::geometry_bytes(self.side, self.cascades) / GEOMETRY_CELL_BYTES) as u32;
+        let merge_with = if merge { Some((ctx.rec.storage("lpv_light_geometry_volume_buffer", volumes.geometry.size()), ctx.passes.get::<LpvGeometryMergePass>()?)) } else { None };
+        let mut open_light = None;
         let lit = for_each_light(ctx, &self.rsm, |ctx, light| {
             inject.record(&mut ctx.rec, &grid, light.rsm, light.raw.position, &volumes.current);
             if occlusion {
-                geometry.record(&mut ctx.rec, &grid, light.rsm, &light.rsm_light(), &volumes.geometry);
+                let target = match &merge_with {
+                    Some((scratch, pass)) => {
+                        if open_light.is_some_and(|open| open != light.light_index) {
+                            pass.record(&mut ctx.rec, geometry_cells, scratch, &volumes.geometry);
+                            ctx.rec.enc.clear_buffer(scratch, 0, None);
+                        }
+                        open_light = Some(light.light_index);
+                        scratch
+                    }
+                    None => &volumes.geometry,
+                };
+                geometry.record(&mut ctx.rec, &grid, light.rsm, &light.rsm_light(), target);
             }
             Ok(())
         })?;
+        if let (Some((scratch, pass)), Some(_)) = (&merge_with, open_light) {
+            pass.record(&mut ctx.rec, geometry_cells, scratch, &volumes.geometry);
+        }
         if !lit {
             return Ok(());
         }

@@ -96,6 +96,9 @@ pub struct LightRsm<'a> {
     pub view: &'a crate::frame::uniforms::FrameUniforms,
     /// Index of the view among all lights' views, in order (what `metropolis` keys chains by).
     pub slot: usize,
+    /// Index of the light among the frame's light sources (`FrameContext::light_sources`): a
+    /// point light's cube faces share it.
+    pub light_index: usize,
 }
 
 impl LightRsm<'_> {
@@ -262,7 +265,7 @@ pub fn for_each_light(ctx: &mut FrameContext<'_>, s: &RsmSettings, mut per_light
             passes.record(ctx, "rsm", view, &light);
             ctx.sampling_pyramid = None;
             if !dark {
-                per_light(ctx, &LightRsm { budget, raw, light: &light, rsm: &passes.rsm, view, slot: slot_base + view_index })?;
+                per_light(ctx, &LightRsm { budget, raw, light: &light, rsm: &passes.rsm, view, slot: slot_base + view_index, light_index: index })?;
             }
             if capture {
                 // Read back before the next view overwrites the shared RSM buffers; a point

@@ -15,6 +15,7 @@ pub mod kmeans_centres;
 pub mod kmeans_grid;
 pub mod kmeans_sums;
 pub mod lpv_geometry;
+pub mod lpv_geometry_merge;
 pub mod lpv_inject;
 pub mod lpv_lookup;
 pub mod lpv_propagate;
@@ -59,6 +60,7 @@ passes_from_device!(
     kmeans_grid::KmeansGridPass,
     kmeans_sums::KmeansSumsPass,
     lpv_geometry::LpvGeometryPass,
+    lpv_geometry_merge::LpvGeometryMergePass,
     lpv_inject::LpvInjectPass,
     lpv_lookup::LpvLookupPass,
     lpv_propagate::LpvPropagatePass,
