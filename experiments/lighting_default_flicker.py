@@ -13,6 +13,9 @@ reference on glossy receivers is a sum of point-light highlights that crawl as t
 at RSM 128² on glossy_cornell that error, 2.4, exceeds vsgl's whole flicker). One sequence's
 flicker is heavy-tailed (a single VPL next to a receiver can dominate it), so each variant runs
 --seed-sets sequences (seed k + 1000 j in frame k of set j) and the median and range are printed.
+Before 2026-12-04 the truth was the reference at RSM 128² and each variant one sequence: the
+files under experiments/lavapipe/corpus/ were made so (--reference-rsm 128 --seed-sets 1 with
+their variants reproduces their converged-truth column).
 
     .venv/bin/python experiments/lighting_default_flicker.py [--size 64] [--frames 16]
         [--reference-rsm 512] [--seed-sets 4] [--scene NAME ...] [--variant LABEL=opt=value,... ...]"""
