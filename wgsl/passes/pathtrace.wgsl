@@ -278,19 +278,23 @@ struct EmitterPoint {
 // (u1, u2): barycentrics (1 − √u1, √u1 (1 − u2), √u1 u2) [Pharr et al., "Sampling a triangle"].
 fn sample_emitter(u_pick: f32, u1: f32, u2: f32) -> EmitterPoint {
     let e = emitters[pick_emitter(u_pick)];
-    let tri = e.triangle;
+    let su = sqrt(u1);
+    return emitter_point(e.triangle, vec2f(su * (1.0 - u2), su * u2), e.probability / max(e.area, FLT_MIN));
+}
+
+// The point of emissive triangle `tri` at barycentrics w (of its second and third corners):
+// frame-space position, the emitting side's normal (the side the vertex normals point to), the
+// emitted radiance there and the given density.
+fn emitter_point(tri: u32, w: vec2f, pdf_area: f32) -> EmitterPoint {
     let a = vertices[indices[3u * tri]];
     let b = vertices[indices[3u * tri + 1u]];
     let c = vertices[indices[3u * tri + 2u]];
-    let su = sqrt(u1);
-    let w = vec2f(su * (1.0 - u2), su * u2);
     let position = lerp_bary3(a.position, b.position, c.position, w) - frame.view_origin.xyz;
     let ng = safe_normalize(cross(b.position - a.position, c.position - a.position), vec3f(0.0, 1.0, 0.0));
-    // The emitting side is the one the vertex normals point to.
     let normal = select(-ng, ng, dot(ng, lerp_bary3(a.normal, b.normal, c.normal, w)) >= 0.0);
     let uv = a.uv + w.x * (b.uv - a.uv) + w.y * (c.uv - a.uv);
     let radiance = material_emission(materials[triangle_materials[tri]], uv, 0.0);
-    return EmitterPoint(position, normal, radiance, e.probability / max(e.area, FLT_MIN), tri);
+    return EmitterPoint(position, normal, radiance, pdf_area, tri);
 }
 
 // The emitter point a ray along `dir` hit: its radiance towards the ray's origin (zero where the
@@ -299,22 +303,12 @@ fn sample_emitter(u_pick: f32, u1: f32, u2: f32) -> EmitterPoint {
 // so π ΣL_e / emitter_power with the material's emissive factor (the table's power leaves the
 // texture out), and needs no lookup from triangle to table row.
 fn emitter_hit(dir: vec3f, hit: RayHit) -> EmitterPoint {
-    let tri = hit.triangle;
-    let a = vertices[indices[3u * tri]];
-    let b = vertices[indices[3u * tri + 1u]];
-    let c = vertices[indices[3u * tri + 2u]];
-    let w = hit.bary;
-    let position = lerp_bary3(a.position, b.position, c.position, w) - frame.view_origin.xyz;
-    let ng = safe_normalize(cross(b.position - a.position, c.position - a.position), vec3f(0.0, 1.0, 0.0));
-    let normal = select(-ng, ng, dot(ng, lerp_bary3(a.normal, b.normal, c.normal, w)) >= 0.0);
-    let material = materials[triangle_materials[tri]];
-    let factor = max(material.emissive, vec3f(0.0));
-    var radiance = vec3f(0.0);
-    if (dot(normal, dir) < 0.0) {
-        radiance = material_emission(material, a.uv + w.x * (b.uv - a.uv) + w.y * (c.uv - a.uv), 0.0);
+    let factor = max(materials[triangle_materials[hit.triangle]].emissive, vec3f(0.0));
+    var z = emitter_point(hit.triangle, hit.bary, PI * (factor.r + factor.g + factor.b) / max(params.emitter_power, FLT_MIN));
+    if (dot(z.normal, dir) >= 0.0) {
+        z.radiance = vec3f(0.0);
     }
-    let pdf_area = PI * (factor.r + factor.g + factor.b) / max(params.emitter_power, FLT_MIN);
-    return EmitterPoint(position, normal, radiance, pdf_area, tri);
+    return z;
 }
 
 // MIS weight of one of the camera strategies that reach an emitter point z from a shading point:
