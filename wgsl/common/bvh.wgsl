@@ -1,6 +1,9 @@
-// vsgl:include-only — the including shader declares the two storage arrays
-//   bvh_nodes: array<BvhNode>, bvh_triangles: array<BvhTriangle>
-// that crates/vsgl-core/src/upload/bvh.rs builds (node 0 is the root; triangles in leaf order).
+// vsgl:include-only — the including shader declares the three storage arrays
+//   bvh_nodes: array<BvhNode>, bvh_triangle_ids: array<u32>, triangle_corners: array<TriangleCorner>
+// that crates/vsgl-core/src/upload/bvh.rs builds (node 0 is the root; the scene triangle index of
+// each leaf slot, in leaf order) and the upload holds (the raster vertices: three corners a
+// triangle, in scene order). Reading corners through the id keeps the BVH at its nodes and 4
+// bytes a triangle, where a leaf-ordered copy of the corners took 48.
 //
 // Ray queries over the BVH: closest hit and any hit (shadow rays), with a fixed-size stack whose
 // size is the builder's depth bound. Ray–box: slab test with Ize's conservative rounding
@@ -20,15 +23,11 @@ struct BvhNode {
     b: u32,
 }
 
-// 48 bytes; the twin is `BvhTriangleRaw`. `id` indexes the scene's `indices` and
-// `triangle_materials`.
-struct BvhTriangle {
-    v0: vec3f,
-    id: u32,
-    v1: vec3f,
-    _pad0: u32,
-    v2: vec3f,
-    _pad1: u32,
+// 16 bytes; the twin is `RasterVertex` in crates/vsgl-core/src/upload/mod.rs. Corner k of scene
+// triangle t is triangle_corners[3t + k]; `triangle` is t.
+struct TriangleCorner {
+    position: vec3f,
+    triangle: u32,
 }
 
 const BVH_LEAF: u32 = 0x80000000u;
@@ -166,13 +165,14 @@ fn bvh_closest_hit(ray: Ray) -> RayHit {
         if ((node.b & BVH_LEAF) != 0u) {
             let count = node.b & ~BVH_LEAF;
             for (var i = 0u; i < count; i++) {
-                let tri = bvh_triangles[node.a + i];
-                if (tri.id == ray.ignore) {
+                let id = bvh_triangle_ids[node.a + i];
+                if (id == ray.ignore) {
                     continue;
                 }
-                let r = ray_triangle_watertight(ray.origin, sh, hit.t, tri.v0, tri.v1, tri.v2);
+                let c = 3u * id;
+                let r = ray_triangle_watertight(ray.origin, sh, hit.t, triangle_corners[c].position, triangle_corners[c + 1u].position, triangle_corners[c + 2u].position);
                 if (r.x > 0.0) {
-                    hit = RayHit(r.x, tri.id, r.yz);
+                    hit = RayHit(r.x, id, r.yz);
                 }
             }
         } else {
@@ -232,11 +232,12 @@ fn bvh_any_hit(ray: Ray) -> bool {
         if ((node.b & BVH_LEAF) != 0u) {
             let count = node.b & ~BVH_LEAF;
             for (var i = 0u; i < count; i++) {
-                let tri = bvh_triangles[node.a + i];
-                if (tri.id == ray.ignore) {
+                let id = bvh_triangle_ids[node.a + i];
+                if (id == ray.ignore) {
                     continue;
                 }
-                if (ray_triangle_watertight(ray.origin, sh, ray.t_max, tri.v0, tri.v1, tri.v2).x > 0.0) {
+                let c = 3u * id;
+                if (ray_triangle_watertight(ray.origin, sh, ray.t_max, triangle_corners[c].position, triangle_corners[c + 1u].position, triangle_corners[c + 2u].position).x > 0.0) {
                     return true;
                 }
             }

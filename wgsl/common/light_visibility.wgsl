@@ -14,13 +14,16 @@
 // triangle is skipped by its shadow rays). Placeholders otherwise.
 override VISIBILITY_TRACED: bool = false;
 @group(2) @binding(0) var<storage, read> bvh_nodes: array<BvhNode>;
-@group(2) @binding(1) var<storage, read> bvh_triangles: array<BvhTriangle>;
+@group(2) @binding(1) var<storage, read> bvh_triangle_ids: array<u32>;
 @group(2) @binding(2) var visibility_ids: texture_2d<u32>;
 // visibility="ism": one imperfect shadow map per light of the buffer (passes/ism.wgsl built them
 // just before this pass) and how to read them. Placeholders otherwise.
 override VISIBILITY_ISM: bool = false;
 @group(2) @binding(3) var<storage, read> ism_atlas: array<u32>;
 @group(2) @binding(4) var<uniform> ism_lookup: IsmLookup;
+// visibility="raytrace": the BVH's triangle corners (the upload's raster vertices). A
+// placeholder otherwise.
+@group(2) @binding(5) var<storage, read> triangle_corners: array<TriangleCorner>;
 
 // What the visibility of a receiver needs besides its position and shading normal.
 struct ShadowReceiver {

@@ -1,5 +1,5 @@
 // vsgl:include-only — the including shader includes common/bvh.wgsl and declares its two
-//   storage arrays (bvh_nodes, bvh_triangles).
+//   storage arrays (bvh_nodes, bvh_triangle_ids, triangle_corners).
 //
 // Shadow rays between a receiver and a virtual light through the scene's BVH, for
 // `visibility="raytrace"`. Points are relative to the frame origin (the eye), like the

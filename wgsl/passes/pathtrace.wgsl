@@ -95,7 +95,7 @@ struct PathParams {
 @group(0) @binding(0) var<uniform> frame: FrameUniforms;
 @group(0) @binding(1) var<uniform> params: PathParams;
 @group(0) @binding(2) var<storage, read> bvh_nodes: array<BvhNode>;
-@group(0) @binding(3) var<storage, read> bvh_triangles: array<BvhTriangle>;
+@group(0) @binding(3) var<storage, read> bvh_triangle_ids: array<u32>;
 @group(0) @binding(4) var<storage, read> vertices: array<VertexRaw>;
 @group(0) @binding(5) var<storage, read> indices: array<u32>;
 @group(0) @binding(6) var<storage, read> triangle_materials: array<u32>;
@@ -127,6 +127,8 @@ struct PathParams {
 // each pixel centre (rgb).
 @group(0) @binding(25) var<storage, read> emitters: array<EmitterRaw>;
 @group(0) @binding(26) var<storage, read_write> emitted_direct: array<vec4f>;
+// The upload's raster vertices: the BVH's triangle corners (common/bvh.wgsl).
+@group(0) @binding(27) var<storage, read> triangle_corners: array<TriangleCorner>;
 
 // Whether the upload has emissive triangles: without, no emitter code runs and no random number
 // is drawn for them, so a scene without emission renders as before emitters existed.

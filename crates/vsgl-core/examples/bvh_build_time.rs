@@ -63,11 +63,11 @@ fn main() {
             let t = Instant::now();
             let b = Bvh::build(&tris);
             many.push(t.elapsed().as_secs_f64() * 1e3);
-            assert!(a.nodes == b.nodes && a.triangles == b.triangles, "the parallel build must be the one-thread build's bytes");
+            assert!(a.nodes == b.nodes && a.triangle_ids == b.triangle_ids, "the parallel build must be the one-thread build's bytes");
             last = Some(b);
         }
         let b = last.expect("at least one sample");
-        let bytes = (b.node_bytes().len() + b.triangle_bytes().len()) as f64 / tris.len() as f64;
+        let bytes = (b.node_bytes().len() + b.triangle_id_bytes().len()) as f64 / tris.len() as f64;
         let (lo1, hi1) = (one.iter().cloned().fold(f64::INFINITY, f64::min), one.iter().cloned().fold(0.0, f64::max));
         let (lo2, hi2) = (many.iter().cloned().fold(f64::INFINITY, f64::min), many.iter().cloned().fold(0.0, f64::max));
         let (m1, m2) = (median(one), median(many));

@@ -1,6 +1,6 @@
 //! What a shading pass (`passes/vpl_shading.rs`, `passes/vsgl_shading.rs`) binds for
-//! virtual-light visibility in its group 2, and which variant it runs: the BVH's nodes and
-//! triangles, the camera's triangle ids, the imperfect shadow maps and how to read them
+//! virtual-light visibility in its group 2, and which variant it runs: the BVH's nodes, its
+//! leaf-ordered triangle ids and the triangles' corners, the camera's triangle ids, the imperfect shadow maps and how to read them
 //! (placeholders for what the variant does not read). `methods/visibility.rs` makes them from
 //! `visibility=`; the passes only bind them.
 
@@ -19,12 +19,14 @@ const _: () = assert!(std::mem::size_of::<IsmLookupRaw>() == 32);
 
 /// Group 2 of the shading passes and the variant it selects.
 pub struct ShadingVisibility {
-    /// One shadow ray per (pixel, virtual light) through `nodes` / `triangles`.
+    /// One shadow ray per (pixel, virtual light) through `nodes` / `triangle_ids` /
+    /// `triangle_corners`.
     pub traced: bool,
     /// Imperfect shadow maps in `ism_atlas`, read as `ism_lookup` says.
     pub reads_ism: bool,
     pub nodes: wgpu::Buffer,
-    pub triangles: wgpu::Buffer,
+    pub triangle_ids: wgpu::Buffer,
+    pub triangle_corners: wgpu::Buffer,
     pub ids: wgpu::TextureView,
     pub ism_atlas: wgpu::Buffer,
     pub ism_lookup: wgpu::Buffer,
@@ -48,13 +50,14 @@ impl ShadingVisibility {
     }
 
     /// Group 2 of the shading passes.
-    pub fn bindings(&self) -> [wgpu::BindingResource<'_>; 5] {
+    pub fn bindings(&self) -> [wgpu::BindingResource<'_>; 6] {
         [
             self.nodes.as_entire_binding(),
-            self.triangles.as_entire_binding(),
+            self.triangle_ids.as_entire_binding(),
             wgpu::BindingResource::TextureView(&self.ids),
             self.ism_atlas.as_entire_binding(),
             self.ism_lookup.as_entire_binding(),
+            self.triangle_corners.as_entire_binding(),
         ]
     }
 }

@@ -105,10 +105,12 @@ impl VirtualLightVisibility {
     /// Placeholders for every group-2 binding: the shading variant without visibility code.
     fn unshadowed(ctx: &mut FrameContext<'_>, ids: wgpu::TextureView) -> Self {
         let nodes = ctx.rec.storage_written("visibility_placeholder_node_buffer", PLACEHOLDER_BYTES);
-        let triangles = ctx.rec.storage_written("visibility_placeholder_triangle_buffer", PLACEHOLDER_BYTES);
+        let triangle_ids = ctx.rec.storage_written("visibility_placeholder_triangle_id_buffer", PLACEHOLDER_BYTES);
+        let triangle_corners = ctx.rec.storage_written("visibility_placeholder_triangle_corner_buffer", PLACEHOLDER_BYTES);
         let ism_atlas = ctx.rec.storage_written("visibility_placeholder_ism_atlas_buffer", PLACEHOLDER_BYTES);
         let ism_lookup = ctx.rec.uniform("visibility_placeholder_ism_lookup_uniform_buffer", &IsmLookupRaw::zeroed());
-        Self { ism: None, shading: ShadingVisibility { traced: false, reads_ism: false, nodes, triangles, ids, ism_atlas, ism_lookup } }
+        let shading = ShadingVisibility { traced: false, reads_ism: false, nodes, triangle_ids, triangle_corners, ids, ism_atlas, ism_lookup };
+        Self { ism: None, shading }
     }
 
     /// `max_lights`: the most lights one batch shades (the maps of a batch are held at once).
@@ -136,7 +138,17 @@ impl VirtualLightVisibility {
                 }
                 let ism_atlas = placeholder(ctx, "visibility_placeholder_ism_atlas_buffer");
                 let ism_lookup = ctx.rec.uniform("visibility_placeholder_ism_lookup_uniform_buffer", &IsmLookupRaw::zeroed());
-                Ok(Self { ism: None, shading: ShadingVisibility { traced: true, reads_ism: false, nodes: bvh.nodes.clone(), triangles: bvh.triangles.clone(), ids, ism_atlas, ism_lookup } })
+                let shading = ShadingVisibility {
+                    traced: true,
+                    reads_ism: false,
+                    nodes: bvh.nodes.clone(),
+                    triangle_ids: bvh.triangle_ids.clone(),
+                    triangle_corners: ctx.gpu_scene.raster_vertices.clone(),
+                    ids,
+                    ism_atlas,
+                    ism_lookup,
+                };
+                Ok(Self { ism: None, shading })
             }
             VisibilityMode::Ism(settings) => {
                 let (points, made) = ctx.gpu_scene.surface_points(ctx.gpu, ctx.scene, settings.points)?;
@@ -168,9 +180,11 @@ impl VirtualLightVisibility {
                 };
                 let ism_lookup = ctx.rec.uniform("ism_lookup_uniform_buffer", &lookup);
                 let nodes = placeholder(ctx, "visibility_placeholder_node_buffer");
-                let triangles = placeholder(ctx, "visibility_placeholder_triangle_buffer");
+                let triangle_ids = placeholder(ctx, "visibility_placeholder_triangle_id_buffer");
+                let triangle_corners = placeholder(ctx, "visibility_placeholder_triangle_corner_buffer");
                 let ism = IsmMaps { settings, layout, atlas: atlas.clone(), capacity, points };
-                Ok(Self { ism: Some(ism), shading: ShadingVisibility { traced: false, reads_ism: true, nodes, triangles, ids, ism_atlas: atlas, ism_lookup } })
+                let shading = ShadingVisibility { traced: false, reads_ism: true, nodes, triangle_ids, triangle_corners, ids, ism_atlas: atlas, ism_lookup };
+                Ok(Self { ism: Some(ism), shading })
             }
         }
     }

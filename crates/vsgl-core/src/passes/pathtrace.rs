@@ -115,7 +115,7 @@ fn binding_types() -> Vec<wgpu::BindingType> {
         uniform_binding(),                                                            // 0 frame
         uniform_binding(),                                                            // 1 params
         ro,                                                                           // 2 bvh_nodes
-        ro,                                                                           // 3 bvh_triangles
+        ro,                                                                           // 3 bvh_triangle_ids
         ro,                                                                           // 4 vertices
         ro,                                                                           // 5 indices
         ro,                                                                           // 6 triangle_materials
@@ -139,6 +139,7 @@ fn binding_types() -> Vec<wgpu::BindingType> {
         rw,                                                                           // 24 light_m2
         ro,                                                                           // 25 emitters
         rw,                                                                           // 26 emitted_direct
+        ro,                                                                           // 27 triangle_corners
     ]
 }
 
@@ -185,7 +186,7 @@ impl PathTracePass {
         if bvh_built {
             note_pass("bvh_build");
         }
-        let (nodes, tris) = (&bvh.nodes, &bvh.triangles);
+        let (nodes, triangle_ids) = (&bvh.nodes, &bvh.triangle_ids);
         let pixels = w as u64 * h as u64;
         let m2 = rec.storage("pathtrace_m2_buffer", pixels * 16);
         let stderr = rec.storage("pathtrace_stderr_buffer", pixels * 16);
@@ -208,7 +209,7 @@ impl PathTracePass {
                 input.frame.as_entire_binding(),
                 uniform.as_entire_binding(),
                 nodes.as_entire_binding(),
-                tris.as_entire_binding(),
+                triangle_ids.as_entire_binding(),
                 input.gscene.vertices.as_entire_binding(),
                 input.gscene.indices.as_entire_binding(),
                 input.gscene.triangle_materials.as_entire_binding(),
@@ -232,6 +233,7 @@ impl PathTracePass {
                 light_m2.as_entire_binding(),
                 input.gscene.emitters.as_entire_binding(),
                 emitted_direct.as_entire_binding(),
+                input.gscene.raster_vertices.as_entire_binding(),
             ];
             let bind = rec.bind_group("pathtrace_bind_group", PipelineRef::Compute(pipeline), 0, &resources);
             rec.in_debug_group(label, |rec| {

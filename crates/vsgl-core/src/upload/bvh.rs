@@ -10,9 +10,12 @@
 //! No BVH crate is used: `bvh` 0.13 needs Rust 1.90 and nalgebra, `obvhs` 0.4 a second glam
 //! (≥ 0.33 beside the workspace's 0.30) and Rust 1.88, both above this workspace's 1.87.
 //!
-//! GPU layout: 32-byte nodes (bounds + two words) and 48-byte triangles stored in leaf order,
-//! each carrying the index of the scene triangle it came from (the `indices` /
-//! `triangle_materials` numbering of [`crate::upload::GpuScene`]).
+//! GPU layout: 32-byte nodes (bounds + two words) and, in leaf order, the index of each scene
+//! triangle (4 bytes: the `indices` / `triangle_materials` numbering of
+//! [`crate::upload::GpuScene`]). The traversal reads a triangle's corners from the upload's
+//! raster vertices (`GpuScene::raster_vertices`, three 16-byte corners a triangle in scene
+//! order), which the rasteriser needs anyway, so the BVH adds its nodes and 4 bytes a triangle
+//! to the upload (about 34 bytes a triangle) instead of a second 48-byte copy of every triangle.
 //! Bounds are min/max of the very f32 vertices the GPU intersects, so they contain them exactly.
 
 use crate::scene::Scene;
@@ -34,7 +37,7 @@ pub const PARALLEL_MIN_PRIMS: usize = 1 << 14;
 const SAH_TRAVERSAL_COST: f64 = 1.0;
 
 /// One node (32 bytes): inner nodes have `a`, `b` = left, right child index; leaves have
-/// `a` = first triangle (in [`Bvh::triangles`]) and `b` = [`BVH_LEAF`] | count.
+/// `a` = first slot of [`Bvh::triangle_ids`] and `b` = [`BVH_LEAF`] | count.
 #[repr(C)]
 #[derive(Clone, Copy, Debug, PartialEq, bytemuck::Pod, bytemuck::Zeroable)]
 pub struct BvhNodeRaw {
@@ -45,19 +48,6 @@ pub struct BvhNodeRaw {
 }
 const _: () = assert!(std::mem::size_of::<BvhNodeRaw>() == 32);
 
-/// A triangle in leaf order (48 bytes): its vertices and its scene triangle index.
-#[repr(C)]
-#[derive(Clone, Copy, Debug, PartialEq, bytemuck::Pod, bytemuck::Zeroable)]
-pub struct BvhTriangleRaw {
-    pub v0: [f32; 3],
-    pub id: u32,
-    pub v1: [f32; 3],
-    pub _pad0: u32,
-    pub v2: [f32; 3],
-    pub _pad1: u32,
-}
-const _: () = assert!(std::mem::size_of::<BvhTriangleRaw>() == 48);
-
 pub type Triangle = [[f32; 3]; 3];
 
 /// The flattened hierarchy. Node 0 is the root; an empty scene has one leaf with no triangles
@@ -65,7 +55,9 @@ pub type Triangle = [[f32; 3]; 3];
 #[derive(Clone, Debug)]
 pub struct Bvh {
     pub nodes: Vec<BvhNodeRaw>,
-    pub triangles: Vec<BvhTriangleRaw>,
+    /// The scene triangle index of each leaf slot: leaf `n` holds
+    /// `triangle_ids[n.a .. n.a + count]`.
+    pub triangle_ids: Vec<u32>,
     /// Deepest level reached (root = 0).
     pub depth: usize,
 }
@@ -138,14 +130,8 @@ impl Bvh {
         } else {
             build_subtree(&mut prims, 0, 0, parallel_min.max(2))
         };
-        let tris = prims
-            .par_iter()
-            .map(|p| {
-                let t = &triangles[p.index as usize];
-                BvhTriangleRaw { v0: t[0], id: p.index, v1: t[1], _pad0: 0, v2: t[2], _pad1: 0 }
-            })
-            .collect();
-        Self { nodes, triangles: tris, depth }
+        let triangle_ids = prims.par_iter().map(|p| p.index).collect();
+        Self { nodes, triangle_ids, depth }
     }
 
     /// The node array as bytes for a storage buffer.
@@ -153,19 +139,20 @@ impl Bvh {
         bytemuck::cast_slice(&self.nodes)
     }
 
-    /// The triangles as bytes for a storage buffer (one zero triangle when there are none, as
-    /// wgpu rejects empty bindings; no leaf refers to it).
-    pub fn triangle_bytes(&self) -> Vec<u8> {
-        if self.triangles.is_empty() {
-            vec![0u8; std::mem::size_of::<BvhTriangleRaw>()]
+    /// The leaf-ordered triangle ids as bytes for a storage buffer (one zero id when there are
+    /// none, as wgpu rejects empty bindings; no leaf refers to it).
+    pub fn triangle_id_bytes(&self) -> Vec<u8> {
+        if self.triangle_ids.is_empty() {
+            vec![0u8; std::mem::size_of::<u32>()]
         } else {
-            bytemuck::cast_slice(&self.triangles).to_vec()
+            bytemuck::cast_slice(&self.triangle_ids).to_vec()
         }
     }
 
-    /// Closest hit along `origin + t·dir`, `0 < t < t_max`: (t, triangle id). CPU twin of
-    /// `bvh_closest_hit` for tests (f64 Möller–Trumbore, same node layout and order).
-    pub fn closest_hit(&self, origin: [f64; 3], dir: [f64; 3], t_max: f64) -> Option<(f64, u32)> {
+    /// Closest hit along `origin + t·dir`, `0 < t < t_max`: (t, triangle id), over the
+    /// `triangles` the hierarchy was built on. CPU twin of `bvh_closest_hit` for tests (f64
+    /// Möller–Trumbore, same node layout and order).
+    pub fn closest_hit(&self, triangles: &[Triangle], origin: [f64; 3], dir: [f64; 3], t_max: f64) -> Option<(f64, u32)> {
         let mut best: Option<(f64, u32)> = None;
         let mut stack = vec![0usize];
         while let Some(i) = stack.pop() {
@@ -176,10 +163,10 @@ impl Bvh {
             }
             if n.b & BVH_LEAF != 0 {
                 let count = (n.b & !BVH_LEAF) as usize;
-                for t in &self.triangles[n.a as usize..n.a as usize + count] {
-                    if let Some(d) = ray_triangle(origin, dir, [t.v0, t.v1, t.v2]) {
+                for &id in &self.triangle_ids[n.a as usize..n.a as usize + count] {
+                    if let Some(d) = ray_triangle(origin, dir, triangles[id as usize]) {
                         if d < best.map_or(t_max, |b| b.0) {
-                            best = Some((d, t.id));
+                            best = Some((d, id));
                         }
                     }
                 }
@@ -504,9 +491,8 @@ mod tests {
     fn check_structure(bvh: &Bvh, tris: &[Triangle]) {
         // Every triangle exactly once, every box contains its children / triangles.
         let mut seen = vec![0u32; tris.len()];
-        for t in &bvh.triangles {
-            seen[t.id as usize] += 1;
-            assert_eq!([t.v0, t.v1, t.v2], tris[t.id as usize]);
+        for &id in &bvh.triangle_ids {
+            seen[id as usize] += 1;
         }
         assert!(seen.iter().all(|&c| c == 1), "every triangle must be in exactly one leaf");
         let contains = |outer: &BvhNodeRaw, p: [f32; 3]| (0..3).all(|k| outer.min[k] <= p[k] && p[k] <= outer.max[k]);
@@ -518,8 +504,8 @@ mod tests {
             if n.b & BVH_LEAF != 0 {
                 let count = (n.b & !BVH_LEAF) as usize;
                 reached += count;
-                for t in &bvh.triangles[n.a as usize..n.a as usize + count] {
-                    for v in [t.v0, t.v1, t.v2] {
+                for &id in &bvh.triangle_ids[n.a as usize..n.a as usize + count] {
+                    for v in tris[id as usize] {
                         assert!(contains(&n, v), "leaf {i} must contain its triangles");
                     }
                 }
@@ -548,7 +534,7 @@ mod tests {
             for parallel_min in [2, 7, 64, 1000] {
                 let many = Bvh::build_with(&tris, parallel_min);
                 assert_eq!(many.nodes, one.nodes, "parallel_min {parallel_min}: nodes");
-                assert_eq!(many.triangles, one.triangles, "parallel_min {parallel_min}: triangles");
+                assert_eq!(many.triangle_ids, one.triangle_ids, "parallel_min {parallel_min}: triangles");
                 assert_eq!(many.depth, one.depth);
             }
         }
@@ -567,7 +553,7 @@ mod tests {
                 let o = [rng.range(-1.5 * scale, 1.5 * scale) + offset, rng.range(-1.5 * scale, 1.5 * scale), rng.range(-1.5 * scale, 1.5 * scale)];
                 let d = rng.unit_vector().to_array();
                 let want = brute_force(&tris, o, d);
-                let got = bvh.closest_hit(o, d, f64::INFINITY);
+                let got = bvh.closest_hit(&tris, o, d, f64::INFINITY);
                 match (want, got) {
                     (None, None) => {}
                     (Some(w), Some(g)) => {
@@ -589,9 +575,9 @@ mod tests {
     fn bvh_respects_t_max() {
         let tris = vec![[[-1.0, -1.0, 2.0], [1.0, -1.0, 2.0], [0.0, 1.0, 2.0]]];
         let bvh = Bvh::build(&tris);
-        assert_eq!(bvh.closest_hit([0.0; 3], [0.0, 0.0, 1.0], 3.0).map(|h| h.1), Some(0));
-        assert_eq!(bvh.closest_hit([0.0; 3], [0.0, 0.0, 1.0], 1.5), None);
-        assert_eq!(bvh.closest_hit([0.0; 3], [0.0, 0.0, -1.0], 10.0), None);
+        assert_eq!(bvh.closest_hit(&tris, [0.0; 3], [0.0, 0.0, 1.0], 3.0).map(|h| h.1), Some(0));
+        assert_eq!(bvh.closest_hit(&tris, [0.0; 3], [0.0, 0.0, 1.0], 1.5), None);
+        assert_eq!(bvh.closest_hit(&tris, [0.0; 3], [0.0, 0.0, -1.0], 10.0), None);
     }
 
     #[test]
@@ -601,7 +587,7 @@ mod tests {
         let bvh = Bvh::build(&same);
         check_structure(&bvh, &same);
         assert!(bvh.depth <= BVH_MAX_DEPTH);
-        assert_eq!(bvh.closest_hit([0.2, 0.2, -1.0], [0.0, 0.0, 1.0], 10.0).map(|h| h.0), Some(1.0));
+        assert_eq!(bvh.closest_hit(&same, [0.2, 0.2, -1.0], [0.0, 0.0, 1.0], 10.0).map(|h| h.0), Some(1.0));
         // Exponentially spaced triangles: SAH alone would build a deep, list-like tree.
         let strip: Vec<Triangle> = (0..3000)
             .map(|i| {
@@ -614,8 +600,8 @@ mod tests {
         assert!(bvh.depth <= BVH_MAX_DEPTH, "depth {}", bvh.depth);
         let empty = Bvh::build(&[]);
         assert_eq!(empty.nodes.len(), 1);
-        assert_eq!(empty.closest_hit([0.0; 3], [0.0, 0.0, 1.0], 1e30), None);
-        assert_eq!(empty.triangle_bytes().len(), 48);
+        assert_eq!(empty.closest_hit(&[], [0.0; 3], [0.0, 0.0, 1.0], 1e30), None);
+        assert_eq!(empty.triangle_id_bytes().len(), 4);
     }
 
     #[test]

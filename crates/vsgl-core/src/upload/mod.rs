@@ -83,6 +83,8 @@ fn uv_rows(t: &crate::scene::UvTransform) -> [[f32; 4]; 2] {
 pub const TEXTURE_LAYER_MAX: u32 = 1024;
 
 pub struct GpuScene {
+    /// Three corners a triangle in scene order ([`RasterVertex`]): the rasteriser's vertex buffer
+    /// and the ray tracers' triangle corners ([`GpuBvh`]).
     pub raster_vertices: wgpu::Buffer,
     pub raster_vertex_count: u32,
     pub vertices: wgpu::Buffer,
@@ -136,10 +138,12 @@ pub struct GpuPoints {
     pub asked: u32,
 }
 
-/// A BVH on the GPU (layout in `wgsl/common/bvh.wgsl`).
+/// A BVH on the GPU (layout in `wgsl/common/bvh.wgsl`). Its triangles' corners are
+/// [`GpuScene::raster_vertices`], bound beside it.
 pub struct GpuBvh {
     pub nodes: wgpu::Buffer,
-    pub triangles: wgpu::Buffer,
+    /// The scene triangle index of each leaf slot (u32, leaf order).
+    pub triangle_ids: wgpu::Buffer,
     pub node_count: usize,
     pub depth: usize,
 }
@@ -199,17 +203,21 @@ impl GpuScene {
         }
         let started = std::time::Instant::now();
         let built = bvh::Bvh::build(&triangles);
-        let tri_bytes = built.triangle_bytes();
+        let id_bytes = built.triangle_id_bytes();
         // The frame that builds it says what it cost (CPU wall time, all threads of the build)
-        // and how large it is per triangle (nodes and leaf-ordered triangles).
+        // and how large it is per triangle (nodes and leaf-ordered triangle ids; the corners it
+        // reads are the raster vertices the upload holds anyway).
         let build_ms = started.elapsed().as_secs_f64() * 1e3;
-        let bytes = (tri_bytes.len() + built.node_bytes().len()) as f64;
+        let bytes = (id_bytes.len() + built.node_bytes().len()) as f64;
         crate::gpu::frame_log::note_setting("bvh_build_ms", build_ms.into());
         crate::gpu::frame_log::note_setting("bvh_bytes_per_triangle", (bytes / triangles.len().max(1) as f64).into());
-        let max = gpu.limits.max_storage_buffer_binding_size;
-        if tri_bytes.len() as u64 > max || built.node_bytes().len() as u64 > max {
+        let max = gpu.limits.max_storage_buffer_binding_size as u64;
+        let corner_bytes = self.raster_vertices.size();
+        if id_bytes.len() as u64 > max || built.node_bytes().len() as u64 > max || corner_bytes > max {
             return Err(Error::invalid("scene", format!(
-                "{} triangles exceed this adapter's storage binding limit of {max} bytes for the BVH", triangles.len()
+                "{} triangles exceed this adapter's storage binding limit of {max} bytes for the ray tracer (BVH nodes {} bytes, triangle corners {corner_bytes} bytes)",
+                triangles.len(),
+                built.node_bytes().len()
             )));
         }
         let make = |label: &str, bytes: &[u8]| {
@@ -217,7 +225,7 @@ impl GpuScene {
         };
         let gpu_bvh = std::sync::Arc::new(GpuBvh {
             nodes: make("bvh_node_buffer", built.node_bytes()),
-            triangles: make("bvh_triangle_buffer", &tri_bytes),
+            triangle_ids: make("bvh_triangle_id_buffer", &id_bytes),
             node_count: built.nodes.len(),
             depth: built.depth,
         });
@@ -374,7 +382,8 @@ impl GpuScene {
             raster_vertices: gpu.device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
                 label: Some("scene_raster_vertex_buffer"),
                 contents: if raster.is_empty() { &[0u8; 16] } else { bytemuck::cast_slice(&raster) },
-                usage: wgpu::BufferUsages::VERTEX,
+                // STORAGE: the ray tracers read triangles' corners from it (upload/bvh.rs).
+                usage: wgpu::BufferUsages::VERTEX | wgpu::BufferUsages::STORAGE,
             }),
             vertices: storage(gpu, "scene_vertex_buffer", bytemuck::cast_slice(&verts), wgpu::BufferUsages::empty()),
             indices: storage(gpu, "scene_index_buffer", bytemuck::cast_slice(&indices), wgpu::BufferUsages::empty()),
