@@ -128,7 +128,8 @@ impl Bvh {
         let (nodes, depth) = if prims.is_empty() {
             (vec![BvhNodeRaw { min: [0.0; 3], a: 0, max: [0.0; 3], b: BVH_LEAF }], 0)
         } else {
-            build_subtree(&mut prims, 0, 0, parallel_min.max(2))
+            let info = NodeInfo::of(&prims, true);
+            build_subtree(&mut prims, info, 0, 0, parallel_min.max(2))
         };
         let triangle_ids = prims.par_iter().map(|p| p.index).collect();
         Self { nodes, triangle_ids, depth }
@@ -179,23 +180,84 @@ impl Bvh {
     }
 }
 
+/// A node's primitive bounds and centroid bounds ([min, max] per axis), which its parent's
+/// bins already hold (the union of the bins on each side of the split), so a level costs one
+/// binning pass and one partition over its primitives [Wald 2007, §3.2] instead of separate
+/// passes for the bounds, the centroid bounds and each axis. Min and max are exact, so these
+/// are the very numbers passes over the primitives would give.
+#[derive(Clone, Copy, Debug)]
+struct NodeInfo {
+    bounds: Aabb,
+    cbounds: CentroidBounds,
+}
+
+type CentroidBounds = [[f64; 3]; 2];
+const CENTROID_BOUNDS_EMPTY: CentroidBounds = [[f64::INFINITY; 3], [f64::NEG_INFINITY; 3]];
+
+/// `a` grown to hold the centroid bounds `b` (a point c is [c, c]).
+fn grow_centroid_bounds(a: &mut CentroidBounds, b_min: &[f64; 3], b_max: &[f64; 3]) {
+    for k in 0..3 {
+        a[0][k] = a[0][k].min(b_min[k]);
+        a[1][k] = a[1][k].max(b_max[k]);
+    }
+}
+
+impl NodeInfo {
+    const EMPTY: NodeInfo = NodeInfo { bounds: Aabb::EMPTY, cbounds: CENTROID_BOUNDS_EMPTY };
+    fn add(&mut self, p: &Prim) {
+        self.bounds.grow(&p.bounds);
+        grow_centroid_bounds(&mut self.cbounds, &p.centroid, &p.centroid);
+    }
+    fn merge(&mut self, o: &NodeInfo) {
+        self.bounds.grow(&o.bounds);
+        grow_centroid_bounds(&mut self.cbounds, &o.cbounds[0], &o.cbounds[1]);
+    }
+    /// One pass over `prims` (on all threads when `parallel`: min and max do not depend on the
+    /// order partial results merge in).
+    fn of(prims: &[Prim], parallel: bool) -> NodeInfo {
+        let add = |mut info: NodeInfo, p: &Prim| {
+            info.add(p);
+            info
+        };
+        if !parallel {
+            return prims.iter().fold(NodeInfo::EMPTY, add);
+        }
+        use rayon::prelude::*;
+        prims.par_iter().fold(|| NodeInfo::EMPTY, add).reduce(
+            || NodeInfo::EMPTY,
+            |mut a, b| {
+                a.merge(&b);
+                a
+            },
+        )
+    }
+}
+
+/// How a node splits: the primitives left of the split come first in its slice.
+struct Split {
+    left_count: usize,
+    left: NodeInfo,
+    right: NodeInfo,
+}
+
 /// The subtree over `prims` (the slice starting at triangle `first` of the leaf order), its
 /// root at level `level`: its nodes with the root first and child indices into this vector,
 /// laid out as one thread's work list lays them out (a node's two children side by side when
 /// it is split, then the left child's subtree, then the right's), and its deepest level.
-fn build_subtree(prims: &mut [Prim], first: usize, level: usize, parallel_min: usize) -> (Vec<BvhNodeRaw>, usize) {
+fn build_subtree(prims: &mut [Prim], info: NodeInfo, first: usize, level: usize, parallel_min: usize) -> (Vec<BvhNodeRaw>, usize) {
     if prims.len() < parallel_min {
-        return build_sequential(prims, first, level);
+        return build_sequential(prims, info, first, level);
     }
-    let bounds = bounds_of(prims);
-    let Some(left_count) = choose_split(prims, &bounds, level, true) else {
+    let bounds = info.bounds;
+    let Some(split) = choose_split(prims, &info, level, true) else {
         let leaf = BvhNodeRaw { min: bounds.min, a: first as u32, max: bounds.max, b: BVH_LEAF | prims.len() as u32 };
         return (vec![leaf], level);
     };
+    let left_count = split.left_count;
     let (left, right) = prims.split_at_mut(left_count);
     let ((l, l_depth), (r, r_depth)) = rayon::join(
-        || build_subtree(left, first, level + 1, parallel_min),
-        || build_subtree(right, first + left_count, level + 1, parallel_min),
+        || build_subtree(left, split.left, first, level + 1, parallel_min),
+        || build_subtree(right, split.right, first + left_count, level + 1, parallel_min),
     );
     // [root, left root, right root, below the left root, below the right root]: a child's
     // index i > 0 into its own vector moves to 3 + (i - 1) (+ the left's rest, on the right).
@@ -216,86 +278,88 @@ fn build_subtree(prims: &mut [Prim], first: usize, level: usize, parallel_min: u
     (nodes, l_depth.max(r_depth))
 }
 
-fn bounds_of(prims: &[Prim]) -> Aabb {
-    let mut bounds = Aabb::EMPTY;
-    for p in prims {
-        bounds.grow(&p.bounds);
-    }
-    bounds
-}
-
 /// [`build_subtree`] on one thread, with an explicit work list (no recursion limit).
-fn build_sequential(prims: &mut [Prim], first: usize, level: usize) -> (Vec<BvhNodeRaw>, usize) {
+fn build_sequential(prims: &mut [Prim], info: NodeInfo, first: usize, level: usize) -> (Vec<BvhNodeRaw>, usize) {
     let empty = BvhNodeRaw { min: [0.0; 3], a: 0, max: [0.0; 3], b: BVH_LEAF };
     let mut nodes: Vec<BvhNodeRaw> = Vec::with_capacity(2 * prims.len().max(1));
     nodes.push(empty);
     let mut depth = level;
-    // (node, first prim in `prims`, prim count, level)
-    let mut work = vec![(0usize, 0usize, prims.len(), level)];
-    while let Some((node, start, count, lvl)) = work.pop() {
+    // (node, first prim in `prims`, prim count, level, the node's bounds)
+    let mut work = vec![(0usize, 0usize, prims.len(), level, info)];
+    while let Some((node, start, count, lvl, info)) = work.pop() {
         depth = depth.max(lvl);
         let slice = &mut prims[start..start + count];
-        let bounds = bounds_of(slice);
-        match choose_split(slice, &bounds, lvl, false) {
+        let bounds = info.bounds;
+        match choose_split(slice, &info, lvl, false) {
             None => {
                 nodes[node] = BvhNodeRaw { min: bounds.min, a: (first + start) as u32, max: bounds.max, b: BVH_LEAF | count as u32 };
             }
-            Some(left_count) => {
+            Some(split) => {
                 let l = nodes.len();
                 nodes.push(empty);
                 nodes.push(empty);
                 nodes[node] = BvhNodeRaw { min: bounds.min, a: l as u32, max: bounds.max, b: (l + 1) as u32 };
                 // Right first so the left subtree is laid out right after its parent.
-                work.push((l + 1, start + left_count, count - left_count, lvl + 1));
-                work.push((l, start, left_count, lvl + 1));
+                work.push((l + 1, start + split.left_count, count - split.left_count, lvl + 1, split.right));
+                work.push((l, start, split.left_count, lvl + 1, split.left));
             }
         }
     }
     (nodes, depth)
 }
 
-/// Where to split a node's primitives (count on the left after partitioning in place), or
-/// `None` for a leaf.
+/// Where to split a node's primitives (partitioned in place, the left ones first) and the two
+/// children's bounds, or `None` for a leaf. `info`: the node's bounds and centroid bounds.
 /// `parallel`: bin on all threads (the top levels, which one thread would otherwise scan alone;
 /// bounds and counts are min/max and integer sums, so the order of partial results cannot
 /// change them).
-fn choose_split(prims: &mut [Prim], bounds: &Aabb, level: usize, parallel: bool) -> Option<usize> {
+fn choose_split(prims: &mut [Prim], info: &NodeInfo, level: usize, parallel: bool) -> Option<Split> {
     let n = prims.len();
     if n <= 1 {
         return None;
     }
     // Depth guard: a balanced subtree of the rest needs ceil(log2(n / leaf)) more levels.
     let must_balance = level + ceil_log2(n.div_ceil(BVH_MAX_LEAF)) + 1 >= BVH_MAX_DEPTH;
-    let cbounds = centroid_bounds(prims, parallel);
+    let cbounds = info.cbounds;
     let extent = [0, 1, 2].map(|k| cbounds[1][k] - cbounds[0][k]);
     let widest = (0..3).max_by(|&a, &b| extent[a].total_cmp(&extent[b])).unwrap_or(0);
     if !must_balance {
+        let binning = Binning::new(&cbounds);
+        let bins = bin_prims(prims, &binning, parallel);
         // (cost, axis, bin boundary): left = bins [0, boundary).
         let mut best: Option<(f64, usize, usize)> = None;
         for axis in 0..3 {
-            if extent[axis] <= 0.0 {
+            if !binning.used[axis] {
                 continue;
             }
-            let scale = SAH_BINS as f64 / extent[axis];
-            let bin_of = |c: f64| (((c - cbounds[0][axis]) * scale) as usize).min(SAH_BINS - 1);
-            let bins = bin_prims(prims, axis, &bin_of, parallel);
+            let axis_bins = &bins.bins[axis];
             // Sweep from the right for suffix areas, then from the left.
             let mut right_area = [0.0f64; SAH_BINS];
             let mut right_count = [0usize; SAH_BINS];
             let mut acc = Aabb::EMPTY;
             let mut cnt = 0;
+            // An empty bin changes neither side, so the areas are computed only past full ones
+            // (small nodes have mostly empty bins), and a boundary after an empty bin costs what
+            // the one before it did, which the strict `<` below already kept.
+            let mut area = 0.0;
             for i in (1..SAH_BINS).rev() {
-                acc.grow(&bins[i].0);
-                cnt += bins[i].1;
-                right_area[i] = acc.half_area();
+                if axis_bins[i].count > 0 {
+                    acc.grow(&axis_bins[i].bounds);
+                    cnt += axis_bins[i].count;
+                    area = acc.half_area();
+                }
+                right_area[i] = area;
                 right_count[i] = cnt;
             }
             let mut acc = Aabb::EMPTY;
             let mut cnt = 0;
             for i in 1..SAH_BINS {
-                acc.grow(&bins[i - 1].0);
-                cnt += bins[i - 1].1;
-                if cnt == 0 || right_count[i] == 0 {
+                if axis_bins[i - 1].count == 0 {
+                    continue;
+                }
+                acc.grow(&axis_bins[i - 1].bounds);
+                cnt += axis_bins[i - 1].count;
+                if right_count[i] == 0 {
                     continue;
                 }
                 let cost = acc.half_area() * cnt as f64 + right_area[i] * right_count[i] as f64;
@@ -304,7 +368,7 @@ fn choose_split(prims: &mut [Prim], bounds: &Aabb, level: usize, parallel: bool)
                 }
             }
         }
-        let parent_area = bounds.half_area();
+        let parent_area = info.bounds.half_area();
         if let Some((cost, axis, boundary)) = best {
             // SAH: split when C_trav + cost/A ≤ n (relative to one triangle test).
             let leaf_cost = n as f64;
@@ -312,11 +376,13 @@ fn choose_split(prims: &mut [Prim], bounds: &Aabb, level: usize, parallel: bool)
             if n <= BVH_MAX_LEAF && split_cost >= leaf_cost {
                 return None;
             }
-            let scale = SAH_BINS as f64 / extent[axis];
-            let lo = cbounds[0][axis];
-            let left = partition(prims, |p| ((((p.centroid[axis] - lo) * scale) as usize).min(SAH_BINS - 1)) < boundary);
-            if left > 0 && left < n {
-                return Some(left);
+            let left_count = partition(prims, |p| binning.bin(axis, p.centroid[axis]) < boundary);
+            if left_count > 0 && left_count < n {
+                // The children's bounds: the union of the bins on each side, or a pass over each.
+                let (l, r) = prims.split_at(left_count);
+                let left = bins.info(axis, 0..boundary).unwrap_or_else(|| NodeInfo::of(l, false));
+                let right = bins.info(axis, boundary..SAH_BINS).unwrap_or_else(|| NodeInfo::of(r, false));
+                return Some(Split { left_count, left, right });
             }
         } else if n <= BVH_MAX_LEAF {
             return None;
@@ -325,54 +391,125 @@ fn choose_split(prims: &mut [Prim], bounds: &Aabb, level: usize, parallel: bool)
     // Object median along the widest centroid axis (also when every centroid coincides).
     let mid = n / 2;
     prims.select_nth_unstable_by(mid, |a, b| a.centroid[widest].total_cmp(&b.centroid[widest]));
-    Some(mid)
+    let (left, right) = prims.split_at(mid);
+    Some(Split { left_count: mid, left: NodeInfo::of(left, parallel), right: NodeInfo::of(right, parallel) })
 }
 
-type Bins = [(Aabb, usize); SAH_BINS];
-
-/// Each bin's bounds and count of `prims` along `axis` (`bin_of` a centroid coordinate's bin).
-fn bin_prims(prims: &[Prim], axis: usize, bin_of: &(impl Fn(f64) -> usize + Sync), parallel: bool) -> Bins {
-    let add = |mut bins: Bins, p: &Prim| {
-        let b = &mut bins[bin_of(p.centroid[axis])];
-        b.0.grow(&p.bounds);
-        b.1 += 1;
-        bins
-    };
-    let empty = [(Aabb::EMPTY, 0usize); SAH_BINS];
-    if !parallel {
-        return prims.iter().fold(empty, add);
-    }
-    use rayon::prelude::*;
-    prims.par_iter().fold(|| empty, add).reduce(
-        || empty,
-        |mut a, b| {
-            for (x, y) in a.iter_mut().zip(b.iter()) {
-                x.0.grow(&y.0);
-                x.1 += y.1;
-            }
-            a
-        },
-    )
+/// Which centroid bin a coordinate falls in, per axis: [`SAH_BINS`] equal bins over the node's
+/// centroid bounds; axes where every centroid coincides are not binned.
+struct Binning {
+    lo: [f64; 3],
+    scale: [f64; 3],
+    used: [bool; 3],
 }
 
-/// [min, max] of the centroids of `prims`, per axis.
-fn centroid_bounds(prims: &[Prim], parallel: bool) -> [[f64; 3]; 2] {
-    let add = |mut b: [[f64; 3]; 2], p: &Prim| {
-        for (k, &c) in p.centroid.iter().enumerate() {
-            b[0][k] = b[0][k].min(c);
-            b[1][k] = b[1][k].max(c);
+impl Binning {
+    fn new(cbounds: &[[f64; 3]; 2]) -> Self {
+        let extent = [0, 1, 2].map(|k| cbounds[1][k] - cbounds[0][k]);
+        Binning {
+            lo: cbounds[0],
+            scale: extent.map(|e| if e > 0.0 { SAH_BINS as f64 / e } else { 0.0 }),
+            used: extent.map(|e| e > 0.0),
         }
-        b
-    };
-    let empty = [[f64::INFINITY; 3], [f64::NEG_INFINITY; 3]];
+    }
+    fn bin(&self, axis: usize, c: f64) -> usize {
+        (((c - self.lo[axis]) * self.scale[axis]) as usize).min(SAH_BINS - 1)
+    }
+}
+
+/// One bin: its primitives' count and bounds.
+#[derive(Clone, Copy)]
+struct Bin {
+    bounds: Aabb,
+    count: usize,
+}
+
+/// Nodes of at least this many primitives also keep each bin's centroid bounds, from which the
+/// children's come; smaller ones (whose primitives are in cache) take them in a pass over each
+/// child, which costs less than clearing and merging 48 more bins per node.
+const BIN_CENTROIDS_MIN_PRIMS: usize = 256;
+
+/// The bins of every binned axis, and with [`BIN_CENTROIDS_MIN_PRIMS`] or more primitives each
+/// bin's centroid bounds ([axis · SAH_BINS + bin]; empty otherwise).
+#[derive(Clone)]
+struct Bins {
+    bins: [[Bin; SAH_BINS]; 3],
+    centroids: Vec<CentroidBounds>,
+}
+
+impl Bins {
+    fn new(with_centroids: bool) -> Self {
+        Bins {
+            bins: [[Bin { bounds: Aabb::EMPTY, count: 0 }; SAH_BINS]; 3],
+            centroids: if with_centroids { vec![CENTROID_BOUNDS_EMPTY; 3 * SAH_BINS] } else { Vec::new() },
+        }
+    }
+    fn add(&mut self, binning: &Binning, p: &Prim) {
+        for axis in 0..3 {
+            if binning.used[axis] {
+                let i = binning.bin(axis, p.centroid[axis]);
+                let b = &mut self.bins[axis][i];
+                b.bounds.grow(&p.bounds);
+                b.count += 1;
+                if let Some(c) = self.centroids.get_mut(axis * SAH_BINS + i) {
+                    grow_centroid_bounds(c, &p.centroid, &p.centroid);
+                }
+            }
+        }
+    }
+    fn merge(&mut self, o: &Bins) {
+        for (xs, ys) in self.bins.iter_mut().zip(o.bins.iter()) {
+            for (x, y) in xs.iter_mut().zip(ys.iter()) {
+                x.bounds.grow(&y.bounds);
+                x.count += y.count;
+            }
+        }
+        for (x, y) in self.centroids.iter_mut().zip(o.centroids.iter()) {
+            grow_centroid_bounds(x, &y[0], &y[1]);
+        }
+    }
+    /// The bounds of the primitives in bins `range` of `axis`, if the centroids were kept.
+    fn info(&self, axis: usize, range: std::ops::Range<usize>) -> Option<NodeInfo> {
+        if self.centroids.is_empty() {
+            return None;
+        }
+        let mut info = NodeInfo::EMPTY;
+        for i in range {
+            let c = &self.centroids[axis * SAH_BINS + i];
+            info.merge(&NodeInfo { bounds: self.bins[axis][i].bounds, cbounds: *c });
+        }
+        Some(info)
+    }
+}
+
+/// Each bin's bounds and count of `prims` on every binned axis, in one pass. (The partial bins
+/// are boxed: a fold moves its accumulator at every primitive.)
+fn bin_prims(prims: &[Prim], binning: &Binning, parallel: bool) -> Box<Bins> {
+    let with_centroids = prims.len() >= BIN_CENTROIDS_MIN_PRIMS;
     if !parallel {
-        return prims.iter().fold(empty, add);
+        let mut bins = Box::new(Bins::new(with_centroids));
+        for p in prims {
+            bins.add(binning, p);
+        }
+        return bins;
     }
     use rayon::prelude::*;
-    prims.par_iter().fold(|| empty, add).reduce(
-        || empty,
-        |a, b| [[0, 1, 2].map(|k| a[0][k].min(b[0][k])), [0, 1, 2].map(|k| a[1][k].max(b[1][k]))],
-    )
+    prims
+        .par_iter()
+        .fold(
+            || Box::new(Bins::new(with_centroids)),
+            |mut bins, p| {
+                bins.add(binning, p);
+                bins
+            },
+        )
+        .reduce(
+            || Box::new(Bins::new(with_centroids)),
+            |mut a, b| {
+                a.merge(&b);
+                a
+            },
+        )
 }
 
 /// Stable-enough in-place partition; returns how many satisfy `pred` (moved to the front).
@@ -504,17 +641,27 @@ mod tests {
             if n.b & BVH_LEAF != 0 {
                 let count = (n.b & !BVH_LEAF) as usize;
                 reached += count;
+                let mut tight = Aabb::EMPTY;
                 for &id in &bvh.triangle_ids[n.a as usize..n.a as usize + count] {
                     for v in tris[id as usize] {
                         assert!(contains(&n, v), "leaf {i} must contain its triangles");
+                        tight.grow_point(v);
                     }
                 }
+                // Tight: the builder carries children's bounds down from the bins, and a wrong
+                // carry that still contains everything would only cost speed.
+                if count > 0 {
+                    assert_eq!((n.min, n.max), (tight.min, tight.max), "leaf {i} must be its triangles' bounds");
+                }
             } else {
+                let mut tight = Aabb::EMPTY;
                 for c in [n.a as usize, n.b as usize] {
                     let child = bvh.nodes[c];
                     assert!(contains(&n, child.min) && contains(&n, child.max), "node {i} must contain child {c}");
+                    tight.grow(&Aabb { min: child.min, max: child.max });
                     stack.push((c, level + 1));
                 }
+                assert_eq!((n.min, n.max), (tight.min, tight.max), "node {i} must be its children's bounds");
             }
         }
         assert_eq!(reached, tris.len());
