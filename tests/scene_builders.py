@@ -226,3 +226,63 @@ def glossy_floor_under_small_emitter(directory: pathlib.Path, roughness: float) 
     scene = vsgl.Scene.load(write_quads(directory, quads, name=f"glossy_floor_{roughness}.gltf"))
     scene.set_material("materials[1]", emissive=(20.0, 20.0, 20.0))
     return scene
+
+
+def corner_over_a_hidden_sheet(directory: pathlib.Path, sheet_side: int, *, name: str = "hidden_sheet.gltf"):
+    """A lit floor corner (a 2 × 2 m floor at y = 0, walls at x = −1 and z = −1) over a flat
+    sheet of ``sheet_side``² vertices (2·(side − 1)² triangles) 1 cm under the floor, where no
+    camera, light or bounce can reach it. The sheet comes first in the file, so with a large
+    side the visible surfaces' vertices and triangles come last in the upload (past the first
+    128 MiB of each buffer), and every sheet side gives the same bounds and the same image.
+    Geometry goes to a .bin beside the .gltf. Returns (scene, camera)."""
+    n = int(sheet_side)
+    grid = np.linspace(-1.0, 1.0, n, dtype=np.float64)
+    xs, zs = np.meshgrid(grid, grid, indexing="xy")
+    sheet_pos = np.stack([xs.ravel(), np.full(n * n, -0.01), zs.ravel()], axis=1).astype(np.float32)
+    sheet_nrm = np.tile(np.array([0.0, -1.0, 0.0], np.float32), (n * n, 1))
+    i = np.arange(n - 1, dtype=np.uint32)
+    a = (i[None, :] + n * i[:, None]).ravel()
+    sheet_idx = np.concatenate([np.stack([a, a + n, a + 1], 1), np.stack([a + 1, a + n, a + n + 1], 1)]).astype(np.uint32)
+    quads = [
+        ([(-1, 0, -1), (-1, 0, 1), (1, 0, 1), (1, 0, -1)], (0.8, 0.8, 0.8), (0, 1, 0)),  # floor
+        ([(-1, 0, 1), (-1, 0, -1), (-1, 1.5, -1), (-1, 1.5, 1)], (0.8, 0.3, 0.2), (1, 0, 0)),  # wall x = −1
+        ([(-1, 0, -1), (1, 0, -1), (1, 1.5, -1), (-1, 1.5, -1)], (0.2, 0.5, 0.8), (0, 0, 1)),  # wall z = −1
+    ]
+    meshes = [(sheet_pos, sheet_nrm, sheet_idx.ravel(), (0.5, 0.5, 0.5))]
+    for corners, color, normal in quads:
+        pos = np.array(corners, np.float32)
+        meshes.append((pos, np.tile(np.array(normal, np.float32), (4, 1)), np.array([0, 1, 2, 0, 2, 3], np.uint32), color))
+    bin_name = name.replace(".gltf", ".bin")
+    views, accessors, gl_meshes, materials, nodes = [], [], [], [], []
+    offset = 0
+    with open(directory / bin_name, "wb") as f:
+        for k, (pos, nrm, idx, color) in enumerate(meshes):
+            first = len(accessors)
+            for data, kind, ctype in ((pos, "VEC3", 5126), (nrm, "VEC3", 5126), (idx, "SCALAR", 5125)):
+                raw = np.ascontiguousarray(data).tobytes()
+                f.write(raw)
+                views.append({"buffer": 0, "byteOffset": offset, "byteLength": len(raw)})
+                offset += len(raw)
+                acc = {"bufferView": len(views) - 1, "componentType": ctype, "count": len(data), "type": kind}
+                if kind == "VEC3" and len(accessors) == first:
+                    acc["min"] = pos.min(axis=0).tolist()
+                    acc["max"] = pos.max(axis=0).tolist()
+                accessors.append(acc)
+            gl_meshes.append({"primitives": [{"attributes": {"POSITION": first, "NORMAL": first + 1}, "indices": first + 2, "material": k}]})
+            materials.append({"pbrMetallicRoughness": {"baseColorFactor": [*color, 1.0], "metallicFactor": 0.0, "roughnessFactor": 0.6}})
+            nodes.append({"name": "sheet" if k == 0 else f"quad{k}", "mesh": k})
+    doc = {
+        "asset": {"version": "2.0"},
+        "scene": 0,
+        "scenes": [{"nodes": list(range(len(nodes)))}],
+        "nodes": nodes,
+        "meshes": gl_meshes,
+        "materials": materials,
+        "buffers": [{"byteLength": offset, "uri": bin_name}],
+        "bufferViews": views,
+        "accessors": accessors,
+    }
+    (directory / name).write_text(json.dumps(doc))
+    scene = vsgl.Scene.load(directory / name)
+    scene.lights = [vsgl.SpotLight(position=(0.4, 1.4, 0.4), direction=(-0.5, -1.0, -0.5), intensity=8.0, inner_cone_deg=35, outer_cone_deg=50)]
+    return scene, vsgl.Camera.look_at(eye=(0.9, 1.0, 0.9), target=(-0.5, 0.2, -0.5), fov_y_deg=55)

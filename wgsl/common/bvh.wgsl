@@ -1,9 +1,12 @@
-// vsgl:include-only — the including shader declares the three storage arrays
+// vsgl:include-only — the including shader declares the storage arrays
 //   bvh_nodes: array<BvhNode>, bvh_triangle_ids: array<u32>, triangle_corners: array<TriangleCorner>
 // that crates/vsgl-core/src/upload/bvh.rs builds (node 0 is the root; the scene triangle index of
 // each leaf slot, in leaf order) and the upload holds (the raster vertices: three corners a
-// triangle, in scene order). Reading corners through the id keeps the BVH at its nodes and 4
-// bytes a triangle, where a leaf-ordered copy of the corners took 48.
+// triangle, in scene order), and bvh_nodes_1…3 and triangle_corners_1…3: nodes and corners are
+// the pages of one buffer each (STORAGE_PAGE_BYTES = 2^27 bytes, crates/vsgl-core/src/gpu/
+// buffers.rs), so a scene may have more of them than one binding holds; pages past the end bind
+// the first again. Reading corners through the id keeps the BVH at its nodes and 4 bytes a
+// triangle, where a leaf-ordered copy of the corners took 48.
 //
 // Ray queries over the BVH: closest hit and any hit (shadow rays), with a fixed-size stack whose
 // size is the builder's depth bound. Ray–box: slab test with Ize's conservative rounding
@@ -12,6 +15,7 @@
 // Intersection", JCGT 2(1), §3 and Listing 1], without culling and without the f64 fallback
 // for edges hit exactly (both triangles then report the hit, which is harmless here).
 #include "common/constants.wgsl"
+#include "common/storage_pages.wgsl"
 
 // 32 bytes; the twin is `BvhNodeRaw` in crates/vsgl-core/src/upload/bvh.rs.
 struct BvhNode {
@@ -28,6 +32,56 @@ struct BvhNode {
 struct TriangleCorner {
     position: vec3f,
     triangle: u32,
+}
+
+// Elements of a page: 2^27 bytes of 32-byte nodes and of 16-byte corners.
+const BVH_NODE_PAGE_SHIFT: u32 = 22u;
+const CORNER_PAGE_SHIFT: u32 = 23u;
+
+// Without STORAGE_PAGED (common/storage_pages.wgsl) every index is in page 0.
+fn bvh_node(i: u32) -> BvhNode {
+    if (!STORAGE_PAGED || i < (1u << BVH_NODE_PAGE_SHIFT)) {
+        return bvh_nodes[i];
+    }
+    return bvh_node_paged(i);
+}
+
+fn bvh_node_paged(i: u32) -> BvhNode {
+    let j = i & ((1u << BVH_NODE_PAGE_SHIFT) - 1u);
+    switch (i >> BVH_NODE_PAGE_SHIFT) {
+        case 1u: {
+            return bvh_nodes_1[j];
+        }
+        case 2u: {
+            return bvh_nodes_2[j];
+        }
+        default: {
+            return bvh_nodes_3[j];
+        }
+    }
+}
+
+// Corner k of scene triangle t: triangle_corner(3t + k).
+fn triangle_corner(i: u32) -> vec3f {
+    if (!STORAGE_PAGED || i < (1u << CORNER_PAGE_SHIFT)) {
+        return triangle_corners[i].position;
+    }
+    return triangle_corner_paged(i);
+}
+
+fn triangle_corner_paged(i: u32) -> vec3f {
+    let j = i & ((1u << CORNER_PAGE_SHIFT) - 1u);
+    switch (i >> CORNER_PAGE_SHIFT) {
+        case 1u: {
+            return triangle_corners_1[j].position;
+        }
+        case 2u: {
+            return triangle_corners_2[j].position;
+        }
+        default: {
+            return triangle_corners_3[j].position;
+        }
+    }
 }
 
 const BVH_LEAF: u32 = 0x80000000u;
@@ -150,7 +204,7 @@ fn bvh_closest_hit(ray: Ray) -> RayHit {
     var hit = RayHit(ray.t_max, BVH_NO_TRIANGLE, vec2f(0.0));
     let inv_dir = bvh_safe_inverse(ray.dir);
     let sh = ray_shear(ray.dir);
-    let root = bvh_nodes[0];
+    let root = bvh_node(0u);
     if (ray_box_entry(ray.origin, inv_dir, hit.t, root.min, root.max) < 0.0) {
         return hit;
     }
@@ -160,7 +214,7 @@ fn bvh_closest_hit(ray: Ray) -> RayHit {
     var sp = 0u;
     var index = 0u;
     loop {
-        let node = bvh_nodes[index];
+        let node = bvh_node(index);
         var descend = false;
         if ((node.b & BVH_LEAF) != 0u) {
             let count = node.b & ~BVH_LEAF;
@@ -170,15 +224,15 @@ fn bvh_closest_hit(ray: Ray) -> RayHit {
                     continue;
                 }
                 let c = 3u * id;
-                let r = ray_triangle_watertight(ray.origin, sh, hit.t, triangle_corners[c].position, triangle_corners[c + 1u].position, triangle_corners[c + 2u].position);
+                let r = ray_triangle_watertight(ray.origin, sh, hit.t, triangle_corner(c), triangle_corner(c + 1u), triangle_corner(c + 2u));
                 if (r.x > 0.0) {
                     hit = RayHit(r.x, id, r.yz);
                 }
             }
         } else {
             // Test both children; go to the nearer, push the farther.
-            let left = bvh_nodes[node.a];
-            let right = bvh_nodes[node.b];
+            let left = bvh_node(node.a);
+            let right = bvh_node(node.b);
             let tl = ray_box_entry(ray.origin, inv_dir, hit.t, left.min, left.max);
             let tr = ray_box_entry(ray.origin, inv_dir, hit.t, right.min, right.max);
             if (tl >= 0.0 && tr >= 0.0) {
@@ -219,7 +273,7 @@ fn bvh_closest_hit(ray: Ray) -> RayHit {
 fn bvh_any_hit(ray: Ray) -> bool {
     let inv_dir = bvh_safe_inverse(ray.dir);
     let sh = ray_shear(ray.dir);
-    let root = bvh_nodes[0];
+    let root = bvh_node(0u);
     if (ray_box_entry(ray.origin, inv_dir, ray.t_max, root.min, root.max) < 0.0) {
         return false;
     }
@@ -227,7 +281,7 @@ fn bvh_any_hit(ray: Ray) -> bool {
     var sp = 0u;
     var index = 0u;
     loop {
-        let node = bvh_nodes[index];
+        let node = bvh_node(index);
         var descend = false;
         if ((node.b & BVH_LEAF) != 0u) {
             let count = node.b & ~BVH_LEAF;
@@ -237,13 +291,13 @@ fn bvh_any_hit(ray: Ray) -> bool {
                     continue;
                 }
                 let c = 3u * id;
-                if (ray_triangle_watertight(ray.origin, sh, ray.t_max, triangle_corners[c].position, triangle_corners[c + 1u].position, triangle_corners[c + 2u].position).x > 0.0) {
+                if (ray_triangle_watertight(ray.origin, sh, ray.t_max, triangle_corner(c), triangle_corner(c + 1u), triangle_corner(c + 2u)).x > 0.0) {
                     return true;
                 }
             }
         } else {
-            let left = bvh_nodes[node.a];
-            let right = bvh_nodes[node.b];
+            let left = bvh_node(node.a);
+            let right = bvh_node(node.b);
             let tl = ray_box_entry(ray.origin, inv_dir, ray.t_max, left.min, left.max);
             let tr = ray_box_entry(ray.origin, inv_dir, ray.t_max, right.min, right.max);
             if (tl >= 0.0 && tr >= 0.0) {

@@ -24,6 +24,13 @@ override VISIBILITY_ISM: bool = false;
 // visibility="raytrace": the BVH's triangle corners (the upload's raster vertices). A
 // placeholder otherwise.
 @group(2) @binding(5) var<storage, read> triangle_corners: array<TriangleCorner>;
+// The other pages of the BVH's nodes and corners (common/bvh.wgsl); placeholders likewise.
+@group(2) @binding(6) var<storage, read> bvh_nodes_1: array<BvhNode>;
+@group(2) @binding(7) var<storage, read> bvh_nodes_2: array<BvhNode>;
+@group(2) @binding(8) var<storage, read> bvh_nodes_3: array<BvhNode>;
+@group(2) @binding(9) var<storage, read> triangle_corners_1: array<TriangleCorner>;
+@group(2) @binding(10) var<storage, read> triangle_corners_2: array<TriangleCorner>;
+@group(2) @binding(11) var<storage, read> triangle_corners_3: array<TriangleCorner>;
 
 // What the visibility of a receiver needs besides its position and shading normal.
 struct ShadowReceiver {

@@ -9,6 +9,7 @@
 #include "common/frame.wgsl"
 #include "common/gbuffer.wgsl"
 #include "common/material_eval.wgsl"
+#include "common/scene_vertices.wgsl"
 
 const WORKGROUP: u32 = 8u;
 
@@ -28,6 +29,10 @@ const WORKGROUP: u32 = 8u;
 // Emitted radiance (rgb, w = 0) for the compositing pass (aov_pack); written only by the
 // camera's variant of a scene with an emissive material (HAS_EMISSION), else a placeholder.
 @group(1) @binding(12) var<storage, read_write> gbuf_emission: array<vec4f>;
+// The vertices' other pages (common/scene_vertices.wgsl).
+@group(1) @binding(13) var<storage, read> vertices_1: array<VertexRaw>;
+@group(1) @binding(14) var<storage, read> vertices_2: array<VertexRaw>;
+@group(1) @binding(15) var<storage, read> vertices_3: array<VertexRaw>;
 
 // Leave-out: false where no material emits (and always for a light's view: emissive surfaces
 // do not light the scene, so the RSM never needs them).
@@ -85,9 +90,9 @@ fn main(@builtin(global_invocation_id) gid: vec3u) {
     let i1 = indices[3u * tri + 1u];
     let i2 = indices[3u * tri + 2u];
     // Vertices relative to the view's ray origin (the camera, or the light for an RSM).
-    var a = vertices[i0];
-    var b = vertices[i1];
-    var c = vertices[i2];
+    var a = scene_vertex(i0);
+    var b = scene_vertex(i1);
+    var c = scene_vertex(i2);
     a.position -= frame.view_origin.xyz;
     b.position -= frame.view_origin.xyz;
     c.position -= frame.view_origin.xyz;

@@ -63,6 +63,7 @@
 #include "common/sampling.wgsl"
 #include "common/bvh.wgsl"
 #include "common/material_eval.wgsl"
+#include "common/scene_vertices.wgsl"
 
 const WORKGROUP: u32 = 8u;
 const STRATEGY_CAMERA: u32 = 0u;
@@ -129,6 +130,17 @@ struct PathParams {
 @group(0) @binding(26) var<storage, read_write> emitted_direct: array<vec4f>;
 // The upload's raster vertices: the BVH's triangle corners (common/bvh.wgsl).
 @group(0) @binding(27) var<storage, read> triangle_corners: array<TriangleCorner>;
+// The other pages of the arrays that may outgrow one binding (common/bvh.wgsl,
+// common/scene_vertices.wgsl).
+@group(0) @binding(28) var<storage, read> bvh_nodes_1: array<BvhNode>;
+@group(0) @binding(29) var<storage, read> bvh_nodes_2: array<BvhNode>;
+@group(0) @binding(30) var<storage, read> bvh_nodes_3: array<BvhNode>;
+@group(0) @binding(31) var<storage, read> triangle_corners_1: array<TriangleCorner>;
+@group(0) @binding(32) var<storage, read> triangle_corners_2: array<TriangleCorner>;
+@group(0) @binding(33) var<storage, read> triangle_corners_3: array<TriangleCorner>;
+@group(0) @binding(34) var<storage, read> vertices_1: array<VertexRaw>;
+@group(0) @binding(35) var<storage, read> vertices_2: array<VertexRaw>;
+@group(0) @binding(36) var<storage, read> vertices_3: array<VertexRaw>;
 
 // Whether the upload has emissive triangles: without, no emitter code runs and no random number
 // is drawn for them, so a scene without emission renders as before emitters existed.
@@ -288,9 +300,9 @@ fn sample_emitter(u_pick: f32, u1: f32, u2: f32) -> EmitterPoint {
 // frame-space position, the emitting side's normal (the side the vertex normals point to), the
 // emitted radiance there and the given density.
 fn emitter_point(tri: u32, w: vec2f, pdf_area: f32) -> EmitterPoint {
-    let a = vertices[indices[3u * tri]];
-    let b = vertices[indices[3u * tri + 1u]];
-    let c = vertices[indices[3u * tri + 2u]];
+    let a = scene_vertex(indices[3u * tri]);
+    let b = scene_vertex(indices[3u * tri + 1u]);
+    let c = scene_vertex(indices[3u * tri + 2u]);
     let position = lerp_bary3(a.position, b.position, c.position, w) - frame.view_origin.xyz;
     let ng = safe_normalize(cross(b.position - a.position, c.position - a.position), vec3f(0.0, 1.0, 0.0));
     let normal = select(-ng, ng, dot(ng, lerp_bary3(a.normal, b.normal, c.normal, w)) >= 0.0);
@@ -535,9 +547,9 @@ fn emitter_bsdf_hit(s: Surface, v: vec3f, mis: CameraMis, u: vec3f) -> vec3f {
 // textures at the finest level: a path tracer integrates texture detail itself).
 fn hit_surface(dir: vec3f, hit: RayHit) -> Surface {
     let tri = hit.triangle;
-    var a = vertices[indices[3u * tri]];
-    var b = vertices[indices[3u * tri + 1u]];
-    var c = vertices[indices[3u * tri + 2u]];
+    var a = scene_vertex(indices[3u * tri]);
+    var b = scene_vertex(indices[3u * tri + 1u]);
+    var c = scene_vertex(indices[3u * tri + 2u]);
     // Back to frame space.
     a.position -= frame.view_origin.xyz;
     b.position -= frame.view_origin.xyz;

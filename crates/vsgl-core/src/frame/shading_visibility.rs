@@ -4,6 +4,8 @@
 //! (placeholders for what the variant does not read). `methods/visibility.rs` makes them from
 //! `visibility=`; the passes only bind them.
 
+use crate::gpu::buffers::{spans_pages, storage_pages};
+
 /// GPU twin of `IsmLookup` in `wgsl/common/ism_lookup.wgsl`.
 #[repr(C)]
 #[derive(Clone, Copy, bytemuck::Pod, bytemuck::Zeroable)]
@@ -33,9 +35,11 @@ pub struct ShadingVisibility {
 }
 
 impl ShadingVisibility {
-    /// The override constants choosing the shading variant.
-    pub fn flags(&self) -> [(&'static str, bool); 2] {
-        [("VISIBILITY_TRACED", self.traced), ("VISIBILITY_ISM", self.reads_ism)]
+    /// The override constants choosing the shading variant (`STORAGE_PAGED`: the BVH's nodes or
+    /// corners span more than one binding's page).
+    pub fn flags(&self) -> [(&'static str, bool); 3] {
+        let paged = self.traced && (spans_pages(&self.nodes) || spans_pages(&self.triangle_corners));
+        [("VISIBILITY_TRACED", self.traced), ("VISIBILITY_ISM", self.reads_ism), ("STORAGE_PAGED", paged)]
     }
 
     /// What `frame.passes` adds to a shading pass's name: its visibility variant.
@@ -50,14 +54,22 @@ impl ShadingVisibility {
     }
 
     /// Group 2 of the shading passes.
-    pub fn bindings(&self) -> [wgpu::BindingResource<'_>; 6] {
+    pub fn bindings(&self) -> [wgpu::BindingResource<'_>; 12] {
+        let [nodes_0, nodes_1, nodes_2, nodes_3] = storage_pages(&self.nodes);
+        let [corners_0, corners_1, corners_2, corners_3] = storage_pages(&self.triangle_corners);
         [
-            self.nodes.as_entire_binding(),
+            nodes_0,
             self.triangle_ids.as_entire_binding(),
             wgpu::BindingResource::TextureView(&self.ids),
             self.ism_atlas.as_entire_binding(),
             self.ism_lookup.as_entire_binding(),
-            self.triangle_corners.as_entire_binding(),
+            corners_0,
+            nodes_1,
+            nodes_2,
+            nodes_3,
+            corners_1,
+            corners_2,
+            corners_3,
         ]
     }
 }

@@ -76,3 +76,53 @@ pub fn read_staging_with<R>(gpu: &Gpu, staging: &wgpu::Buffer, bytes: u64, submi
 pub fn read_staging<T: bytemuck::Pod>(gpu: &Gpu, staging: &wgpu::Buffer, bytes: u64, submission: Option<&wgpu::SubmissionIndex>, context: &str) -> Result<Vec<T>> {
     read_staging_with(gpu, staging, bytes, submission, context, |view| bytemuck::pod_collect_to_vec::<u8, T>(view))
 }
+
+/// Bytes of one page of a storage array that may outgrow one binding (the scene's vertices, the
+/// BVH's nodes and triangle corners): 128 MiB, wgpu's default per-binding limit and lavapipe's
+/// own. Such an array lives in one buffer (buffers may be far larger than a binding) and is
+/// bound as [`STORAGE_PAGES`] ranges of this size; the shaders pick the page from the index
+/// (`wgsl/common/storage_pages.wgsl`). Fixed, not the adapter's limit, so the shaders' page
+/// shifts are constants.
+pub const STORAGE_PAGE_BYTES: u64 = 1 << 27;
+/// Pages bound per paged array: 512 MiB in all (8M vertices, 16M BVH nodes, 32M triangle
+/// corners; the scene's 4-byte index array, bound whole, stops at 10.7M triangles first).
+pub const STORAGE_PAGES: usize = 4;
+
+/// The [`STORAGE_PAGES`] bindings of a paged storage array in `buffer`: page k is the range at
+/// k·[`STORAGE_PAGE_BYTES`] (its last page shorter); pages past the end bind the first again
+/// (read-only, so binding one range twice is allowed), which no index reaches.
+pub fn storage_pages(buffer: &wgpu::Buffer) -> [wgpu::BindingResource<'_>; STORAGE_PAGES] {
+    let bytes = buffer.size();
+    std::array::from_fn(|k| {
+        let start = k as u64 * STORAGE_PAGE_BYTES;
+        let offset = if start < bytes { start } else { 0 };
+        let size = (bytes - offset).min(STORAGE_PAGE_BYTES);
+        wgpu::BindingResource::Buffer(wgpu::BufferBinding { buffer, offset, size: std::num::NonZeroU64::new(size) })
+    })
+}
+
+/// Whether a paged array in `buffer` reaches past its first page: then the shaders that read it
+/// run with `STORAGE_PAGED` (wgsl/common/storage_pages.wgsl), which tests each index's page.
+pub fn spans_pages(buffer: &wgpu::Buffer) -> bool {
+    buffer.size() > STORAGE_PAGE_BYTES
+}
+
+/// The most bytes of a paged array an adapter whose storage bindings hold at most
+/// `binding_limit` bytes can bind: [`STORAGE_PAGES`] pages when a page fits in a binding (also
+/// where a binding could hold more: the shaders' pages are fixed), else one shorter binding.
+pub fn storage_pages_capacity(binding_limit: u64) -> u64 {
+    if binding_limit >= STORAGE_PAGE_BYTES {
+        STORAGE_PAGES as u64 * STORAGE_PAGE_BYTES
+    } else {
+        binding_limit
+    }
+}
+
+// The shaders' page shifts are the page's element counts: 64-byte vertices, 32-byte BVH nodes,
+// 16-byte triangle corners.
+const _: () = {
+    use crate::shader_lib::constants::pathtrace::{BVH_NODE_PAGE_SHIFT, CORNER_PAGE_SHIFT, VERTEX_PAGE_SHIFT};
+    assert!(STORAGE_PAGE_BYTES == 64 << VERTEX_PAGE_SHIFT);
+    assert!(STORAGE_PAGE_BYTES == 32 << BVH_NODE_PAGE_SHIFT);
+    assert!(STORAGE_PAGE_BYTES == 16 << CORNER_PAGE_SHIFT);
+};

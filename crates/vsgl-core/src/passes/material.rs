@@ -6,6 +6,7 @@
 
 use crate::frame::GBuffer;
 use crate::error::Result;
+use crate::gpu::buffers::{spans_pages, storage_pages};
 use crate::gpu::{groups, Gpu, PipelineRef, PipelineVariants, Recorder};
 use crate::plan::ShaderFeatures;
 use crate::upload::GpuScene;
@@ -55,14 +56,20 @@ impl MaterialPass {
         let gpu = rec.gpu;
         // Emission follows the target, not the plan: only a G-buffer made with an emission
         // channel (the camera's, when some material emits) has one to write.
-        let flags = [("HAS_TEXTURES", features.textures), ("HAS_NORMAL_MAPS", features.normal_maps), ("HAS_EMISSION", gbuffer.has_emission)];
+        let flags = [
+            ("HAS_TEXTURES", features.textures),
+            ("HAS_NORMAL_MAPS", features.normal_maps),
+            ("HAS_EMISSION", gbuffer.has_emission),
+            ("STORAGE_PAGED", spans_pages(&scene.vertices)),
+        ];
         let pipeline = &self.pipelines.get(gpu, &flags);
         let frame_bind = rec.bind_group("material_frame_bind_group", PipelineRef::Compute(pipeline), 0, &[frame_uniforms.as_entire_binding()]);
         // Every variant binds the same resources: the auto layout is derived before override
         // constants are applied, so the untextured one still declares bindings 5–7.
+        let [vertices, vertices_1, vertices_2, vertices_3] = storage_pages(&scene.vertices);
         let resources = vec![
             wgpu::BindingResource::TextureView(ids),
-            scene.vertices.as_entire_binding(),
+            vertices,
             scene.indices.as_entire_binding(),
             scene.triangle_materials.as_entire_binding(),
             scene.materials.as_entire_binding(),
@@ -74,6 +81,9 @@ impl MaterialPass {
             gbuffer.geo_normal.as_entire_binding(),
             gbuffer.base_color.as_entire_binding(),
             gbuffer.emission.as_entire_binding(),
+            vertices_1,
+            vertices_2,
+            vertices_3,
         ];
         let pass_bind = rec.bind_group("material_pass_bind_group", PipelineRef::Compute(pipeline), 1, &resources);
         rec.in_debug_group(label, |rec| {

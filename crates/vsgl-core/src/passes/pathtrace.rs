@@ -5,6 +5,7 @@
 
 use crate::error::Result;
 use crate::frame::{GBuffer, IndirectTargets};
+use crate::gpu::buffers::{spans_pages, storage_pages};
 use crate::gpu::frame_log::note_pass;
 use crate::gpu::{groups, storage_binding, PipelineRef, uniform_binding, Gpu, PipelineVariants, Recorder};
 use crate::plan::ShaderFeatures;
@@ -140,6 +141,16 @@ fn binding_types() -> Vec<wgpu::BindingType> {
         ro,                                                                           // 25 emitters
         rw,                                                                           // 26 emitted_direct
         ro,                                                                           // 27 triangle_corners
+        // The other pages of nodes, corners and vertices (gpu::buffers::storage_pages).
+        ro,                                                                           // 28 bvh_nodes_1
+        ro,                                                                           // 29 bvh_nodes_2
+        ro,                                                                           // 30 bvh_nodes_3
+        ro,                                                                           // 31 triangle_corners_1
+        ro,                                                                           // 32 triangle_corners_2
+        ro,                                                                           // 33 triangle_corners_3
+        ro,                                                                           // 34 vertices_1
+        ro,                                                                           // 35 vertices_2
+        ro,                                                                           // 36 vertices_3
     ]
 }
 
@@ -205,12 +216,15 @@ impl PathTracePass {
 
         let dispatch = |rec: &mut Recorder<'_>, label: &str, pipeline: &wgpu::ComputePipeline, params: PathParamsRaw, workgroups: (u32, u32, u32)| {
             let uniform = rec.uniform("pathtrace_params_uniform_buffer", &params);
+            let [nodes_0, nodes_1, nodes_2, nodes_3] = storage_pages(nodes);
+            let [corners_0, corners_1, corners_2, corners_3] = storage_pages(&input.gscene.raster_vertices);
+            let [vertices_0, vertices_1, vertices_2, vertices_3] = storage_pages(&input.gscene.vertices);
             let resources = [
                 input.frame.as_entire_binding(),
                 uniform.as_entire_binding(),
-                nodes.as_entire_binding(),
+                nodes_0,
                 triangle_ids.as_entire_binding(),
-                input.gscene.vertices.as_entire_binding(),
+                vertices_0,
                 input.gscene.indices.as_entire_binding(),
                 input.gscene.triangle_materials.as_entire_binding(),
                 input.gscene.materials.as_entire_binding(),
@@ -233,7 +247,16 @@ impl PathTracePass {
                 light_m2.as_entire_binding(),
                 input.gscene.emitters.as_entire_binding(),
                 emitted_direct.as_entire_binding(),
-                input.gscene.raster_vertices.as_entire_binding(),
+                corners_0,
+                nodes_1,
+                nodes_2,
+                nodes_3,
+                corners_1,
+                corners_2,
+                corners_3,
+                vertices_1,
+                vertices_2,
+                vertices_3,
             ];
             let bind = rec.bind_group("pathtrace_bind_group", PipelineRef::Compute(pipeline), 0, &resources);
             rec.in_debug_group(label, |rec| {
@@ -264,6 +287,7 @@ impl PathTracePass {
             ("HAS_TEXTURES", input.features.textures),
             ("HAS_NORMAL_MAPS", input.features.normal_maps),
             ("HAS_EMITTERS", has_emitters),
+            ("STORAGE_PAGED", [&bvh.nodes, &input.gscene.raster_vertices, &input.gscene.vertices].into_iter().any(spans_pages)),
         ];
         dispatch(rec, "pathtrace_direct", &self.direct.get(gpu, &flags), params(0, 0), workgroups);
         let indirect_pipeline = &self.indirect.get(gpu, &flags);

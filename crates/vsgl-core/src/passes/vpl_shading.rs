@@ -36,8 +36,8 @@ impl VplShadingPass {
         let VirtualLightList { records: vpls, count: vpl_count, interleave } = lights;
         let gpu = rec.gpu;
         let [specular] = features.specular_flags();
-        let [traced, ism] = visibility.flags();
-        let pipeline = self.pipelines.get(gpu, &[specular, traced, ism]);
+        let [traced, ism, paged] = visibility.flags();
+        let pipeline = self.pipelines.get(gpu, &[specular, traced, ism, paged]);
         // `frame.passes` names the visibility variant.
         let label = format!("vpl_shading{}", visibility.label_suffix());
         // Chunks are multiples of k² so the interleaved classes stay j ≡ c (mod k²).

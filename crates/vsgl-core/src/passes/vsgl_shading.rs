@@ -190,8 +190,8 @@ impl VsglShadingPass {
         let VsglShadingForm { diffuse, lighting, lambert_lobe, exact_texels, plane_fade } = form;
         let gpu = rec.gpu;
         let [specular] = features.specular_flags();
-        let [traced, ism] = visibility.flags();
-        let pipeline = self.pipelines.get(gpu, &[specular, traced, ism]);
+        let [traced, ism, paged] = visibility.flags();
+        let pipeline = self.pipelines.get(gpu, &[specular, traced, ism, paged]);
         let pixels_per_thread = pixels_per_thread(specular.1);
         // `frame.passes` names the visibility variant.
         let label = format!("vsgl_shading{}", visibility.label_suffix());

@@ -14,6 +14,7 @@ pub mod emitters;
 pub mod points;
 
 use crate::error::{Error, Result};
+use crate::gpu::buffers::{storage_pages_capacity, STORAGE_PAGES, STORAGE_PAGE_BYTES};
 use crate::gpu::Gpu;
 use crate::scene::{Scene, TextureUsage};
 use glam::{DMat3, DVec3};
@@ -212,12 +213,14 @@ impl GpuScene {
         crate::gpu::frame_log::note_setting("bvh_build_ms", build_ms.into());
         crate::gpu::frame_log::note_setting("bvh_bytes_per_triangle", (bytes / triangles.len().max(1) as f64).into());
         let max = gpu.limits.max_storage_buffer_binding_size as u64;
-        let corner_bytes = self.raster_vertices.size();
-        if id_bytes.len() as u64 > max || built.node_bytes().len() as u64 > max || corner_bytes > max {
+        // Nodes and corners are bound in pages (gpu::buffers::storage_pages), the ids whole.
+        let paged = storage_pages_capacity(max);
+        let (node_bytes, corner_bytes) = (built.node_bytes().len() as u64, self.raster_vertices.size());
+        if id_bytes.len() as u64 > max || node_bytes > paged || corner_bytes > paged {
             return Err(Error::invalid("scene", format!(
-                "{} triangles exceed this adapter's storage binding limit of {max} bytes for the ray tracer (BVH nodes {} bytes, triangle corners {corner_bytes} bytes)",
+                "{} triangles exceed this adapter's storage binding limits for the ray tracer: BVH nodes {node_bytes} bytes and triangle corners {corner_bytes} (each at most {paged}), triangle ids {} (at most {max})",
                 triangles.len(),
-                built.node_bytes().len()
+                id_bytes.len()
             )));
         }
         let make = |label: &str, bytes: &[u8]| {
@@ -357,9 +360,18 @@ impl GpuScene {
 
         let bytes = |n: usize, each: usize| (n * each) as u64;
         let max = gpu.limits.max_storage_buffer_binding_size as u64;
-        if bytes(verts.len(), 64) > max || bytes(raster.len(), 16) > gpu.limits.max_buffer_size {
+        // Vertices are bound in pages (gpu::buffers::storage_pages); indices and per-triangle
+        // materials in one binding each.
+        let vertex_capacity = storage_pages_capacity(max);
+        let largest = [bytes(verts.len(), 64), bytes(raster.len(), 16)].into_iter().max().unwrap_or(0);
+        if bytes(verts.len(), 64) > vertex_capacity || bytes(indices.len(), 4) > max || largest > gpu.limits.max_buffer_size {
             return Err(Error::invalid("scene", format!(
-                "{} vertices exceed this adapter's buffer limits ({max} bytes per storage binding)", verts.len()
+                "{} vertices and {} triangles exceed this adapter's buffer limits: vertices take {} bytes (at most {vertex_capacity}: {STORAGE_PAGES} bindings of {STORAGE_PAGE_BYTES} bytes where a binding holds {max}), indices {} (at most {max}, one binding), the largest buffer {largest} (at most {})",
+                verts.len(),
+                tri_mat.len(),
+                bytes(verts.len(), 64),
+                bytes(indices.len(), 4),
+                gpu.limits.max_buffer_size
             )));
         }
         let extent = bounds.diagonal();
