@@ -4,7 +4,7 @@
 //! (placeholders for what the variant does not read). `methods/visibility.rs` makes them from
 //! `visibility=`; the passes only bind them.
 
-use crate::gpu::buffers::{spans_pages, storage_pages};
+use crate::gpu::buffers::{later_storage_pages, spans_pages, storage_pages};
 
 /// GPU twin of `IsmLookup` in `wgsl/common/ism_lookup.wgsl`.
 #[repr(C)]
@@ -54,22 +54,17 @@ impl ShadingVisibility {
     }
 
     /// Group 2 of the shading passes.
-    pub fn bindings(&self) -> [wgpu::BindingResource<'_>; 12] {
-        let [nodes_0, nodes_1, nodes_2, nodes_3] = storage_pages(&self.nodes);
-        let [corners_0, corners_1, corners_2, corners_3] = storage_pages(&self.triangle_corners);
-        [
-            nodes_0,
+    pub fn bindings(&self) -> Vec<wgpu::BindingResource<'_>> {
+        let [nodes, ..] = storage_pages(&self.nodes);
+        let [corners, ..] = storage_pages(&self.triangle_corners);
+        let first = [
+            nodes,
             self.triangle_ids.as_entire_binding(),
             wgpu::BindingResource::TextureView(&self.ids),
             self.ism_atlas.as_entire_binding(),
             self.ism_lookup.as_entire_binding(),
-            corners_0,
-            nodes_1,
-            nodes_2,
-            nodes_3,
-            corners_1,
-            corners_2,
-            corners_3,
-        ]
+            corners,
+        ];
+        first.into_iter().chain(later_storage_pages(&[&self.nodes, &self.triangle_corners])).collect()
     }
 }

@@ -101,6 +101,13 @@ pub fn storage_pages(buffer: &wgpu::Buffer) -> [wgpu::BindingResource<'_>; STORA
     })
 }
 
+/// The bindings of pages 1 … [`STORAGE_PAGES`] − 1 of each of `buffers`, array by array (the
+/// shaders declare them in this order after their other bindings; page 0 keeps each array's own
+/// binding).
+pub fn later_storage_pages<'a>(buffers: &[&'a wgpu::Buffer]) -> Vec<wgpu::BindingResource<'a>> {
+    buffers.iter().flat_map(|b| storage_pages(b).into_iter().skip(1)).collect()
+}
+
 /// Whether a paged array in `buffer` reaches past its first page: then the shaders that read it
 /// run with `STORAGE_PAGED` (wgsl/common/storage_pages.wgsl), which tests each index's page.
 pub fn spans_pages(buffer: &wgpu::Buffer) -> bool {

@@ -6,7 +6,7 @@
 
 use crate::frame::GBuffer;
 use crate::error::Result;
-use crate::gpu::buffers::{spans_pages, storage_pages};
+use crate::gpu::buffers::{later_storage_pages, spans_pages, storage_pages};
 use crate::gpu::{groups, Gpu, PipelineRef, PipelineVariants, Recorder};
 use crate::plan::ShaderFeatures;
 use crate::upload::GpuScene;
@@ -66,7 +66,7 @@ impl MaterialPass {
         let frame_bind = rec.bind_group("material_frame_bind_group", PipelineRef::Compute(pipeline), 0, &[frame_uniforms.as_entire_binding()]);
         // Every variant binds the same resources: the auto layout is derived before override
         // constants are applied, so the untextured one still declares bindings 5–7.
-        let [vertices, vertices_1, vertices_2, vertices_3] = storage_pages(&scene.vertices);
+        let [vertices, ..] = storage_pages(&scene.vertices);
         let resources = vec![
             wgpu::BindingResource::TextureView(ids),
             vertices,
@@ -81,10 +81,10 @@ impl MaterialPass {
             gbuffer.geo_normal.as_entire_binding(),
             gbuffer.base_color.as_entire_binding(),
             gbuffer.emission.as_entire_binding(),
-            vertices_1,
-            vertices_2,
-            vertices_3,
-        ];
+        ]
+        .into_iter()
+        .chain(later_storage_pages(&[&scene.vertices]))
+        .collect::<Vec<_>>();
         let pass_bind = rec.bind_group("material_pass_bind_group", PipelineRef::Compute(pipeline), 1, &resources);
         rec.in_debug_group(label, |rec| {
             let q = rec.timer.begin(label);

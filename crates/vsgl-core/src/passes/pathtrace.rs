@@ -5,7 +5,7 @@
 
 use crate::error::Result;
 use crate::frame::{GBuffer, IndirectTargets};
-use crate::gpu::buffers::{spans_pages, storage_pages};
+use crate::gpu::buffers::{later_storage_pages, spans_pages, storage_pages};
 use crate::gpu::frame_log::note_pass;
 use crate::gpu::{groups, storage_binding, PipelineRef, uniform_binding, Gpu, PipelineVariants, Recorder};
 use crate::plan::ShaderFeatures;
@@ -216,10 +216,10 @@ impl PathTracePass {
 
         let dispatch = |rec: &mut Recorder<'_>, label: &str, pipeline: &wgpu::ComputePipeline, params: PathParamsRaw, workgroups: (u32, u32, u32)| {
             let uniform = rec.uniform("pathtrace_params_uniform_buffer", &params);
-            let [nodes_0, nodes_1, nodes_2, nodes_3] = storage_pages(nodes);
-            let [corners_0, corners_1, corners_2, corners_3] = storage_pages(&input.gscene.raster_vertices);
-            let [vertices_0, vertices_1, vertices_2, vertices_3] = storage_pages(&input.gscene.vertices);
-            let resources = [
+            let [nodes_0, ..] = storage_pages(nodes);
+            let [corners_0, ..] = storage_pages(&input.gscene.raster_vertices);
+            let [vertices_0, ..] = storage_pages(&input.gscene.vertices);
+            let mut resources = vec![
                 input.frame.as_entire_binding(),
                 uniform.as_entire_binding(),
                 nodes_0,
@@ -248,16 +248,8 @@ impl PathTracePass {
                 input.gscene.emitters.as_entire_binding(),
                 emitted_direct.as_entire_binding(),
                 corners_0,
-                nodes_1,
-                nodes_2,
-                nodes_3,
-                corners_1,
-                corners_2,
-                corners_3,
-                vertices_1,
-                vertices_2,
-                vertices_3,
             ];
+            resources.extend(later_storage_pages(&[nodes, &input.gscene.raster_vertices, &input.gscene.vertices]));
             let bind = rec.bind_group("pathtrace_bind_group", PipelineRef::Compute(pipeline), 0, &resources);
             rec.in_debug_group(label, |rec| {
                 let q = rec.timer.begin(label);
