@@ -37,7 +37,22 @@ struct Nearest {
     distance2: f32,
 }
 
+// A cell's box grown by this fraction of its side before the pruning test below, so rounding in
+// its corners (and a centre that the clamp of the grid's last cell holds a rounding past its
+// box) never skips a cell that holds a centre as near as the best.
+const CELL_MARGIN: f32 = 1.0e-4;
+
 fn visit_cell(g: KmeansGrid, cell: vec3i, p: vec3f, best: ptr<function, Nearest>) {
+    // Skips a cell whose box lies farther than the best centre so far: no centre in it can be
+    // nearer, nor as near (exact, ties included). Without it each texel read every centre of the
+    // first two rings (27 cells in 3D); with it a model of this search reads 3.3–6× fewer
+    // bytes than a binary radix tree's search (experiments/kmeans_generation_cost.md).
+    let margin = CELL_MARGIN * g.cell;
+    let lo = g.origin + vec3f(cell) * g.cell - margin;
+    let gap = max(max(lo - p, p - (lo + g.cell + 2.0 * margin)), vec3f(0.0));
+    if (dot(gap, gap) > (*best).distance2) {
+        return;
+    }
     let run = ranges[kmeans_cell_index(g, cell)];
     for (var k = run.x; k < run.y; k++) {
         let id = sorted_centres[k];
