@@ -133,3 +133,18 @@ const _: () = {
     assert!(STORAGE_PAGE_BYTES == 32 << BVH_NODE_PAGE_SHIFT);
     assert!(STORAGE_PAGE_BYTES == 16 << CORNER_PAGE_SHIFT);
 };
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn paged_arrays_hold_four_pages_where_a_page_fits_a_binding_and_one_binding_otherwise() {
+        // lavapipe and wgpu's defaults: 128 MiB a binding, so four pages of it.
+        assert_eq!(storage_pages_capacity(STORAGE_PAGE_BYTES), 4 * STORAGE_PAGE_BYTES);
+        // A GPU whose bindings hold more still gets the shaders' fixed pages, not its limit.
+        assert_eq!(storage_pages_capacity(1 << 32), 4 * STORAGE_PAGE_BYTES);
+        // An adapter whose bindings hold less than a page: one binding, no paging.
+        assert_eq!(storage_pages_capacity(64 << 20), 64 << 20);
+    }
+}
