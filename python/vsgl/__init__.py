@@ -45,6 +45,7 @@ from vsgl._vsgl import (
     ShaderError,
     SpotLight,
     VsglError,
+    WindowUnavailableError,
     __version__,
     adapters,
     check_method_options,
@@ -72,6 +73,7 @@ __all__ = [
     "ShaderError",
     "SpotLight",
     "VsglError",
+    "WindowUnavailableError",
     "__version__",
     "adapters",
     "check_method_options",
@@ -85,7 +87,7 @@ __all__ = [
 # The submodules beyond `scenes` load on first use, so `import vsgl` stays light (bench pulls in
 # statistics and plotting helpers) while `vsgl.metrics.rmse(...)` works without an import of
 # its own (PEP 562).
-_LAZY_SUBMODULES = ("bench", "camera_control", "lightspec", "metrics", "reproduce", "scene_edit", "stability", "video", "view_session")
+_LAZY_SUBMODULES = ("bench", "camera_control", "lightspec", "metrics", "reproduce", "scene_edit", "stability", "video", "view_session", "window_view")
 
 VIEW_EXTRA_HINT = "pip install 'vsgl[view]'"
 

@@ -1,4 +1,4 @@
-"""Command line: ``python -m vsgl render|animate|methods|bench|stability|adapters``."""
+"""Command line: ``python -m vsgl render|animate|view|methods|bench|stability|adapters``."""
 
 from __future__ import annotations
 
@@ -213,6 +213,38 @@ def _progress_line(method: str):
     return show
 
 
+def _view(args: argparse.Namespace) -> int:
+    import vsgl
+    from vsgl.window_view import view
+
+    try:
+        scene = _load_scene(args.scene)
+    except (ValueError, FileNotFoundError) as e:
+        print(f"error: {e}", file=sys.stderr)
+        return 2
+    for light in args.light:
+        scene.add_light(light)
+    methods = args.compare.split(",") if args.compare else [args.method]
+    options: dict = {}
+    for name, value in (("num_lights", args.lights), ("rsm_size", args.rsm_size), ("interleave", args.interleave)):
+        if value is not None and any(name in vsgl.method_options(m) for m in methods):
+            options[name] = value
+    options.update(args.option)
+    renderer = vsgl.Renderer(width=args.size[0], height=args.size[1], adapter=args.adapter)
+    try:
+        result = view(scene, methods[0], compare=methods if len(methods) > 1 else None, renderer=renderer,
+                      size=args.size, ui=not args.no_ui, vsync=not args.no_vsync, frames=args.frames,
+                      screenshot=args.screenshot, seed=args.seed, **options)
+    except vsgl.WindowUnavailableError as e:
+        print(f"error: {e}", file=sys.stderr)
+        return 3
+    if result["median_frame_ms"] is not None:
+        print(f"frames    {result['frames']}, median {result['median_frame_ms']:.2f} ms a frame (render, compose, panel, present)")
+    if result["screenshot"]:
+        print(f"screenshot {result['screenshot']}")
+    return 0
+
+
 def main(argv: list[str] | None = None) -> int:
     import vsgl
 
@@ -272,6 +304,24 @@ def main(argv: list[str] | None = None) -> int:
     animate.add_argument("--spp", type=int, default=None, help="samples per pixel of pathtrace (default: 64)")
     animate.add_argument("--adapter", default=None, help="adapter name substring (default: best, or $VSGL_ADAPTER)")
     animate.set_defaults(run=_animate)
+
+    view_cmd = sub.add_parser("view", help="a desktop window: move the camera and the lights, change the method and its options live")
+    view_cmd.add_argument("scene", nargs="?", default="cornell_box", help="built-in or corpus scene name, or .gltf/.glb path (default: cornell_box)")
+    view_cmd.add_argument("--method", default="vsgl", choices=list(vsgl.METHODS), help="the method (default: vsgl)")
+    view_cmd.add_argument("--compare", default=None, metavar="M1,M2", help="two methods side by side with a movable divider, e.g. vpl,vsgl")
+    view_cmd.add_argument("--size", type=_size, default=(960, 540), help="WIDTHxHEIGHT of the window in logical pixels (default: 960x540)")
+    view_cmd.add_argument("--lights", type=int, default=None, help="VPLs or VSGLs in all (default: the method's)")
+    view_cmd.add_argument("--rsm-size", type=int, default=None, help="RSM side (default: the method's)")
+    view_cmd.add_argument("--interleave", type=int, default=None, help="interleaving tile side (default: the method's)")
+    view_cmd.add_argument("--light", action="append", default=[], type=_light, metavar="SPEC", help="add a light (repeatable), as in render --help")
+    view_cmd.add_argument("--seed", type=int, default=0, help="sampling seed (default: 0)")
+    view_cmd.add_argument("-O", "--option", action="append", default=[], type=_option, metavar="NAME=VALUE", help="any option of the method (repeatable)")
+    view_cmd.add_argument("--frames", type=int, default=None, help="render this many frames, then close (headless runs; default: until the window is closed)")
+    view_cmd.add_argument("--screenshot", default=None, metavar="PNG", help="save the last frame presented there when the window closes")
+    view_cmd.add_argument("--no-ui", action="store_true", help="no settings panel or status line over the frame")
+    view_cmd.add_argument("--no-vsync", action="store_true", help="present without waiting for the display's refresh (frame-rate measurements)")
+    view_cmd.add_argument("--adapter", default=None, help="adapter name substring (default: best, or $VSGL_ADAPTER)")
+    view_cmd.set_defaults(run=_view)
 
     methods = sub.add_parser("methods", help="list the methods and the options each takes")
     methods.set_defaults(run=_methods)

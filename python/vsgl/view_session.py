@@ -234,7 +234,9 @@ class ViewSession:
         return True
 
     # --- frames ----------------------------------------------------------------------------
-    def _render(self, method: str, share: Mapping[str, Any], aovs: list[str]) -> vsgl.Frame:
+    def render_options(self, method: str, share: Mapping[str, Any]) -> dict[str, Any]:
+        """The keyword options a frame of ``method`` renders with (its share of the view's
+        options, the view's seed, and for the reference the RSM side of the compared method)."""
         opts = dict(share)
         if _takes(method, "seed"):
             opts.setdefault("seed", self.seed)
@@ -242,10 +244,19 @@ class ViewSession:
             # The every-texel reference of the RSM the compared method uses, which is what
             # virtual lights estimate (and costs what that method's generation reads).
             opts.setdefault("rsm_size", self._rsm_size)
-        f = self.renderer.render(self.scene, camera=self.orbit.camera(), method=method, aovs=aovs, **opts)  # type: ignore[call-overload]
-        rsm = f.settings.get("rsm_size")
+        return opts
+
+    def note_frame(self, method: str, frame: vsgl.Frame) -> None:
+        """Keeps what a later frame needs of ``frame``: the RSM side a virtual-light method
+        resolved (the reference of a comparison uses it)."""
+        rsm = frame.settings.get("rsm_size")
         if method != "reference" and isinstance(rsm, int):
             self._rsm_size = rsm
+
+    def _render(self, method: str, share: Mapping[str, Any], aovs: list[str]) -> vsgl.Frame:
+        opts = self.render_options(method, share)
+        f = self.renderer.render(self.scene, camera=self.orbit.camera(), method=method, aovs=aovs, **opts)  # type: ignore[call-overload]
+        self.note_frame(method, f)
         return f
 
     def _method_image(self, method: str, share: Mapping[str, Any], still: bool,

@@ -11,6 +11,7 @@ mod renderer;
 mod scene;
 mod sequence;
 mod stability;
+mod window;
 
 use camera::PyCamera;
 use frame::PyFrame;
@@ -47,6 +48,8 @@ fn _vsgl(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_class::<PyDirectionalLight>()?;
     m.add_class::<PyFrame>()?;
     m.add_class::<PyFrameSequence>()?;
+    m.add_class::<window::PyViewWindow>()?;
+    m.add("WindowUnavailableError", py.get_type::<window::WindowUnavailableError>())?;
     m.add_function(wrap_pyfunction!(adapters, m)?)?;
     m.add_function(wrap_pyfunction!(describe_method, m)?)?;
     m.add_function(wrap_pyfunction!(method_options, m)?)?;

@@ -157,6 +157,19 @@ impl PyRenderer {
         let state = SequenceState { scene: (*scene.inner).clone(), camera: camera.map(|c| c.inner), seed: None, index: 0, in_flight: None, deferred: None };
         Ok(PyFrameSequence { renderer: self.inner.clone(), frames: frames.unbind(), opts, state: std::sync::Mutex::new(state) })
     }
+    /// Opens a desktop window on `scene` drawn by this renderer (resized to the window) and
+    /// runs it until it is closed: `vsgl.window_view.view`, which documents the arguments
+    /// (`compare=`, `size=`, `frames=`, `screenshot=`, `ui=`, the method's options).
+    #[pyo3(signature = (scene, method="vsgl", **kwargs))]
+    fn view<'py>(slf: &Bound<'py, Self>, scene: &Bound<'py, PyAny>, method: &str, kwargs: Option<&Bound<'py, PyDict>>) -> PyResult<Bound<'py, PyAny>> {
+        let py = slf.py();
+        let kwargs = match kwargs {
+            Some(k) => k.copy()?,
+            None => PyDict::new(py),
+        };
+        kwargs.set_item("renderer", slf)?;
+        py.import("vsgl.window_view")?.getattr("view")?.call((scene, method), Some(&kwargs))
+    }
     fn __repr__(&self) -> String {
         format!("Renderer(width={}, height={}, adapter={:?})", self.inner.width(), self.inner.height(), self.inner.gpu.adapter.name)
     }

@@ -1,6 +1,6 @@
 //! The headless device: adapter choice, the device and queue, error scopes, waiting.
 //!
-//! No window and no surface. Adapters are ranked discrete GPU → integrated → virtual → CPU
+//! No window and no surface here (the window crate makes one from the kept instance). Adapters are ranked discrete GPU → integrated → virtual → CPU
 //! (lavapipe); `VSGL_ADAPTER` or an explicit filter picks one by name substring.
 
 use crate::error::{Error, Result};
@@ -93,6 +93,10 @@ pub fn adapters() -> Vec<AdapterSummary> {
 
 /// Device, queue and what the adapter can do. Cheap to share (`Arc`).
 pub struct Gpu {
+    /// The instance and adapter the device came from: a window makes its surface with the
+    /// first and asks the second whether it can present to it (`vsgl-window`).
+    pub instance: wgpu::Instance,
+    pub wgpu_adapter: wgpu::Adapter,
     pub device: wgpu::Device,
     pub queue: wgpu::Queue,
     pub adapter: AdapterSummary,
@@ -166,7 +170,7 @@ impl Gpu {
         // Errors are caught by scopes around each frame; anything that escapes is logged, never
         // a panic across the Python boundary.
         device.on_uncaptured_error(Arc::new(|e: wgpu::Error| log::error!("uncaptured wgpu error: {e}")));
-        Ok(Arc::new(Self { device, queue, timestamps: summary.timestamps, adapter: summary, limits, variants_compiled: Default::default() }))
+        Ok(Arc::new(Self { instance: inst, wgpu_adapter: adapter, device, queue, timestamps: summary.timestamps, adapter: summary, limits, variants_compiled: Default::default() }))
     }
 
     /// Blocks until the queue is idle.

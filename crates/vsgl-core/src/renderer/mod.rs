@@ -110,6 +110,21 @@ impl InFlight {
     }
 }
 
+impl SubmittedFrame {
+    /// Where AOV `name` lies on the GPU, packed (buffer, byte offset), for a frame rendered with
+    /// [`RenderOptions::keep_on_gpu`]; None otherwise or when the frame did not make it. The
+    /// buffer is the renderer's and the next frame packs into it: copy out what must outlive
+    /// that before submitting it (the queue runs submissions in order).
+    pub fn packed_aov(&self, name: &str) -> Option<(&wgpu::Buffer, u64)> {
+        self.aovs.kept(name)
+    }
+
+    /// (width, height) of the frame.
+    pub fn size(&self) -> (u32, u32) {
+        (self.frame.width, self.frame.height)
+    }
+}
+
 impl Drop for InFlight {
     fn drop(&mut self) {
         self.0.fetch_sub(1, Ordering::SeqCst);

@@ -44,6 +44,10 @@ pub struct RenderOptions {
     /// Asked between the GPU batches of long renders (`pathtrace`, `reference`): an error
     /// stops the render there (Python: Ctrl-C raises `KeyboardInterrupt` within a batch).
     pub stop: Option<StopCheck>,
+    /// The asked-for AOVs stay on the GPU, packed, for a presenter (the desktop window): no
+    /// staging copy and no readback. [`super::SubmittedFrame::packed_aov`] says where each lies;
+    /// the frame `finish` returns then holds no AOV.
+    pub keep_on_gpu: bool,
 }
 
 impl Default for RenderOptions {
@@ -54,7 +58,7 @@ impl Default for RenderOptions {
 
 impl RenderOptions {
     pub fn new(method: &str) -> Self {
-        Self { method: method.into(), plan: PlanMode::Auto, aovs: None, options: Vec::new(), stop: None }
+        Self { method: method.into(), plan: PlanMode::Auto, aovs: None, options: Vec::new(), stop: None, keep_on_gpu: false }
     }
 
     /// Sets one keyword option of the method (`RenderOptions::new("vsgl").set("num_lights", 64u32)`).

@@ -30,6 +30,8 @@ fn words_per_pixel(name: &str) -> usize {
 pub(super) struct PendingAovs {
     layout: Vec<(&'static str, usize, u64)>,
     staging: Option<wgpu::Buffer>,
+    /// The packed AOVs themselves when the frame keeps them on the GPU (no staging copy).
+    kept: Option<wgpu::Buffer>,
     pixels: usize,
     /// Where the per-AOV counts of non-finite values lie in the staging buffer.
     counts_offset: u64,
@@ -58,7 +60,7 @@ pub(super) fn record_aovs(rec: &mut Recorder<'_>, pack: &AovPackPass, opts: &Ren
     }
     debug_assert!(entries.len() <= MAX_ENTRIES);
     if entries.is_empty() {
-        return PendingAovs { layout, staging: None, pixels, counts_offset: 0 };
+        return PendingAovs { layout, staging: None, kept: None, pixels, counts_offset: 0 };
     }
     let bytes = words * 4;
     // Every word is written by the pack pass: no clear needed on reuse.
@@ -66,13 +68,23 @@ pub(super) fn record_aovs(rec: &mut Recorder<'_>, pack: &AovPackPass, opts: &Ren
     // Zeroed for every frame (storage() clears a kept buffer).
     let counts = rec.storage("aov_count_buffer", COUNTS_BYTES);
     pack.record(rec, src, &entries, &packed, &counts, size);
+    if opts.keep_on_gpu {
+        return PendingAovs { layout, staging: None, kept: Some(packed), pixels, counts_offset: bytes };
+    }
     let staging = kept_staging_buffer(rec.gpu, kept, "aov_readback_staging_buffer", bytes + COUNTS_BYTES);
     rec.enc.copy_buffer_to_buffer(&packed, 0, &staging, 0, bytes);
     rec.enc.copy_buffer_to_buffer(&counts, 0, &staging, bytes, COUNTS_BYTES);
-    PendingAovs { layout, staging: Some(staging), pixels, counts_offset: bytes }
+    PendingAovs { layout, staging: Some(staging), kept: None, pixels, counts_offset: bytes }
 }
 
 impl PendingAovs {
+    /// The buffer and byte offset of AOV `name` of a frame that keeps its AOVs on the GPU
+    /// (`ldr`: one RGBA8 word a pixel, rows top to bottom).
+    pub(super) fn kept(&self, name: &str) -> Option<(&wgpu::Buffer, u64)> {
+        let buffer = self.kept.as_ref()?;
+        self.layout.iter().find(|(n, _, _)| *n == name).map(|(_, _, offset)| (buffer, *offset))
+    }
+
     /// Waits for the frame's submission (not for later ones) and splits the staging buffer
     /// into the AOVs; an AOV with a NaN or Inf value is an [`Error::NonFinite`] naming it.
     pub(super) fn read(self, gpu: &Gpu, submission: &wgpu::SubmissionIndex) -> Result<Aovs> {
