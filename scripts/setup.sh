@@ -5,12 +5,20 @@
 set -euo pipefail
 cd "$(dirname "$0")/.."
 
+SUDO=""; [ "$(id -u)" -ne 0 ] && SUDO="sudo"
 # (grep without -q: with pipefail, -q's early exit would make ldconfig's SIGPIPE fail the test)
 if ! ls /usr/share/vulkan/icd.d/*.json /etc/vulkan/icd.d/*.json >/dev/null 2>&1 || ! ldconfig -p | grep libvulkan.so.1 >/dev/null; then
   echo "setup: no Vulkan driver or loader found; installing mesa-vulkan-drivers libvulkan1" >&2
-  SUDO=""; [ "$(id -u)" -ne 0 ] && SUDO="sudo"
   $SUDO apt-get update -qq
   DEBIAN_FRONTEND=noninteractive $SUDO apt-get install -y -qq mesa-vulkan-drivers libvulkan1 >/dev/null
+fi
+
+# The desktop window's tests open a real window under Xvfb and drive it with xdotool; without
+# them those tests skip (and fail under CI=true, which must run them).
+if ! command -v Xvfb >/dev/null || ! command -v xdotool >/dev/null; then
+  echo "setup: installing xvfb xdotool (for the desktop window's tests)" >&2
+  { $SUDO apt-get update -qq && DEBIAN_FRONTEND=noninteractive $SUDO apt-get install -y -qq xvfb xdotool >/dev/null; } \
+    || echo "setup: could not install xvfb and xdotool; the desktop window's tests will skip" >&2
 fi
 
 PYTHON=${PYTHON:-python3}
