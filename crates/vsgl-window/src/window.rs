@@ -163,6 +163,9 @@ pub struct ViewWindow {
     gpu: Arc<Gpu>,
     app: WindowApp,
     surface: Option<SurfaceState>,
+    /// Offscreen, a texture of a surface's usual format (BGRA8) the target is blitted to, so the
+    /// frame path does the work a window's does (timing where no display exists).
+    stand_in: Option<(wgpu::TextureView, SurfaceBlitPass)>,
     compose: ComposePass,
     target: FrameTarget,
     /// The images shown: copies of the frames' `ldr` words (or uploaded pixels), one per method.
@@ -227,13 +230,27 @@ impl ViewWindow {
     pub fn offscreen(gpu: Arc<Gpu>, size: (u32, u32), ui: bool) -> Self {
         let app = WindowApp { requested: None, window: None, create_error: None, state: EventState { scale: 1.0, ..Default::default() }, events: Vec::new(), egui: None, ui_repaint: false };
         let ui = ui.then(|| Ui::new(&gpu.device, TARGET_FORMAT));
-        Self::with_parts(gpu, app, size, ui)
+        let format = wgpu::TextureFormat::Bgra8Unorm;
+        let texture = gpu.device.create_texture(&wgpu::TextureDescriptor {
+            label: Some("window_surface_stand_in_texture"),
+            size: wgpu::Extent3d { width: size.0, height: size.1, depth_or_array_layers: 1 },
+            mip_level_count: 1,
+            sample_count: 1,
+            dimension: wgpu::TextureDimension::D2,
+            format,
+            usage: wgpu::TextureUsages::RENDER_ATTACHMENT,
+            view_formats: &[],
+        });
+        let blit = SurfaceBlitPass::new(&gpu.device, format);
+        let mut me = Self::with_parts(gpu, app, size, ui);
+        me.stand_in = Some((texture.create_view(&Default::default()), blit));
+        me
     }
 
     fn with_parts(gpu: Arc<Gpu>, app: WindowApp, size: (u32, u32), ui: Option<Ui>) -> Self {
         let compose = ComposePass::new(&gpu.device, TARGET_FORMAT);
         let target = FrameTarget::new(&gpu.device, size);
-        Self { gpu, app, surface: None, compose, target, images: [None, None], ui, closed: false, last_present: Duration::ZERO }
+        Self { gpu, app, surface: None, stand_in: None, compose, target, images: [None, None], ui, closed: false, last_present: Duration::ZERO }
     }
 
     /// (width, height) in physical pixels of what the window shows (its frames' size).
@@ -363,6 +380,8 @@ impl ViewWindow {
                 // Minimised, occluded or outdated: this frame is not shown; a resize follows.
                 _ => s.surface.configure(device, &s.config),
             }
+        } else if let Some((view, blit)) = &self.stand_in {
+            blit.record(device, &mut encoder, &self.target.view, view);
         }
         extra.push(encoder.finish());
         self.gpu.queue.submit(extra);
