@@ -226,6 +226,11 @@ def test_keys_and_the_mouse_move_the_camera_and_escape_closes_the_window(xvfb, t
             _xdotool(xvfb, "mouseup", "1")
             orbited = _shot(xvfb, folder, 3, deadline)
             assert not np.array_equal(first, orbited), "a drag did not orbit the camera"
+            if run == 1:
+                # A resized window renders at its new size.
+                _xdotool(xvfb, "windowsize", "--sync", wid, "120", "64")
+                resized = _shot(xvfb, folder, 4, deadline)
+                assert resized.shape == (64, 120, 4), resized.shape
             _xdotool(xvfb, "key", "Escape")
         out, err = proc.communicate(timeout=max(deadline - time.time(), 10))
     finally:
@@ -233,3 +238,13 @@ def test_keys_and_the_mouse_move_the_camera_and_escape_closes_the_window(xvfb, t
             proc.kill()
     assert proc.returncode == 0, err
     assert out.count("opened") == 2 and "done" in out, out
+
+
+@pytest.mark.gpu
+def test_renderer_view_runs_a_window_and_returns_when_it_closes(xvfb, tmp_path):
+    code = ("import vsgl; r = vsgl.Renderer(64, 36); "
+            "print(r.view(vsgl.scenes.load('cornell_box'), 'direct', frames=2, ui=False, size=(64, 36), "
+            f"screenshot={str(tmp_path / 'r.png')!r}))")
+    r = subprocess.run([sys.executable, "-c", code], env=xvfb, capture_output=True, text=True, timeout=300, cwd=REPO)
+    assert r.returncode == 0, r.stderr
+    assert "'frames': 2" in r.stdout and (tmp_path / "r.png").exists()
