@@ -217,11 +217,7 @@ def _view(args: argparse.Namespace) -> int:
     import vsgl
     from vsgl.window_view import view
 
-    try:
-        scene = _load_scene(args.scene)
-    except (ValueError, FileNotFoundError) as e:
-        print(f"error: {e}", file=sys.stderr)
-        return 2
+    scene = _load_scene(args.scene)  # a bad name or path: main() prints the error, status 2
     for light in args.light:
         scene.add_light(light)
     methods = args.compare.split(",") if args.compare else [args.method]
@@ -358,7 +354,7 @@ def main(argv: list[str] | None = None) -> int:
     args = parser.parse_args(argv)
     try:
         return args.run(args)
-    except ValueError as e:
+    except (ValueError, FileNotFoundError) as e:
         print(f"error: {e}", file=sys.stderr)
         return 2
 

@@ -20,10 +20,7 @@ pub struct ComposeInputs<'a> {
 
 impl ComposePass {
     pub fn new(device: &wgpu::Device, target_format: wgpu::TextureFormat) -> Self {
-        let module = device.create_shader_module(wgpu::ShaderModuleDescriptor {
-            label: Some("window_compose"),
-            source: wgpu::ShaderSource::Wgsl(include_str!("../wgsl/compose.wgsl").into()),
-        });
+        let module = crate::pass_shader(device, "window_compose", include_str!("../wgsl/compose.wgsl"));
         let storage = |binding| wgpu::BindGroupLayoutEntry {
             binding,
             visibility: wgpu::ShaderStages::FRAGMENT,

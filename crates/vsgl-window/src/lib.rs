@@ -24,6 +24,13 @@ pub use events::InputEvent;
 pub use panel::{Control, PanelChange, PanelSpec, PanelValue};
 pub use window::{ViewWindow, WindowError};
 
+/// A pass's shader module: `wgsl/fullscreen.wgsl` (the vertex stage) followed by the pass's own
+/// fragment stage.
+pub(crate) fn pass_shader(device: &wgpu::Device, label: &str, fragment: &str) -> wgpu::ShaderModule {
+    let source = format!("{}\n{fragment}", include_str!("../wgsl/fullscreen.wgsl"));
+    device.create_shader_module(wgpu::ShaderModuleDescriptor { label: Some(label), source: wgpu::ShaderSource::Wgsl(source.into()) })
+}
+
 /// A pipeline that draws one triangle covering its target from `vs_main` / `fs_main`.
 pub(crate) fn fullscreen_pipeline(device: &wgpu::Device, label: &str, module: &wgpu::ShaderModule, layout: &wgpu::BindGroupLayout, format: wgpu::TextureFormat) -> wgpu::RenderPipeline {
     let pipeline_layout = device.create_pipeline_layout(&wgpu::PipelineLayoutDescriptor { label: Some(label), bind_group_layouts: &[Some(layout)], immediate_size: 0 });
@@ -55,4 +62,20 @@ pub(crate) fn target_pass<'e>(encoder: &'e mut wgpu::CommandEncoder, label: &str
         occlusion_query_set: None,
         multiview_mask: None,
     })
+}
+
+#[cfg(test)]
+mod tests {
+    /// Each pass's WGSL, with the shared vertex stage, parses and validates (no GPU needed).
+    #[test]
+    fn the_window_shaders_validate() {
+        for (name, fragment) in [("compose", include_str!("../wgsl/compose.wgsl")), ("surface_blit", include_str!("../wgsl/surface_blit.wgsl"))] {
+            let source = format!("{}\n{fragment}", include_str!("../wgsl/fullscreen.wgsl"));
+            let module = naga::front::wgsl::parse_str(&source).unwrap_or_else(|e| panic!("{name}: {}", e.emit_to_string(&source)));
+            naga::valid::Validator::new(naga::valid::ValidationFlags::all(), naga::valid::Capabilities::empty())
+                .validate(&module)
+                .unwrap_or_else(|e| panic!("{name}: {e:?}"));
+            assert!(module.entry_points.iter().any(|e| e.name == "vs_main") && module.entry_points.iter().any(|e| e.name == "fs_main"), "{name}");
+        }
+    }
 }

@@ -10,10 +10,7 @@ pub struct SurfaceBlitPass {
 impl SurfaceBlitPass {
     /// `view_format`: the non-sRGB format the surface texture is viewed in.
     pub fn new(device: &wgpu::Device, view_format: wgpu::TextureFormat) -> Self {
-        let module = device.create_shader_module(wgpu::ShaderModuleDescriptor {
-            label: Some("window_surface_blit"),
-            source: wgpu::ShaderSource::Wgsl(include_str!("../wgsl/surface_blit.wgsl").into()),
-        });
+        let module = crate::pass_shader(device, "window_surface_blit", include_str!("../wgsl/surface_blit.wgsl"));
         let layout = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
             label: Some("window_surface_blit_layout"),
             entries: &[wgpu::BindGroupLayoutEntry {

@@ -17,13 +17,6 @@ struct Compose {
 @group(0) @binding(1) var<storage, read> left_image: array<u32>;
 @group(0) @binding(2) var<storage, read> right_image: array<u32>;
 
-@vertex
-fn vs_main(@builtin(vertex_index) v: u32) -> @builtin(position) vec4<f32> {
-    // One triangle that covers the target.
-    let uv = vec2<f32>(f32((v << 1u) & 2u), f32(v & 2u));
-    return vec4<f32>(uv * 2.0 - 1.0, 0.0, 1.0);
-}
-
 @fragment
 fn fs_main(@builtin(position) p: vec4<f32>) -> @location(0) vec4<f32> {
     let x = min(u32(p.x), compose.size.x - 1u);

@@ -4,12 +4,6 @@
 
 @group(0) @binding(0) var target_image: texture_2d<f32>;
 
-@vertex
-fn vs_main(@builtin(vertex_index) v: u32) -> @builtin(position) vec4<f32> {
-    let uv = vec2<f32>(f32((v << 1u) & 2u), f32(v & 2u));
-    return vec4<f32>(uv * 2.0 - 1.0, 0.0, 1.0);
-}
-
 @fragment
 fn fs_main(@builtin(position) p: vec4<f32>) -> @location(0) vec4<f32> {
     let size = textureDimensions(target_image);
