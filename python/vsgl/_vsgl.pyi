@@ -452,6 +452,7 @@ class _VplOptions(TypedDict, total=False):
     ism_points_per_map: int
     ism_bias: float
     ism_pcf: int
+    emitter_direct: Literal["points", "sg"]
     importance: Literal["rsm", "brsm"]
     importance_lights: int
     importance_interleave: int
@@ -484,6 +485,7 @@ class _VsglOptions(TypedDict, total=False):
     ism_points_per_map: int
     ism_bias: float
     ism_pcf: int
+    emitter_direct: Literal["points", "sg"]
     shadow_target: Literal["resampled", "centre"]
     near_field: Literal["texels", "sg"]
     importance: Literal["rsm", "brsm"]
@@ -506,6 +508,7 @@ class _Vsgl2Options(TypedDict, total=False):
     ism_points_per_map: int
     ism_bias: float
     ism_pcf: int
+    emitter_direct: Literal["points", "sg"]
     rsm_fit: Literal["scene", "cone"]
     capture_rsm: bool
 class _LpvOptions(TypedDict, total=False):
@@ -530,6 +533,7 @@ class _ReferenceOptions(TypedDict, total=False):
     ism_points_per_map: int
     ism_bias: float
     ism_pcf: int
+    emitter_direct: Literal["points", "sg"]
     rsm_fit: Literal["scene", "cone"]
     capture_rsm: bool
 class _PathtraceOptions(TypedDict, total=False):

@@ -28,7 +28,9 @@ struct PackParams {
     count: u32,
     // bit 0: the method makes indirect light; bit 1: the specular target exists (else it is a
     // placeholder and reads as zero); bit 2: the emission channel exists (else a placeholder,
-    // and nothing is added: frames of scenes without emission keep every bit).
+    // and nothing is added: frames of scenes without emission keep every bit); bit 3: the
+    // emitter VSGLs' direct light (emitter_direct="sg") is added to the direct light (else its
+    // bindings are stand-ins, not read).
     flags: u32,
     // (kind, first word in `packed`, 0, 0) per packed AOV.
     entries: array<vec4u, MAX_ENTRIES>,
@@ -43,6 +45,8 @@ struct PackParams {
 @group(0) @binding(6) var<storage, read> gbuf_base_color: array<vec4f>;
 @group(0) @binding(7) var<storage, read> stderr_in: array<vec4f>;
 @group(0) @binding(10) var<storage, read> gbuf_emission: array<vec4f>;
+@group(0) @binding(11) var<storage, read> emitter_direct_diffuse: array<vec4f>;
+@group(0) @binding(12) var<storage, read> emitter_direct_specular: array<vec4f>;
 // Words: float AOVs as their bit patterns, `ldr` as one RGBA8 word a pixel.
 @group(0) @binding(8) var<storage, read_write> packed: array<u32>;
 // Words 0 … MAX_ENTRIES − 1: per packed AOV, how many of its values are NaN or ±Inf (the
@@ -66,12 +70,24 @@ fn specular_or_zero(i: u32) -> vec3f {
     return s;
 }
 
+// Direct light: the direct pass's, plus the emitter VSGLs' where they shade emitters.
+fn direct_light(i: u32) -> vec3f {
+    if ((params.flags & 8u) == 0u) {
+        return direct[i].rgb;
+    }
+    var d = direct[i].rgb + emitter_direct_diffuse[i].rgb;
+    if ((params.flags & 2u) != 0u) {
+        d += emitter_direct_specular[i].rgb;
+    }
+    return d;
+}
+
 // What reaches the camera without a bounce: direct light plus emitted radiance.
 fn direct_radiance(i: u32) -> vec3f {
     if ((params.flags & 4u) == 0u) {
-        return direct[i].rgb;
+        return direct_light(i);
     }
-    return direct[i].rgb + gbuf_emission[i].rgb;
+    return direct_light(i) + gbuf_emission[i].rgb;
 }
 
 fn indirect_sum(i: u32) -> vec3f {

@@ -13,6 +13,10 @@
 override SHADOWS: bool = true;
 // Whether the frame has emitter lights: without, their sum is compiled out.
 override HAS_EMITTER_LIGHTS: bool = true;
+// Whether this pass lights with the emitter lights (their point sum; emitter_direct="points").
+// False: the emitter VSGLs shade their direct light in a pass of their own, and this one leaves
+// them out.
+override EMITTER_POINT_SUM: bool = true;
 const WORKGROUP: u32 = 8u;
 // Shadow-map normal offset in shadow texels: (SHADOW_NORMAL_OFFSET_TEXELS +
 // SHADOW_SLOPE_OFFSET_TEXELS·sinθ) texel footprints at the receiver's distance from the light
@@ -159,6 +163,9 @@ fn main(@builtin(global_invocation_id) gid: vec3u) {
     for (var i = 0u; i < frame.light_count; i++) {
         let light = lights[i];
         if (HAS_EMITTER_LIGHTS && light.kind == LIGHT_KIND_EMITTER) {
+            if (!EMITTER_POINT_SUM) {
+                continue;
+            }
             // Shadowed by its cube as seen from its centre, lit by its points.
             let centre = light_incidence(light, p);
             var visibility = 1.0;

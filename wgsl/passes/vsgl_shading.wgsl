@@ -39,7 +39,9 @@ struct ShadeParams {
     // become VPLs as N reaches the texel count and converge with them.
     exact_texels: u32,
     // 1 (diffuse "accurate" and "sg_product", and "papers" with the method's plane_fade): the
-    // diffuse term fades out below each VSGL's mean tangent plane (vsgl_tangent_plane_fade).
+    // diffuse term fades out below each VSGL's mean tangent plane (vsgl_tangent_plane_fade);
+    // 2: the receiver's glossy reflection of the diffuse lobe fades too (emitter VSGLs, whose
+    // receivers on the emitter's own plane would otherwise mirror it at zero distance).
     plane_fade: u32,
     // 0 = lighting="asg": the papers' SG–ASG specular (vsgl_specular); 1 = lighting="accurate":
     // the filtered-NDF specular (vsgl_specular_accurate); 2 = lighting="blend": the two weighted
@@ -260,7 +262,7 @@ fn tile_light(t: u32, index: u32) -> TileLight {
     if (VISIBILITY_TRACED || params.exact_texels == 1u) {
         light.target_level = tile_target_level[t];
     }
-    if (params.plane_fade == 1u) {
+    if (params.plane_fade >= 1u) {
         light.plane = tile_plane[t];
     }
     // Without specular materials no record has specular power (and R_s = 0 here).
@@ -378,7 +380,7 @@ fn shade_pair(px: ptr<function, BlockPixel>, light: TileLight) {
     // over the horizon of a receiver behind the cluster's plane). The specular ASG form
     // vanishes there already and is left as it is.
     var fade = 1.0;
-    if (params.plane_fade == 1u) {
+    if (params.plane_fade >= 1u) {
         let plane = light.plane;
         fade = vsgl_tangent_plane_fade(VsglTangentPlane(plane.xyz, plane.w), position, p);
     }
@@ -433,7 +435,8 @@ fn shade_pair(px: ptr<function, BlockPixel>, light: TileLight) {
         }
         (*px).diffuse += diffuse_power * from_diffuse_lobe;
         if (HAS_SPECULAR) {
-            (*px).specular += diffuse_power * specular_over_rs(in_d, (*px).specular_receiver);
+            let glossy_fade = select(1.0, fade, params.plane_fade == 2u);
+            (*px).specular += diffuse_power * (glossy_fade * specular_over_rs(in_d, (*px).specular_receiver));
         }
     }
     if (HAS_SPECULAR) {

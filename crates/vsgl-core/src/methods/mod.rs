@@ -16,6 +16,7 @@ mod rsm_lights;
 mod sg_lighting;
 
 mod direct;
+pub mod emitter_direct;
 mod lpv;
 mod pathtrace;
 mod reference;

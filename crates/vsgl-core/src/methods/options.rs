@@ -434,9 +434,17 @@ pub mod common {
         help: "keep the first light's RSM for Frame.rsm(name)",
         note: "",
     };
+    /// How the emitter lights' direct light is shaded (docs/scenes.md, "Emission";
+    /// `methods/emitter_direct.rs`): their 64-point sum shadowed by the cluster's cube, or each
+    /// point as a VSGL shaded with the SG lighting and shadowed by `visibility`.
+    pub const EMITTER_DIRECT: OptionSpec = choice(
+        "emitter_direct",
+        &["points", "sg"],
+        "direct light of emissive surfaces: \"points\" (each emitter light's 64 points summed, shadowed by its cube of shadow maps as seen from its centre: hard shadows) or \"sg\" (each point a VSGL of its patch's area and spread, shaded with the SG lighting and shadowed by the method's visibility, \"raytrace\" or \"ism\": penumbrae); ignored without emissive surfaces",
+    );
     /// The option groups several methods take, each declared once here and parsed once into a
     /// typed value: visibility of virtual lights (`VisibilityMode::from_options`)…
-    pub const VISIBILITY_OPTIONS: &[OptionSpec] = &[VISIBILITY, ISM_SIZE, ISM_POINTS, ISM_POINTS_PER_MAP, ISM_BIAS, ISM_PCF];
+    pub const VISIBILITY_OPTIONS: &[OptionSpec] = &[VISIBILITY, ISM_SIZE, ISM_POINTS, ISM_POINTS_PER_MAP, ISM_BIAS, ISM_PCF, EMITTER_DIRECT];
     /// …how RSM texels are drawn (`TexelSampling::from_options`)…
     pub const SAMPLING_OPTIONS: &[OptionSpec] = &[SAMPLING, CHAIN_SPACE, SEED];
     /// …the RSM's sampling density (`Importance::from_options`)…

@@ -80,7 +80,7 @@ impl SgLighting {
 
     /// The shading pass's form; `exact_texels`: shade one-texel VSGLs as that texel.
     pub fn shading_form(&self, exact_texels: bool) -> VsglShadingForm {
-        VsglShadingForm { diffuse: self.diffuse, lighting: self.lighting, lambert_lobe: self.lambert_lobe, exact_texels, plane_fade: self.plane_fade }
+        VsglShadingForm { diffuse: self.diffuse, lighting: self.lighting, lambert_lobe: self.lambert_lobe, exact_texels, plane_fade: self.plane_fade, fade_glossy: false }
     }
 }
 

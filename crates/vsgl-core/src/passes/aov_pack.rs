@@ -43,6 +43,9 @@ pub struct PackSources<'a> {
     pub indirect_light: bool,
     /// The specular target exists (else it is a placeholder that reads as zero).
     pub specular: bool,
+    /// The emitter VSGLs' direct light (`emitter_direct="sg"`), added to `direct`; `None`
+    /// leaves every value as it was without (the buffers are not read).
+    pub emitter_direct: Option<&'a IndirectTargets>,
 }
 
 pub struct AovPackPass {
@@ -63,7 +66,7 @@ impl AovPackPass {
             width: size.0,
             height: size.1,
             count: entries.len().min(MAX_ENTRIES) as u32,
-            flags: src.indirect_light as u32 | (src.specular as u32) << 1 | (src.gbuffer.has_emission as u32) << 2,
+            flags: src.indirect_light as u32 | (src.specular as u32) << 1 | (src.gbuffer.has_emission as u32) << 2 | (src.emitter_direct.is_some() as u32) << 3,
             entries: [[0; 4]; MAX_ENTRIES],
         };
         for (slot, e) in raw.entries.iter_mut().zip(entries) {
@@ -71,6 +74,8 @@ impl AovPackPass {
         }
         let uniform = rec.uniform("aov_pack_params_uniform_buffer", &raw);
         let stderr = src.stderr.unwrap_or(src.direct);
+        // Without emitter VSGLs the indirect targets stand in for their bindings (not read).
+        let emitters = src.emitter_direct.unwrap_or(src.indirect);
         rec.compute(
             "aov_pack",
             &self.pipeline,
@@ -86,6 +91,8 @@ impl AovPackPass {
                 out.as_entire_binding(),
                 counts.as_entire_binding(),
                 src.gbuffer.emission.as_entire_binding(),
+                emitters.diffuse.as_entire_binding(),
+                emitters.specular.as_entire_binding(),
             ]],
             (groups(size.0, WORKGROUP), groups(size.1, WORKGROUP), 1),
         );

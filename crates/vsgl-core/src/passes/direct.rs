@@ -19,6 +19,9 @@ pub struct ShadowMappedLights<'a> {
     /// the sum is compiled out and the buffer a placeholder).
     pub emitter_points: &'a wgpu::Buffer,
     pub has_emitter_lights: bool,
+    /// Whether this pass sums the emitter lights' points (`emitter_direct="points"`); else
+    /// the emitter VSGLs light them (`methods/emitter_direct.rs`) and this pass leaves them out.
+    pub emitter_point_sum: bool,
 }
 
 /// The bytes of direct.wgsl's `EmitterQuadrature`: the index of the frame's first emitter
@@ -68,11 +71,12 @@ impl DirectPass {
         out: &wgpu::Buffer,
         features: ShaderFeatures,
     ) {
-        let ShadowMappedLights { lights, shadow_maps, emitter_points, has_emitter_lights } = *lit;
+        let ShadowMappedLights { lights, shadow_maps, emitter_points, has_emitter_lights, emitter_point_sum } = *lit;
         let size = gbuffer.size;
         let gpu = rec.gpu;
         let mut flags = features.specular_flags().to_vec();
         flags.push(("HAS_EMITTER_LIGHTS", has_emitter_lights));
+        flags.push(("EMITTER_POINT_SUM", emitter_point_sum));
         let pipeline = &self.pipelines.get(gpu, &flags);
         let frame_bind = rec.bind_group("direct_frame_bind_group", PipelineRef::Compute(pipeline), 0, &[frame_uniforms.as_entire_binding()]);
         let pass_resources = [

@@ -47,6 +47,9 @@ pub struct VsglShadingForm {
     pub exact_texels: bool,
     /// Fade the papers' diffuse form below each VSGL's tangent plane (`plane_fade=`).
     pub plane_fade: bool,
+    /// With `plane_fade`, fade the receiver's glossy reflection of the diffuse lobe too (the
+    /// emitter VSGLs: a receiver on the emitter's own plane must not mirror it).
+    pub fade_glossy: bool,
 }
 
 /// Candidate texels per VSGL written by `vsgl_gen` ([`crate::passes::vsgl_gen::SHADOW_CANDIDATES`]
@@ -185,16 +188,22 @@ impl VsglShadingPass {
     }
 
     pub fn record(&self, rec: &mut Recorder<'_>, io: &ShadingInputs<'_>, lights: VirtualLightList<'_>, form: VsglShadingForm, candidates: Option<&ShadingCandidates<'_>>) {
+        self.record_as(rec, "vsgl_shading", io, lights, form, candidates);
+    }
+
+    /// [`Self::record`] under another name in `frame.passes` and the timings (the emitter
+    /// VSGLs' direct light is `emitter_direct`).
+    pub fn record_as(&self, rec: &mut Recorder<'_>, name: &str, io: &ShadingInputs<'_>, lights: VirtualLightList<'_>, form: VsglShadingForm, candidates: Option<&ShadingCandidates<'_>>) {
         let ShadingInputs { frame_uniforms: frame, gbuffer, out, features, size, visibility } = *io;
         let VirtualLightList { records: vsgls, count, interleave } = lights;
-        let VsglShadingForm { diffuse, lighting, lambert_lobe, exact_texels, plane_fade } = form;
+        let VsglShadingForm { diffuse, lighting, lambert_lobe, exact_texels, plane_fade, fade_glossy } = form;
         let gpu = rec.gpu;
         let [specular] = features.specular_flags();
         let [traced, ism, paged] = visibility.flags();
         let pipeline = self.pipelines.get(gpu, &[specular, traced, ism, paged]);
         let pixels_per_thread = pixels_per_thread(specular.1);
         // `frame.passes` names the visibility variant.
-        let label = format!("vsgl_shading{}", visibility.label_suffix());
+        let label = format!("{name}{}", visibility.label_suffix());
         // Chunks are multiples of k² so the interleaved subsets stay j ≡ t (mod k²).
         let near_field = candidates.is_some_and(|c| c.near_field);
         let per_dispatch = if visibility.traced {
@@ -209,7 +218,7 @@ impl VsglShadingPass {
         let placeholder = if candidates.is_none() { Some(rec.storage("vsgl_shading_shadow_candidates_placeholder_buffer", 32)) } else { None };
         let candidate_buffer = candidates.map(|c| c.buffer).or(placeholder.as_ref()).expect("a candidates buffer or its placeholder");
         for_each_chunk(count, chunk, |first, n| {
-            let params = ShadeParamsRaw { count: n, interleave, diffuse_mode: diffuse.shader_code(), first, exact_texels: u32::from(exact_texels), plane_fade: u32::from(plane_fade), lighting_mode: lighting.shader_code(), lambert_lobe: lambert_lobe.shader_code(), shadow_candidates: u32::from(candidates.is_some()) * SHADOW_CANDIDATES, seed: candidates.map_or(0, |c| c.seed), resample_target: u32::from(candidates.is_some_and(|c| c.resample_target && visibility.traced)), near_field_texels: u32::from(candidates.is_some_and(|c| c.near_field)) };
+            let params = ShadeParamsRaw { count: n, interleave, diffuse_mode: diffuse.shader_code(), first, exact_texels: u32::from(exact_texels), plane_fade: u32::from(plane_fade) * if fade_glossy { 2 } else { 1 }, lighting_mode: lighting.shader_code(), lambert_lobe: lambert_lobe.shader_code(), shadow_candidates: u32::from(candidates.is_some()) * SHADOW_CANDIDATES, seed: candidates.map_or(0, |c| c.seed), resample_target: u32::from(candidates.is_some_and(|c| c.resample_target && visibility.traced)), near_field_texels: u32::from(candidates.is_some_and(|c| c.near_field)) };
             let uniform = rec.uniform("vsgl_shading_params_uniform_buffer", &params);
             rec.compute(
                 &label,

@@ -17,6 +17,7 @@ use crate::frame::{GBuffer, IndirectTargets, VisibilityTargets};
 use crate::gpu::frame_log::{log_frame, FrameLog};
 use crate::gpu::{kept_staging_buffer, read_staging, FrameResources, Gpu, PassCache, PassTimer, Recorder};
 use crate::methods::options::ChoiceEnum;
+use crate::methods::emitter_direct::EmitterDirect;
 use crate::methods::{options::common, DirectLight, FrameContext, Method, MethodInfo, OptionValue, Options};
 use crate::passes::{direct::{emitter_quadrature_bytes, DirectPass, ShadowMappedLights}, material::{MaterialPass, RasterView}, shadow_map::ShadowMapPass, visibility::VisibilityPass};
 use crate::plan::{Plan, ShaderFeatures};
@@ -346,6 +347,9 @@ impl Renderer {
         // `pathtrace` samples the emissive triangles themselves). Their device needs are
         // checked again now that the upload has counted the emitters.
         let mut light_sources = scene.lights.clone();
+        // How the emitter lights' direct light is shaded (`emitter_direct`), with the visibility
+        // that shadows their VSGLs; checked whether or not the scene emits.
+        let (emitter_direct, emitter_visibility) = EmitterDirect::from_options(job.options, info.takes("emitter_direct"))?;
         let emitter_clusters = if info.takes("emitter_lights") && gscene.emitter_count > 0 {
             gscene.emitter_lights(scene, job.options.u32("emitter_lights")? as usize)
         } else {
@@ -439,6 +443,7 @@ impl Renderer {
                 shadow_maps: &shadow_view,
                 emitter_points: &emitter_points,
                 has_emitter_lights: !emitter_clusters.lights.is_empty(),
+                emitter_point_sum: emitter_direct == EmitterDirect::Points,
             };
             self.passes.get::<DirectPass>()?.record(&mut rec, &frame_buf, &lit, &gbuffer, &direct_out, feat);
         }
@@ -450,6 +455,14 @@ impl Renderer {
             diffuse: rec.storage("indirect_diffuse_buffer", pixel_bytes),
             specular: rec.storage("indirect_specular_buffer", if feat.specular { pixel_bytes } else { 16 }),
         };
+        // The emitter VSGLs' direct light, added to the direct light by aov_pack.
+        let emitter_targets = (emitter_direct == EmitterDirect::Sg && !emitter_clusters.lights.is_empty()).then(|| {
+            let pixels = w as u64 * h as u64 * 16;
+            IndirectTargets {
+                diffuse: rec.storage("emitter_direct_diffuse_buffer", pixels),
+                specular: rec.storage("emitter_direct_specular_buffer", if feat.specular { pixels } else { 16 }),
+            }
+        });
         let mut ctx = FrameContext {
             gpu,
             passes: &self.passes,
@@ -481,6 +494,9 @@ impl Renderer {
             chains,
         };
         job.method.record(&mut ctx)?;
+        if let Some(targets) = &emitter_targets {
+            crate::methods::emitter_direct::record(&mut ctx, &emitter_clusters, emitter_visibility, targets)?;
+        }
         let FrameContext { mut rec, skipped: method_skipped, vsgls, captured_rsm, captured_lpv, stderr, settings: method_settings, .. } = ctx;
         skipped.extend(method_skipped);
 
@@ -491,6 +507,7 @@ impl Renderer {
             stderr: stderr.as_ref(),
             indirect_light: info.indirect,
             specular: feat.specular,
+            emitter_direct: emitter_targets.as_ref(),
         };
         let pack = self.passes.get::<AovPackPass>()?;
         // Timed like any pass (`aov_pack`): readback work is part of the frame's GPU time.

@@ -255,6 +255,10 @@ pub struct EmitterClusters {
     /// [`POINTS_PER_LIGHT`] per light, in light order: world position and the point's share of
     /// the light's intensity (the shares of a light add up to 1; unused points have 0).
     pub points: Vec<(DVec3, f32)>,
+    /// Per point, the spread of the area it stands for: the trace of its positions' covariance
+    /// (E‖y − μ‖², its patches' centroids weighted by intensity, plus each patch's own spread,
+    /// area/6 as for a square), what an emitter VSGL's positional Gaussian takes.
+    pub point_variances: Vec<f64>,
 }
 
 /// The emissive triangles as at most `budget` lights for the real-time methods
@@ -294,15 +298,20 @@ pub fn emitter_lights(triangles: &[EmitterTriangle], textures: &[Texture], budge
             patches: c.len() as u32,
         });
         let parts = split_clusters(&patches, vec![c.clone()], POINTS_PER_LIGHT);
-        let mut points: Vec<(DVec3, f32)> = parts
-            .iter()
-            .map(|part| {
-                let w: f64 = part.iter().map(|&i| patches[i].intensity.element_sum()).sum();
-                (anchor + weighted(&|p| p.centroid, part) / w.max(f64::MIN_POSITIVE) + normal * offset, (w / weight) as f32)
-            })
-            .collect();
+        let mut points: Vec<(DVec3, f32)> = Vec::with_capacity(POINTS_PER_LIGHT);
+        let mut variances: Vec<f64> = Vec::with_capacity(POINTS_PER_LIGHT);
+        for part in &parts {
+            let w: f64 = part.iter().map(|&i| patches[i].intensity.element_sum()).sum();
+            let w_safe = w.max(f64::MIN_POSITIVE);
+            let mean = weighted(&|p| p.centroid, part) / w_safe;
+            let spread: f64 = part.iter().map(|&i| patches[i].intensity.element_sum() * ((patches[i].centroid - mean).length_squared() + patches[i].area / 6.0)).sum::<f64>() / w_safe;
+            points.push((anchor + mean + normal * offset, (w / weight) as f32));
+            variances.push(spread);
+        }
         points.resize(POINTS_PER_LIGHT, (anchor + centroid + normal * offset, 0.0));
+        variances.resize(POINTS_PER_LIGHT, 0.0);
         out.points.extend(points);
+        out.point_variances.extend(variances);
     }
     out
 }
@@ -388,6 +397,11 @@ mod tests {
         let reach = clusters.points.iter().map(|&(p, _)| p.x.abs().max(p.z.abs())).fold(0.0, f64::max);
         assert!((reach - 7.0 / 16.0).abs() < 1e-9, "{reach}");
         assert!(clusters.points.iter().all(|&(p, w)| w > 0.0 && p.y == 1.0));
+        // Each point stands for an eighth × eighth of the square: spread 2 · (1/8)²/12.
+        assert_eq!(clusters.point_variances.len(), POINTS_PER_LIGHT);
+        for v in &clusters.point_variances {
+            assert!((v - 2.0 / (64.0 * 12.0)).abs() < 0.25 * 2.0 / (64.0 * 12.0), "{v}");
+        }
     }
 
     #[test]
