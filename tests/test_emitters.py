@@ -340,3 +340,23 @@ def test_without_emitters_emitter_vsgls_change_nothing(make_renderer):
     frames = [r.render(scene, method="vpl", num_lights=64, rsm_size=32, visibility="raytrace", emitter_direct=e, aovs=["image"]) for e in ("points", "points", "sg")][1:]
     np.testing.assert_array_equal(frames[0].image, frames[1].image)
     assert frames[0].passes == frames[1].passes
+
+
+def test_an_emitter_lights_nothing_behind_its_own_plane_through_its_vsgls(tmp_path, make_renderer):
+    # The lamp emits downwards only: its back, seen from above, gets no light from its own
+    # VSGLs, which lie a millionth of the scene under it, behind their plane, where both the
+    # diffuse and the glossy terms fade out (without the glossy fade the back of the shared
+    # CornellBox's lamp was lit ~3e10 times over). The floor around it matches the point sum.
+    quads = [
+        dict(corners=[(-3, 0, -3), (-3, 0, 3), (3, 0, 3), (3, 0, -3)], name="floor", base_color=(FLOOR_ALBEDO,) * 3, specular=0.0),
+        dict(corners=[(-0.5, H, -0.5), (0.5, H, -0.5), (0.5, H, 0.5), (-0.5, H, 0.5)], name="glow", base_color=(0.7,) * 3, roughness=0.3),
+    ]
+    scene = vsgl.Scene.load(sb.write_quads(tmp_path, quads))
+    scene.set_material("materials[1]", emissive=(L_E, L_E, L_E))
+    above = vsgl.Camera.look_at(eye=(0.0, 1.8, 1.2), target=(0.0, H, 0.0), fov_y_deg=70.0)
+    r = make_renderer(16, 16)
+    kw = dict(method="vpl", num_lights=16, visibility="raytrace", aovs=["direct"])
+    points = r.render(scene, above, emitter_direct="points", **kw).aov("direct")
+    sg = r.render(scene, above, emitter_direct="sg", **kw).aov("direct")
+    assert points.max() > 0
+    np.testing.assert_allclose(sg, points, rtol=0.02, atol=1e-3 * points.max())
