@@ -52,6 +52,7 @@ impl ShaderFeatures {
 const SPECULAR_PASSES: &[&str] = &[
     "direct", "rsm_flux", "vpl_sample", "vpl_sample[every_texel]", "vpl_shading", "vsgl_moments", "vsgl2_reduce",
     "vsgl_shading", "denoise", "vpl_shading[raytrace]", "vsgl_shading[raytrace]",
+    "emitter_direct", "emitter_direct[raytrace]", "emitter_direct[ism]",
     "brsm_view_gbuffer", "brsm_view_moments", "brsm_importance",
 ];
 
