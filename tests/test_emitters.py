@@ -198,7 +198,7 @@ def test_a_punctual_light_and_an_emitter_add_up(tmp_path, make_renderer):
     lamp_only = emitter_over_floor(tmp_path, wall=True)
     lamp_only.set_material("materials[1]", emissive=(0.0, 0.0, 0.0))
     lamp_only.lights = [lamp]
-    for method, kw in (("direct", {}), ("reference", dict(rsm_size=32))):
+    for method, kw in (("direct", {}), ("reference", dict(rsm_size=32)), ("reference", dict(rsm_size=32, emitter_direct="sg", visibility="raytrace"))):
         frames = [r.render(s, cam, method=method, aovs=["direct", "indirect"] if method != "direct" else ["direct"], **kw)
                   for s in (both, lamp_only, emitter_only)]
         for aov in frames[0].aovs:
