@@ -48,7 +48,10 @@ thread_local! {
 static EVENT_LOOP_MADE: std::sync::atomic::AtomicBool = std::sync::atomic::AtomicBool::new(false);
 
 fn with_event_loop<R>(f: impl FnOnce(&mut EventLoop<()>) -> R) -> Result<R, WindowError> {
-    EVENT_LOOP.with(|cell| {
+    // `try_with`: a window dropped while its thread ends (interpreter shutdown) finds the loop
+    // gone and closes without pumping, instead of panicking across the Python boundary.
+    let gone = || WindowError::NoDisplay("the thread's event loop is gone (the thread is ending)".into());
+    EVENT_LOOP.try_with(|cell| {
         let mut slot = cell.borrow_mut();
         if slot.is_none() {
             if EVENT_LOOP_MADE.load(std::sync::atomic::Ordering::SeqCst) {
@@ -72,6 +75,7 @@ fn with_event_loop<R>(f: impl FnOnce(&mut EventLoop<()>) -> R) -> Result<R, Wind
         }
         Ok(f(slot.as_mut().expect("made above")))
     })
+    .map_err(|_| gone())?
 }
 
 /// On X11 systems, a clear error when there is no display to connect to (winit would fail with
