@@ -148,18 +148,18 @@ mod tests {
     #[test]
     fn pointer_positions_are_logical_and_buttons_are_held_until_released() {
         let mut s = EventState { scale: 2.0, ..Default::default() };
-        let moved = s.convert(&WindowEvent::CursorMoved { device_id: unsafe { winit::event::DeviceId::dummy() }, position: PhysicalPosition::new(200.0, 100.0) }).unwrap();
+        let moved = s.convert(&WindowEvent::CursorMoved { device_id: winit::event::DeviceId::dummy(), position: PhysicalPosition::new(200.0, 100.0) }).unwrap();
         assert_eq!((moved.kind, moved.x, moved.y), ("pointer_move", 100.0, 50.0));
-        let down = s.convert(&WindowEvent::MouseInput { device_id: unsafe { winit::event::DeviceId::dummy() }, state: ElementState::Pressed, button: MouseButton::Right }).unwrap();
+        let down = s.convert(&WindowEvent::MouseInput { device_id: winit::event::DeviceId::dummy(), state: ElementState::Pressed, button: MouseButton::Right }).unwrap();
         assert_eq!((down.kind, down.button, down.buttons.clone()), ("pointer_down", 2, vec![2]));
-        let up = s.convert(&WindowEvent::MouseInput { device_id: unsafe { winit::event::DeviceId::dummy() }, state: ElementState::Released, button: MouseButton::Right }).unwrap();
+        let up = s.convert(&WindowEvent::MouseInput { device_id: winit::event::DeviceId::dummy(), state: ElementState::Released, button: MouseButton::Right }).unwrap();
         assert_eq!((up.kind, up.button, up.buttons), ("pointer_up", 2, vec![]));
     }
 
     #[test]
     fn a_wheel_notch_toward_the_user_is_a_browsers_positive_hundred() {
         let mut s = EventState { scale: 1.0, ..Default::default() };
-        let w = s.convert(&WindowEvent::MouseWheel { device_id: unsafe { winit::event::DeviceId::dummy() }, delta: MouseScrollDelta::LineDelta(0.0, -1.0), phase: winit::event::TouchPhase::Moved }).unwrap();
+        let w = s.convert(&WindowEvent::MouseWheel { device_id: winit::event::DeviceId::dummy(), delta: MouseScrollDelta::LineDelta(0.0, -1.0), phase: winit::event::TouchPhase::Moved }).unwrap();
         assert_eq!((w.kind, w.dy), ("wheel", 100.0));
     }
 
