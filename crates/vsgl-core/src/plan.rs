@@ -102,9 +102,15 @@ mod tests {
     /// The pass whose shader an entry of `frame.passes` names ("vpl_sample[every_texel]" →
     /// passes/vpl_sample.wgsl).
     fn shader_of(pass: &str) -> String {
-        // The view's moments of bidirectional importance run the light's moment shader.
+        // The view's moments of bidirectional importance run the light's moment shader; the
+        // emitter VSGLs' direct light runs the VSGL shading shader.
         let pass = pass.split('[').next().unwrap();
-        format!("passes/{}.wgsl", if pass == "brsm_view_moments" { "vsgl_moments" } else { pass })
+        let shader = match pass {
+            "brsm_view_moments" => "vsgl_moments",
+            "emitter_direct" => "vsgl_shading",
+            other => other,
+        };
+        format!("passes/{shader}.wgsl")
     }
 
     /// `[diffuse_only]` is reported for exactly the passes whose shader reads HAS_SPECULAR, so
