@@ -142,13 +142,16 @@ impl PyViewWindow {
         if (w as u32, h as u32) != self.window.size() || !(c == 3 || c == 4) {
             return Err(argument_error(format!("image: expected shape ({}, {}, 3 or 4), got {shape:?}", self.window.size().1, self.window.size().0)));
         }
-        let a = image.as_array();
-        let mut rgba = Vec::with_capacity(w * h * 4);
-        for y in 0..h {
-            for x in 0..w {
-                rgba.extend_from_slice(&[a[[y, x, 0]], a[[y, x, 1]], a[[y, x, 2]], 255]);
-            }
-        }
+        // Row-major (H, W, C) bytes (a copy only for a non-contiguous view), then RGBA.
+        let bytes: Vec<u8> = match image.as_slice() {
+            Ok(s) => s.to_vec(),
+            Err(_) => image.as_array().iter().copied().collect(),
+        };
+        let rgba: Vec<u8> = if c == 4 {
+            bytes.chunks_exact(4).flat_map(|p| [p[0], p[1], p[2], 255]).collect()
+        } else {
+            bytes.chunks_exact(3).flat_map(|p| [p[0], p[1], p[2], 255]).collect()
+        };
         self.window.upload_image(slot.min(1), (w as u32, h as u32), &rgba).map_err(window_error)
     }
 

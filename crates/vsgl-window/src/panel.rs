@@ -115,9 +115,15 @@ impl Ui {
     }
 }
 
+/// Logical size from which the panel starts open (it is about 300 × 230 points open).
+const PANEL_OPEN_MIN_SIZE: (f32, f32) = (800.0, 480.0);
+
 /// The panel's widgets; appends what the user changed to `changes`.
 fn draw(ctx: &egui::Context, spec: &PanelSpec, changes: &mut Vec<PanelChange>) {
-    egui::Window::new("settings").anchor(egui::Align2::RIGHT_TOP, egui::vec2(-8.0, 8.0)).resizable(false).default_open(true).show(ctx, |ui| {
+    // Below the row of method labels; open from the start only where it leaves most of the
+    // frame in view (at 480×270 it covered the image: it then starts collapsed, a click opens it).
+    let roomy = ctx.content_rect().width() >= PANEL_OPEN_MIN_SIZE.0 && ctx.content_rect().height() >= PANEL_OPEN_MIN_SIZE.1;
+    egui::Window::new("settings").anchor(egui::Align2::RIGHT_TOP, egui::vec2(-8.0, 28.0)).resizable(false).default_open(roomy).show(ctx, |ui| {
         egui::Grid::new("controls").num_columns(2).show(ui, |ui| {
             for control in &spec.controls {
                 ui.label(control.name());
