@@ -300,10 +300,15 @@ class ViewSession:
                 indirects[method] = indirect
             gpu_ms += ms
         out = images[0] if len(images) == 1 else self._composite(images)
-        self._frame_seconds.append(time.perf_counter() - started)
+        self.count_frame(time.perf_counter() - started, gpu_ms)
+        return out, indirects
+
+    def count_frame(self, seconds: float, gpu_ms: float) -> None:
+        """Counts a frame shown, for the status line: its wall seconds (render to shown) and the
+        GPU milliseconds of the methods it rendered."""
+        self._frame_seconds.append(seconds)
         self.gpu_ms = gpu_ms
         self.frames += 1
-        return out, indirects
 
     def _composite(self, images: list[np.ndarray]) -> np.ndarray:
         h, w = images[0].shape[:2]

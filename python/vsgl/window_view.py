@@ -159,9 +159,7 @@ class WindowView:
         if still and s._errors_measured():
             s.error = s.measure_error()
         changed = self.present()
-        s._frame_seconds.append(time.perf_counter() - started)
-        s.gpu_ms = gpu_ms
-        s.frames += 1
+        s.count_frame(time.perf_counter() - started, gpu_ms)
         return changed
 
     def present(self) -> bool:
