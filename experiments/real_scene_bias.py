@@ -8,6 +8,9 @@ accuracy measurements: unshadowed, interleave 1, no denoiser, the reference of t
         [--scene NAME ...] [--variant LABEL=opt=value,opt=value ...] [--json out.json]
         [--out-of-the-box] [--seeds K]
 
+With --seeds K > 1 each row is the mean over the seeds with its standard error (± one standard
+error of the mean), the mean indirect over the reference's, and each component's range.
+
 Each variant is a vsgl (or vpl/vsgl2, with method=...) option set; the defaults print the
 table of docs/scenes.md, "The real-scene corpus"."""
 
@@ -72,6 +75,7 @@ def measure(r: vsgl.Renderer, scene: vsgl.Scene, rsm: int, n: int, variants, out
                 ref_mean = truth[a].mean()
                 one[short] = float(f.aov(a).astype(np.float64).mean() / ref_mean) if ref_mean > 0 else float("nan")
                 one[short + "_share"] = float(ref_mean / total) if total > 0 else 0.0
+            one["indirect"] = float(f.aov("indirect").astype(np.float64).mean() / total) if total > 0 else float("nan")
             one["block"] = float(block_rmse(f.aov("indirect"), truth["indirect"], 4)) if total > 0 else float("nan")
             one["gpu_ms"] = float(f.timings_ms.get("total", float("nan")))
             per_seed.append(one)
@@ -83,6 +87,10 @@ def measure(r: vsgl.Renderer, scene: vsgl.Scene, rsm: int, n: int, variants, out
             for short in ("diffuse", "specular", "block"):
                 row[short + "_range"] = [min(o[short] for o in per_seed), max(o[short] for o in per_seed)]
             row["seed0"] = per_seed[0]
+            # The standard error of the mean over seeds: the mean's own error as an estimate of
+            # the expectation (one seed's frame is heavy-tailed where a few texels carry the light).
+            for short in ("diffuse", "specular", "indirect"):
+                row[short + "_stderr"] = float(np.std([o[short] for o in per_seed], ddof=1) / np.sqrt(seeds))
         out["rows"][label] = row
     return out
 
@@ -123,7 +131,8 @@ def main() -> int:
             if a.seeds > 1:
                 (d0, d1), (s0, s1), (b0, b1) = row["diffuse_range"], row["specular_range"], row["block_range"]
                 z = row["seed0"]
-                line += (f"   seeds 0-{a.seeds - 1}: diffuse {d0:.2f}-{d1:.2f}, specular {s0:.2f}-{s1:.2f}, block {b0:.2f}-{b1:.2f};"
+                line += (f"   indirect {row['indirect']:.3f} ± {row['indirect_stderr']:.3f} (diffuse ± {row['diffuse_stderr']:.3f}, specular ± {row['specular_stderr']:.3f})"
+                         f"   seeds 0-{a.seeds - 1}: diffuse {d0:.2f}-{d1:.2f}, specular {s0:.2f}-{s1:.2f}, block {b0:.2f}-{b1:.2f};"
                          f" seed 0 {z['diffuse']:.3f} / {z['specular']:.3f}, {z['block']:.3f}")
             print(line)
     if a.json:
