@@ -45,6 +45,8 @@ def main() -> int:
     p.add_argument("--frames", type=int, default=16)
     p.add_argument("--reference-rsm", type=int, default=512)
     p.add_argument("--seed-sets", type=int, default=4)
+    p.add_argument("--fixed-seed", action="store_true",
+                   help="one seed for every frame of a set (seed 1000 j in set j: render_sequence's default, a fixed sample pattern) instead of seed k + 1000 j in frame k")
     p.add_argument("--scene", action="append", help="animated scene (repeatable; default cave_flashlight and glossy_cornell)")
     p.add_argument("--variant", action="append", help="LABEL=opt=value,... (repeatable; method=vpl for VPLs; the first is the baseline)")
     a = p.parse_args()
@@ -62,7 +64,7 @@ def main() -> int:
             for k, t in enumerate(times):
                 scene.set_time(t)
                 if seed_set is not None:
-                    kw["seed"] = k + 1000 * seed_set
+                    kw["seed"] = (0 if a.fixed_seed else k) + 1000 * seed_set
                 frames.append(r.render(scene, method=method, aovs=["indirect"], **kw).aov("indirect"))
             return np.stack(frames)
 
@@ -70,7 +72,7 @@ def main() -> int:
         truths = {"converged": sequence("reference", rsm_size=a.reference_rsm)}
         half = sequence("reference", rsm_size=a.reference_rsm // 2)
         truths["same RSM"] = half if a.reference_rsm // 2 == own_rsm else sequence("reference", rsm_size=own_rsm)
-        print(f"{name} ({a.size}x{a.size}, {a.frames} frames, {a.seed_sets} seed sets; converged truth: reference at RSM "
+        print(f"{name} ({a.size}x{a.size}, {a.frames} frames, {a.seed_sets} seed sets{', one seed per set' if a.fixed_seed else ''}; converged truth: reference at RSM "
               f"{a.reference_rsm}^2, whose own flicker error is below that of RSM {a.reference_rsm // 2}^2 against it, "
               f"{flicker(half, truths['converged']):.3f}; same-RSM truth: reference at RSM {own_rsm}^2)")
         medians = {t: {} for t in truths}
