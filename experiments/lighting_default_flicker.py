@@ -71,7 +71,10 @@ def main() -> int:
         own_rsm = vsgl.method_options("vsgl")["rsm_size"]
         truths = {"converged": sequence("reference", rsm_size=a.reference_rsm)}
         half = sequence("reference", rsm_size=a.reference_rsm // 2)
-        truths["same RSM"] = half if a.reference_rsm // 2 == own_rsm else sequence("reference", rsm_size=own_rsm)
+        if own_rsm == a.reference_rsm:
+            truths["same RSM"] = truths["converged"]
+        else:
+            truths["same RSM"] = half if a.reference_rsm // 2 == own_rsm else sequence("reference", rsm_size=own_rsm)
         print(f"{name} ({a.size}x{a.size}, {a.frames} frames, {a.seed_sets} seed sets{', one seed per set' if a.fixed_seed else ''}; converged truth: reference at RSM "
               f"{a.reference_rsm}^2, whose own flicker error is below that of RSM {a.reference_rsm // 2}^2 against it, "
               f"{flicker(half, truths['converged']):.3f}; same-RSM truth: reference at RSM {own_rsm}^2)")
