@@ -18,7 +18,7 @@ files under experiments/lavapipe/corpus/ were made so (--reference-rsm 128 --see
 their variants reproduces their converged-truth column).
 
     .venv/bin/python experiments/lighting_default_flicker.py [--size 64] [--frames 16]
-        [--reference-rsm 512] [--seed-sets 4] [--scene NAME ...] [--variant LABEL=opt=value,... ...]"""
+        [--reference-rsm 512] [--seed-sets 4] [--fixed-seed] [--scene NAME ...] [--variant LABEL=opt=value,... ...]"""
 
 from __future__ import annotations
 
@@ -50,6 +50,8 @@ def main() -> int:
     p.add_argument("--scene", action="append", help="animated scene (repeatable; default cave_flashlight and glossy_cornell)")
     p.add_argument("--variant", action="append", help="LABEL=opt=value,... (repeatable; method=vpl for VPLs; the first is the baseline)")
     a = p.parse_args()
+    if a.frames < 2 or a.seed_sets < 1:
+        p.error(f"--frames: expected 2 or more (got {a.frames}); --seed-sets: expected 1 or more (got {a.seed_sets})")
     r = vsgl.Renderer(a.size, a.size)
     runs = {}
     for label, opts in (parse_variant(v) for v in (a.variant or DEFAULT_VARIANTS)):

@@ -110,6 +110,8 @@ def main() -> int:
     p.add_argument("--rsm-fit", choices=["scene", "cone"],
                    help="rsm_fit of the reference and of every variant that does not set it (default: each method's default)")
     a = p.parse_args()
+    if a.seeds < 1:
+        p.error(f"--seeds: expected 1 or more, got {a.seeds}")
     variants = [parse_variant(v) for v in (a.variant or DEFAULT_VARIANTS)]
     names = a.scene or [n for n in vsgl.scenes.corpus_names() if vsgl.scenes.corpus_available(n)]
     if not names:
